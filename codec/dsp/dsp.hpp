@@ -1,0 +1,53 @@
+// dsp.hpp - distance kernels on 8-bit neighbourhood vectors, behind one
+// dispatch point.
+//
+// Every search in the codec (exhaustive reference, TSVQ training and TSVQ
+// descent; paper sections 2.2 and 4) reduces to the sum of squared
+// differences between two byte vectors. The scalar version is the definition
+// of correct; the SIMD versions must give bit-identical results, which is
+// easy because all arithmetic is exact integer arithmetic.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace vqtex::dsp {
+
+// Vectors handed to the kernels are padded with zeros to a multiple of this
+// many bytes, so kernels never need a scalar tail.
+inline constexpr std::size_t kVectorAlign = 16;
+
+inline constexpr std::size_t padded_length(std::size_t n) {
+    return (n + kVectorAlign - 1) / kVectorAlign * kVectorAlign;
+}
+
+struct Kernels {
+    const char* name;
+    // Sum of squared differences of n bytes (n a multiple of kVectorAlign).
+    uint32_t (*ssd)(const uint8_t* a, const uint8_t* b, std::size_t n);
+    // Index of the row of `rows` (count rows of `stride` bytes, comparing the
+    // first n bytes) nearest to `query`; on equal distance the lowest index
+    // wins. *best_distance holds an upper bound on entry (rows at or above it
+    // are never chosen) and the winning distance on return. Returns
+    // UINT32_MAX when no row beats the bound.
+    uint32_t (*nearest)(const uint8_t* query, const uint8_t* rows, std::size_t stride,
+                        std::size_t n, std::size_t count, uint32_t* best_distance);
+};
+
+// The kernels chosen for this CPU, once. The environment variable
+// VQTEX_SIMD=scalar|sse2|avx2|avx512 forces a level (for tests and for
+// checking that results never depend on it); a level the CPU lacks falls back
+// to the best one it has.
+const Kernels& kernels();
+
+// All kernel sets this CPU can run, scalar first; for tests.
+int available_kernel_count();
+const Kernels& available_kernels(int index);
+
+// Per instruction set; each lives in its own file compiled with its own flags.
+const Kernels& scalar_kernels();
+const Kernels* sse2_kernels();
+const Kernels* avx2_kernels();
+const Kernels* avx512_kernels();
+
+}  // namespace vqtex::dsp

@@ -1,0 +1,74 @@
+// ssd_avx2.cpp - AVX2 distance kernels, compiled with -mavx2 and only called
+// after the dispatcher has seen AVX2 on the CPU. Bit-identical to the scalar
+// kernels.
+#include "dsp.hpp"
+
+#if defined(__AVX2__) && !defined(VQTEX_SCALAR_ONLY)
+#include <immintrin.h>
+
+namespace vqtex::dsp {
+namespace {
+
+// 16 bytes widened to 16-bit lanes, squared and pair-summed to 8 x int32.
+inline __m256i ssd16(const uint8_t* a, const uint8_t* b) {
+    const __m256i va = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(a)));
+    const __m256i vb = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(b)));
+    const __m256i d = _mm256_sub_epi16(va, vb);
+    return _mm256_madd_epi16(d, d);
+}
+
+inline uint32_t hsum(__m256i v) {
+    __m128i s = _mm_add_epi32(_mm256_castsi256_si128(v), _mm256_extracti128_si256(v, 1));
+    s = _mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(1, 0, 3, 2)));
+    s = _mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(2, 3, 0, 1)));
+    return uint32_t(_mm_cvtsi128_si32(s));
+}
+
+uint32_t ssd_avx2(const uint8_t* a, const uint8_t* b, std::size_t n) {
+    __m256i acc0 = _mm256_setzero_si256();
+    __m256i acc1 = _mm256_setzero_si256();
+    std::size_t i = 0;
+    for (; i + 32 <= n; i += 32) {
+        acc0 = _mm256_add_epi32(acc0, ssd16(a + i, b + i));
+        acc1 = _mm256_add_epi32(acc1, ssd16(a + i + 16, b + i + 16));
+    }
+    if (i < n) acc0 = _mm256_add_epi32(acc0, ssd16(a + i, b + i));
+    return hsum(_mm256_add_epi32(acc0, acc1));
+}
+
+uint32_t nearest_avx2(const uint8_t* query, const uint8_t* rows, std::size_t stride,
+                      std::size_t n, std::size_t count, uint32_t* best_distance) {
+    uint32_t best = *best_distance;
+    uint32_t best_index = UINT32_MAX;
+    for (std::size_t r = 0; r < count; ++r) {
+        const uint8_t* row = rows + r * stride;
+        __m256i acc = _mm256_setzero_si256();
+        std::size_t i = 0;
+        uint32_t sum = 0;
+        while (i < n) {
+            const std::size_t end = (n - i > 64) ? i + 64 : n;
+            for (; i < end; i += 16) acc = _mm256_add_epi32(acc, ssd16(query + i, row + i));
+            sum = hsum(acc);
+            if (sum >= best) break;
+        }
+        if (i >= n && sum < best) {
+            best = sum;
+            best_index = uint32_t(r);
+        }
+    }
+    *best_distance = best;
+    return best_index;
+}
+
+const Kernels kAvx2 = {"avx2", ssd_avx2, nearest_avx2};
+
+}  // namespace
+
+const Kernels* avx2_kernels() { return &kAvx2; }
+
+}  // namespace vqtex::dsp
+#else
+namespace vqtex::dsp {
+const Kernels* avx2_kernels() { return nullptr; }
+}  // namespace vqtex::dsp
+#endif

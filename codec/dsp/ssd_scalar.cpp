@@ -1,0 +1,48 @@
+// ssd_scalar.cpp - the reference distance kernels: plain C++, the definition
+// of what every SIMD version must reproduce bit for bit.
+#include "dsp.hpp"
+
+namespace vqtex::dsp {
+namespace {
+
+uint32_t ssd_scalar(const uint8_t* a, const uint8_t* b, std::size_t n) {
+    uint32_t sum = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const int d = int(a[i]) - int(b[i]);
+        sum += uint32_t(d * d);
+    }
+    return sum;
+}
+
+uint32_t nearest_scalar(const uint8_t* query, const uint8_t* rows, std::size_t stride,
+                        std::size_t n, std::size_t count, uint32_t* best_distance) {
+    uint32_t best = *best_distance;
+    uint32_t best_index = UINT32_MAX;
+    for (std::size_t r = 0; r < count; ++r) {
+        const uint8_t* row = rows + r * stride;
+        // Partial distances only grow, so a row can be abandoned as soon as it
+        // reaches the best so far; this changes no result.
+        uint32_t sum = 0;
+        std::size_t i = 0;
+        for (; i < n && sum < best; i += kVectorAlign) {
+            for (std::size_t k = 0; k < kVectorAlign; ++k) {
+                const int d = int(query[i + k]) - int(row[i + k]);
+                sum += uint32_t(d * d);
+            }
+        }
+        if (i >= n && sum < best) {
+            best = sum;
+            best_index = uint32_t(r);
+        }
+    }
+    *best_distance = best;
+    return best_index;
+}
+
+const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar};
+
+}  // namespace
+
+const Kernels& scalar_kernels() { return kScalar; }
+
+}  // namespace vqtex::dsp

@@ -1,0 +1,44 @@
+// image.hpp - 8-bit interleaved image buffers (1 to 4 channels) with checked
+// sizes and toroidal addressing (paper section 2.4: the output is a torus).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace vqtex {
+
+inline constexpr int kMaxChannels = 4;
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::vector<uint8_t> pixels;  // row-major, channels interleaved
+
+    Image() = default;
+    Image(int w, int h, int c);
+
+    bool empty() const { return width == 0 || height == 0; }
+    std::size_t pixel_count() const { return std::size_t(width) * std::size_t(height); }
+    std::size_t byte_count() const { return pixel_count() * std::size_t(channels); }
+
+    uint8_t* at(int x, int y) { return pixels.data() + (std::size_t(y) * width + x) * channels; }
+    const uint8_t* at(int x, int y) const {
+        return pixels.data() + (std::size_t(y) * width + x) * channels;
+    }
+    // Toroidal access: any integer coordinates, wrapped into the image.
+    const uint8_t* wrapped(int x, int y) const { return at(wrap(x, width), wrap(y, height)); }
+
+    static int wrap(int v, int size) {
+        v %= size;
+        return v < 0 ? v + size : v;
+    }
+
+    bool operator==(const Image& o) const {
+        return width == o.width && height == o.height && channels == o.channels &&
+               pixels == o.pixels;
+    }
+};
+
+}  // namespace vqtex

@@ -1,0 +1,55 @@
+// matcher.hpp - the search interface the synthesis engine calls per pixel:
+// given the neighbourhood of an output pixel, return the example pixel to
+// copy (paper section 2.2). Exhaustive search and TSVQ both implement it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+namespace vqtex {
+
+// Per-pixel inputs of a search besides the query.
+struct MatchContext {
+    // Near-ties: every candidate within best * (1 + tolerance / 256) of the
+    // best distance qualifies, and the one whose key hashes lowest with
+    // `salt` wins. The salt depends on the seed and the pixel's position only,
+    // so the choice is deterministic whatever the thread count or visit
+    // order. tolerance 0 is a plain nearest-neighbour search (lowest key on
+    // exact ties).
+    uint64_t salt = 0;
+    uint32_t tolerance = 0;
+};
+
+// The winner among qualifying candidates: lowest (hash, key).
+inline uint64_t candidate_rank(uint64_t salt, uint32_t key) {
+    uint64_t z = salt ^ (uint64_t(key) * 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+inline uint32_t tolerance_threshold(uint32_t best, uint32_t tolerance) {
+    const uint64_t t = uint64_t(best) + uint64_t(best) * tolerance / 256;
+    return t > UINT32_MAX ? UINT32_MAX : uint32_t(t);
+}
+
+// Per-thread working memory of a matcher, made once per thread so that the
+// per-pixel search allocates nothing.
+struct MatchScratch {
+    virtual ~MatchScratch() = default;
+};
+
+class Matcher {
+public:
+    virtual ~Matcher() = default;
+    // Bytes of a query (the neighbourhood's padded stride).
+    virtual std::size_t stride() const = 0;
+    virtual std::unique_ptr<MatchScratch> make_scratch() const { return nullptr; }
+    // The pixel (channels bytes) to write for this query. Must be a pure
+    // function of the query: thread-safe and deterministic.
+    virtual const uint8_t* match(const uint8_t* query, const MatchContext& context,
+                                 MatchScratch* scratch) const = 0;
+};
+
+}  // namespace vqtex

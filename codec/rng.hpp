@@ -1,0 +1,47 @@
+// rng.hpp - the codec's own pseudo-random generator.
+//
+// Decoded pixels must depend only on the file, the size and the seed (paper
+// section 2.5 starts from white noise; we make that noise reproducible). The
+// standard library's engines are portable but its distributions are not, so
+// we use SplitMix64 and our own bounded draws.
+#pragma once
+
+#include <cstdint>
+
+namespace vqtex {
+
+// 128-bit products keep the bounded draw exact; GCC and Clang both have them.
+__extension__ typedef unsigned __int128 uint128;
+
+class Rng {
+public:
+    explicit Rng(uint64_t seed) : state_(seed) {}
+
+    uint64_t next() {
+        uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+
+    // Uniform in [0, bound), bound > 0. Multiply-shift: no division, and the
+    // bias (at most bound / 2^64) is far below anything observable.
+    uint64_t below(uint64_t bound) {
+        return uint64_t((static_cast<uint128>(next()) * bound) >> 64);
+    }
+
+    // An independent stream for a named purpose, so that adding a use of
+    // randomness in one place never shifts the numbers drawn in another.
+    static Rng stream(uint64_t seed, uint64_t purpose, uint64_t index = 0) {
+        Rng mix(seed ^ (purpose * 0xD1B54A32D192ED03ull));
+        mix.next();
+        Rng r(mix.next() ^ (index * 0x8CB92BA72F3D8DD7ull));
+        r.next();
+        return r;
+    }
+
+private:
+    uint64_t state_;
+};
+
+}  // namespace vqtex

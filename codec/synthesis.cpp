@@ -1,0 +1,192 @@
+// synthesis.cpp - multiresolution raster synthesis with a deterministic
+// wavefront (paper sections 2.2-2.5).
+#include "synthesis.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
+#include "error.hpp"
+#include "pyramid.hpp"
+
+namespace vqtex {
+
+int scan_lag(const Shape& shape) { return causal_reach_x(shape) + 1; }
+
+int closing_band_rows(const Shape& causal_shape) { return 2 * causal_reach_y(causal_shape) + 1; }
+
+uint64_t pixel_salt(uint64_t seed, int level, int pass, int x, int y) {
+    return candidate_rank(seed ^ (uint64_t(uint32_t(level * 4 + pass)) << 56),
+                          uint32_t(y) * 65537u ^ uint32_t(x) * 0x9E3779B1u);
+}
+
+int row_start(int y, int lag, int width) {
+    return int((int64_t(y) * lag) % width);
+}
+
+namespace {
+
+// Pixel replication: each pixel takes its parent's value, the same parent
+// (x >> 1, y >> 1) the neighbourhoods use.
+void upsample_parent(const Image& parent, Image& img) {
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            std::copy(parent.at(x >> 1, y >> 1), parent.at(x >> 1, y >> 1) + img.channels, img.at(x, y));
+}
+
+// Shared state of one level's wavefront.
+struct LevelRun {
+    const NeighborhoodLayout* layout;
+    const Matcher* matcher;
+    std::vector<Image>* pyramid;
+    int level, width, height, lag, reach_x, reach_y;
+    std::vector<std::atomic<int>>* progress;  // pixels finished per row
+    std::atomic<bool>* stop;
+    std::atomic<uint64_t>* pixels_done;
+    std::vector<uint32_t>* trace;
+    std::atomic<uint32_t>* trace_counter;
+    uint64_t seed;
+    uint32_t tolerance;
+};
+
+void wait_for(const std::atomic<int>& value, int needed, const std::atomic<bool>& stop) {
+    int spins = 0;
+    while (value.load(std::memory_order_acquire) < needed) {
+        if (stop.load(std::memory_order_relaxed)) return;
+        if (++spins > 64) std::this_thread::yield();
+    }
+}
+
+// Synthesise row y of the level. `parallel` enables the wavefront waits.
+void run_row(const LevelRun& r, int y, bool parallel, std::vector<uint8_t>& query,
+             MatchScratch* scratch) {
+    Image& out = (*r.pyramid)[std::size_t(r.level)];
+    const int w = r.width;
+    const int start = row_start(y, r.lag, w);
+    std::atomic<int>& mine = (*r.progress)[std::size_t(y)];
+    if (parallel && y >= r.height - r.reach_y && r.reach_y > 0) {
+        // Rows at the bottom are read as noise by the first rows (top wrap);
+        // they may change only once those rows are finished.
+        wait_for((*r.progress)[std::size_t(r.reach_y - 1)], w, *r.stop);
+    }
+    for (int i = 0; i < w; ++i) {
+        if (parallel && y > 0)
+            wait_for((*r.progress)[std::size_t(y - 1)], std::min(w, i + r.lag + r.reach_x + 1),
+                     *r.stop);
+        if (r.stop->load(std::memory_order_relaxed)) return;
+        const int x = start + i < w ? start + i : start + i - w;
+        r.layout->gather_wrapped(*r.pyramid, x, y, query.data());
+        const MatchContext context{pixel_salt(r.seed, r.level, 0, x, y), r.tolerance};
+        const uint8_t* pixel = r.matcher->match(query.data(), context, scratch);
+        std::copy(pixel, pixel + out.channels, out.at(x, y));
+        if (r.trace) (*r.trace)[std::size_t(y) * w + x] = r.trace_counter->fetch_add(1);
+        mine.store(i + 1, std::memory_order_release);
+    }
+    r.pixels_done->fetch_add(uint64_t(w), std::memory_order_relaxed);
+}
+
+// Seam closing. A causal scan on a torus must start somewhere: the first rows
+// are synthesised before the last ones exist and read the initial values
+// through the wrap, so the bottom and the top rows do not quite meet. Once
+// the level is complete, the rows on both sides of that line are matched
+// again with a symmetric neighbourhood, which sees the finished pixels above
+// and below, from the upper side of the band down across the wrap.
+void close_seam(const LevelModel& lm, std::vector<Image>& pyramid, int level, int levels,
+                int channels, const SynthesisOptions& options) {
+    Image& img = pyramid[std::size_t(level)];
+    const NeighborhoodLayout layout(lm.closing_shape, channels, level, levels);
+    if (layout.stride() != lm.closing->stride())
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "seam matcher and shape disagree at level " +
+                                               std::to_string(level));
+    const int band = std::min(closing_band_rows(lm.shape), (img.height + 1) / 2);
+    std::vector<uint8_t> query(layout.stride());
+    std::unique_ptr<MatchScratch> scratch = lm.closing->make_scratch();
+    // Two sweeps: the second sees the first's results on both sides.
+    for (int sweep = 0; sweep < 2; ++sweep) {
+        for (int k = 0; k < 2 * band; ++k) {
+            const int y = Image::wrap(img.height - band + k, img.height);
+            for (int x = 0; x < img.width; ++x) {
+                layout.gather_wrapped(pyramid, x, y, query.data());
+                const MatchContext context{pixel_salt(options.seed, level, 1 + sweep, x, y),
+                                           options.tolerance};
+                const uint8_t* pixel = lm.closing->match(query.data(), context, scratch.get());
+                std::copy(pixel, pixel + img.channels, img.at(x, y));
+            }
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<Image> synthesize_pyramid(const TextureModel& model, const SynthesisOptions& options) {
+    const int levels = int(model.levels.size());
+    if (levels < 1) fail(VQTEX_ERROR_INVALID_ARGUMENT, "texture model has no levels");
+    if (options.width < 1 || options.height < 1)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size must be at least 1x1");
+
+    std::vector<Image> pyramid;
+    uint64_t total_pixels = 0;
+    for (int l = 0; l < levels; ++l) {
+        pyramid.emplace_back(pyramid_level_size(options.width, l),
+                             pyramid_level_size(options.height, l), model.channels);
+        total_pixels += pyramid.back().pixel_count();
+    }
+    if (options.trace) options.trace->visit_order.assign(std::size_t(levels), {});
+
+    std::atomic<bool> stop{false};
+    std::atomic<uint64_t> pixels_done{0};
+    const int threads = std::max(1, options.threads);
+
+    for (int l = levels - 1; l >= 0; --l) {
+        const LevelModel& lm = model.levels[std::size_t(l)];
+        Image& img = pyramid[std::size_t(l)];
+        if (options.init == LevelInit::Noise || l + 1 == levels)
+            fill_matched_noise(img, lm.histogram, options.seed, l);
+        else
+            upsample_parent(pyramid[std::size_t(l + 1)], img);
+        const NeighborhoodLayout layout(lm.shape, model.channels, l, levels);
+        if (layout.stride() != lm.matcher->stride())
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "matcher and neighbourhood shape disagree at level " +
+                                                   std::to_string(l));
+
+        std::vector<std::atomic<int>> progress(std::size_t(img.height));
+        for (auto& p : progress) p.store(0);
+        std::atomic<uint32_t> trace_counter{0};
+        std::vector<uint32_t>* trace = nullptr;
+        if (options.trace) {
+            trace = &options.trace->visit_order[std::size_t(l)];
+            trace->assign(img.pixel_count(), 0);
+        }
+        const Shape& shape = layout.shape();
+        LevelRun run{&layout, lm.matcher.get(), &pyramid, l, img.width, img.height,
+                     scan_lag(shape), causal_reach_x(shape), causal_reach_y(shape),
+                     &progress, &stop, &pixels_done, trace, &trace_counter,
+                     options.seed, options.tolerance};
+
+        // The wavefront needs room: tiny levels (the coarsest ones of a small
+        // output) run on one thread, which gives the same bytes anyway.
+        const bool parallel = threads > 1 && img.height >= 2 * run.reach_y + 2 && !options.trace;
+        const int workers = parallel ? std::min(threads, img.height) : 1;
+
+        auto worker = [&](int index) {
+            std::vector<uint8_t> query(layout.stride());
+            std::unique_ptr<MatchScratch> scratch = lm.matcher->make_scratch();
+            for (int y = index; y < img.height; y += workers) {
+                if (stop.load()) return;
+                run_row(run, y, parallel, query, scratch.get());
+                if (index == 0 && options.progress &&
+                    !options.progress(pixels_done.load(std::memory_order_relaxed), total_pixels))
+                    stop.store(true);
+            }
+        };
+        std::vector<std::thread> pool;
+        for (int t = 1; t < workers; ++t) pool.emplace_back(worker, t);
+        worker(0);
+        for (auto& t : pool) t.join();
+        if (lm.closing && !stop.load()) close_seam(lm, pyramid, l, levels, model.channels, options);
+        if (stop.load()) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+    }
+    return pyramid;
+}
+
+}  // namespace vqtex

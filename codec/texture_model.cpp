@@ -1,0 +1,132 @@
+// texture_model.cpp - from an example image to a TextureModel (paper
+// sections 2.3, 2.5 and 4).
+#include "texture_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "error.hpp"
+#include "pyramid.hpp"
+#include "search_exhaustive.hpp"
+#include "tsvq_search.hpp"
+
+namespace vqtex {
+
+ModelPlan plan_model(const vqtex_model_params& params, int width, int height) {
+    ModelPlan plan;
+    plan.levels = params.levels ? int(params.levels) : automatic_levels(width, height);
+    if (plan.levels < 1 || plan.levels > kMaxLevels)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 1 to " + std::to_string(kMaxLevels) +
+                                               " (got " + std::to_string(plan.levels) + ")");
+    plan.shapes = default_shapes(plan.levels);
+    for (int l = 0; l < plan.levels; ++l) {
+        const vqtex_shape& s = params.shapes[l];
+        if (s.rows == 0 && s.cols == 0 && s.levels == 0) continue;
+        if (s.rows % 2 == 0 || s.cols % 2 == 0 || s.levels < 1 || s.rows > 63 || s.cols > 63)
+            fail(VQTEX_ERROR_INVALID_ARGUMENT,
+                 "neighbourhood at level " + std::to_string(l) + " must be odd RxC up to 63x63 with k >= 1 (got {" +
+                     std::to_string(s.rows) + "x" + std::to_string(s.cols) + "," +
+                     std::to_string(s.levels) + "})");
+        plan.shapes[std::size_t(l)] = Shape{s.rows, s.cols, s.levels};
+    }
+    for (int l = 0; l < plan.levels; ++l) {
+        Shape& s = plan.shapes[std::size_t(l)];
+        s.levels = std::min(s.levels, plan.levels - l);
+    }
+    return plan;
+}
+
+uint32_t codewords_for_level(const vqtex_model_params& params, int level,
+                             std::size_t training_vectors) {
+    uint64_t k = params.codewords[level];
+    if (k == 0) {
+        const double f = params.codeword_fraction > 0 ? params.codeword_fraction : 1.0;
+        k = uint64_t(std::llround(double(training_vectors) * std::min(1.0, double(f))));
+        // Very coarse levels have few vectors; keep enough leaves to matter.
+        k = std::max<uint64_t>(k, std::min<uint64_t>(training_vectors, 64));
+    }
+    return uint32_t(std::clamp<uint64_t>(k, 1, training_vectors));
+}
+
+namespace {
+
+// Exhaustive candidates or a trained codebook for one level's example set;
+// codebooks are recorded in result.codebooks[slot].
+std::shared_ptr<const Matcher> build_matcher(ExampleSet& set, const vqtex_model_params& params,
+                                             vqtex_search search, uint32_t backtrack, int threads,
+                                             int slot, AnalysisResult& result) {
+    if (search == VQTEX_SEARCH_EXHAUSTIVE) {
+        result.model_bytes += set.vectors.size() + set.pixels.size();
+        return std::make_shared<ExhaustiveMatcher>(std::move(set));
+    }
+    std::size_t subset_size = set.count();
+    if (params.train_fraction > 0 && params.train_fraction < 1)
+        subset_size = std::max<std::size_t>(
+            1, std::size_t(std::llround(double(subset_size) * params.train_fraction)));
+    if (params.train_count > 0) subset_size = std::min<std::size_t>(subset_size, params.train_count);
+    const std::vector<uint32_t> subset =
+        choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(slot));
+    TrainParams tp;
+    tp.max_leaves = codewords_for_level(params, slot, subset.size());
+    tp.distortion_threshold = params.distortion_threshold;
+    tp.representative = params.leaf == VQTEX_LEAF_CENTROID ? LeafRepresentative::Centroid
+                                                           : LeafRepresentative::Medoid;
+    tp.threads = threads;
+    auto book = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
+    result.model_bytes += book->memory_bytes();
+    result.codebooks[std::size_t(slot)] = book;
+    return std::make_shared<TsvqMatcher>(book, backtrack);
+}
+
+}  // namespace
+
+AnalysisResult analyse_example(const Image& example, const vqtex_model_params& params,
+                               vqtex_search search, uint32_t backtrack, int threads,
+                               const ProgressFn& progress) {
+    if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example image is empty (0x0)");
+    const ModelPlan plan = plan_model(params, example.width, example.height);
+    const bool tileable = params.example_tileable != 0;
+    const std::vector<Image> pyramid =
+        build_pyramid(example, plan.levels, tileable ? EdgeMode::Wrap : EdgeMode::Mirror);
+
+    AnalysisResult result;
+    result.model.channels = example.channels;
+    result.model.levels.resize(std::size_t(plan.levels));
+    result.codebooks.resize(std::size_t(plan.levels));
+    result.training_vectors.resize(std::size_t(plan.levels));
+    for (int l = plan.levels - 1; l >= 0; --l) {
+        const NeighborhoodLayout layout(plan.shapes[std::size_t(l)], example.channels, l, plan.levels);
+        ExampleSet set = collect_examples(layout, pyramid, tileable);
+        if (set.count() == 0) {
+            const Image& img = pyramid[std::size_t(l)];
+            fail(VQTEX_ERROR_IMAGE_TOO_SMALL,
+                 "example " + std::to_string(example.width) + "x" + std::to_string(example.height) +
+                     " is too small for neighbourhood " + shape_to_string(layout.shape()) +
+                     " at pyramid level " + std::to_string(l) + " (" + std::to_string(img.width) +
+                     "x" + std::to_string(img.height) +
+                     "): use fewer --levels, smaller --shapes, or --tileable-example");
+        }
+        result.training_vectors[std::size_t(l)] = set.count();
+        LevelModel& lm = result.model.levels[std::size_t(l)];
+        lm.shape = layout.shape();
+        lm.histogram = histogram_of(pyramid[std::size_t(l)]);
+        lm.matcher = build_matcher(set, params, search, backtrack, threads, l, result);
+        if (params.seam_closing) {
+            lm.closing_shape = layout.shape();
+            lm.closing_shape.causal = false;
+            const NeighborhoodLayout closing_layout(lm.closing_shape, example.channels, l, plan.levels);
+            ExampleSet closing_set = collect_examples(closing_layout, pyramid, tileable);
+            if (closing_set.count() > 0) {
+                AnalysisResult scratch;
+                scratch.codebooks.resize(1);
+                lm.closing = build_matcher(closing_set, params, search, backtrack, threads, 0, scratch);
+                result.model_bytes += scratch.model_bytes;
+            }
+        }
+        if (progress && !progress(uint64_t(plan.levels - l), uint64_t(plan.levels)))
+            fail(VQTEX_ERROR_CANCELLED, "analysis cancelled by the progress callback");
+    }
+    return result;
+}
+
+}  // namespace vqtex

@@ -1,0 +1,111 @@
+// tsvq_search.cpp - best-first TSVQ descent with limited backtracking
+// (paper section 4, search).
+#include "tsvq_search.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <vector>
+
+#include "dsp/dsp.hpp"
+#include "error.hpp"
+
+namespace vqtex {
+namespace {
+
+struct TsvqScratch final : MatchScratch {
+    // Pending branches packed as (distance << 32 | node): a min-heap on this
+    // key orders by distance, then by node index, so ties are deterministic.
+    std::vector<uint64_t> heap;
+    std::vector<std::pair<uint32_t, uint32_t>> visited;  // (distance, leaf)
+};
+
+}  // namespace
+
+TsvqMatcher::TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrack_leaves)
+    : book_(std::move(book)), backtrack_(std::max<uint32_t>(1, backtrack_leaves)) {
+    if (!book_ || book_->leaf_count() == 0) fail(VQTEX_ERROR_INVALID_ARGUMENT, "empty codebook");
+}
+
+std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
+    auto s = std::make_unique<TsvqScratch>();
+    s->heap.reserve(64);
+    return s;
+}
+
+std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScratch* scratch,
+                                const MatchContext& context) const {
+    const Codebook& b = *book_;
+    const dsp::Kernels& k = dsp::kernels();
+    const std::size_t n = b.stride();
+    TsvqScratch local;
+    TsvqScratch& work = scratch ? *static_cast<TsvqScratch*>(scratch) : local;
+    std::vector<uint64_t>& heap = work.heap;
+    heap.clear();
+    work.visited.clear();
+    const auto later = std::greater<uint64_t>();
+
+    uint32_t best_distance = UINT32_MAX, best_key = UINT32_MAX;
+    std::size_t best_leaf = 0;
+    uint32_t visited = 0;
+    heap.push_back(uint64_t(k.ssd(query, b.codeword(0), n)) << 32);
+    while (!heap.empty() && visited < leaves) {
+        std::pop_heap(heap.begin(), heap.end(), later);
+        const uint64_t top = heap.back();
+        heap.pop_back();
+        std::size_t node = std::size_t(top & 0xFFFFFFFFu);
+        uint32_t distance = uint32_t(top >> 32);
+        while (b.node(node).first_child >= 0) {
+            const std::size_t a = std::size_t(b.node(node).first_child), c = a + 1;
+            const uint32_t da = k.ssd(query, b.codeword(a), n);
+            const uint32_t dc = k.ssd(query, b.codeword(c), n);
+            std::size_t other;
+            uint32_t other_distance;
+            if (da <= dc) {
+                node = a, distance = da, other = c, other_distance = dc;
+            } else {
+                node = c, distance = dc, other = a, other_distance = da;
+            }
+            heap.push_back(uint64_t(other_distance) << 32 | other);
+            std::push_heap(heap.begin(), heap.end(), later);
+        }
+        const std::size_t leaf = std::size_t(b.node(node).leaf);
+        const uint32_t key = b.leaf_key(leaf);
+        if (distance < best_distance || (distance == best_distance && key < best_key))
+            best_distance = distance, best_key = key, best_leaf = leaf;
+        if (context.tolerance) work.visited.emplace_back(distance, uint32_t(leaf));
+        ++visited;
+    }
+    if (context.tolerance == 0) return best_leaf;
+    const uint32_t threshold = tolerance_threshold(best_distance, context.tolerance);
+    std::size_t chosen = best_leaf;
+    uint64_t chosen_rank = candidate_rank(context.salt, best_key);
+    for (const auto& [d, leaf] : work.visited) {
+        if (d > threshold) continue;
+        const uint32_t key = b.leaf_key(leaf);
+        const uint64_t rank = candidate_rank(context.salt, key);
+        if (rank < chosen_rank || (rank == chosen_rank && key < b.leaf_key(chosen)))
+            chosen = leaf, chosen_rank = rank;
+    }
+    return chosen;
+}
+
+std::size_t TsvqMatcher::nearest_leaf_exhaustive(const uint8_t* query) const {
+    const Codebook& b = *book_;
+    const dsp::Kernels& k = dsp::kernels();
+    uint32_t best_distance = UINT32_MAX, best_key = UINT32_MAX;
+    std::size_t best_leaf = 0;
+    for (std::size_t leaf = 0; leaf < b.leaf_count(); ++leaf) {
+        const uint32_t d = k.ssd(query, b.leaf_codeword(leaf), b.stride());
+        const uint32_t key = b.leaf_key(leaf);
+        if (d < best_distance || (d == best_distance && key < best_key))
+            best_distance = d, best_key = key, best_leaf = leaf;
+    }
+    return best_leaf;
+}
+
+const uint8_t* TsvqMatcher::match(const uint8_t* query, const MatchContext& context,
+                                  MatchScratch* scratch) const {
+    return book_->leaf_pixel(search(query, backtrack_, scratch, context));
+}
+
+}  // namespace vqtex

@@ -1,0 +1,36 @@
+// tsvq_search.hpp - searching a TSVQ codebook (paper section 4): best-first
+// descent with a budget of L leaves, the branches not taken kept in a
+// priority queue by distance. With L >= the number of leaves the answer is
+// exactly the exhaustive nearest leaf (ties to the lowest tie key).
+#pragma once
+
+#include <memory>
+
+#include "matcher.hpp"
+#include "tsvq_tree.hpp"
+
+namespace vqtex {
+
+class TsvqMatcher final : public Matcher {
+public:
+    TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrack_leaves);
+    std::size_t stride() const override { return book_->stride(); }
+    std::unique_ptr<MatchScratch> make_scratch() const override;
+    const uint8_t* match(const uint8_t* query, const MatchContext& context,
+                         MatchScratch* scratch) const override;
+
+    // The leaf found for `query` visiting at most `leaves` leaves: the
+    // nearest visited (lowest tie key on ties), or with a tolerance the
+    // visited near-tie that ranks first (see MatchContext).
+    std::size_t search(const uint8_t* query, uint32_t leaves, MatchScratch* scratch,
+                       const MatchContext& context = {}) const;
+    // The exactly nearest leaf by brute force over all leaves (the oracle).
+    std::size_t nearest_leaf_exhaustive(const uint8_t* query) const;
+    const Codebook& codebook() const { return *book_; }
+
+private:
+    std::shared_ptr<const Codebook> book_;
+    uint32_t backtrack_;
+};
+
+}  // namespace vqtex

@@ -1,0 +1,255 @@
+// tsvq_train.cpp - TSVQ training by recursive generalised-Lloyd splits
+// (paper section 4).
+//
+// The tree grows greedily: every leaf carries a tentative split, and the leaf
+// whose split lowers the total distortion most is split first, until the tree
+// has K leaves, the mean distortion falls below the threshold or nothing can
+// be split. A split starts its two children at the centroid and at a
+// perturbed centroid (halfway towards the member farthest from it) and runs
+// Lloyd iterations until the partition is stable.
+//
+// All arithmetic is integer: centroids are rounded means of exact 64-bit sums,
+// distances exact SSD, ties broken by index. Chunked sums do not depend on the
+// chunking, so the tree is the same for any thread count.
+//
+// Leaf representative. With centroids, each leaf's output pixel is an average
+// of many example pixels: the synthesised texture loses contrast and fine
+// detail (the blur the paper warns about, section 4). The medoid is a real
+// example neighbourhood with its real centre pixel, so outputs keep the
+// example's sharpness and colours; measured on the shared corpus (see
+// bench/), medoid leaves give a texture whose patch statistics are closer to
+// the example. Medoid is the default.
+#include "tsvq_train.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <queue>
+
+#include "dsp/dsp.hpp"
+#include "error.hpp"
+#include "parallel.hpp"
+#include "rng.hpp"
+
+namespace vqtex {
+
+std::vector<uint32_t> choose_training_subset(std::size_t total, std::size_t count, uint64_t seed) {
+    std::vector<uint32_t> all(total);
+    std::iota(all.begin(), all.end(), 0u);
+    if (count >= total) return all;
+    Rng rng = Rng::stream(seed, 0x747261696Eull /* "train" */);
+    for (std::size_t i = 0; i < count; ++i)
+        std::swap(all[i], all[i + std::size_t(rng.below(total - i))]);
+    all.resize(count);
+    std::sort(all.begin(), all.end());
+    return all;
+}
+
+namespace {
+
+constexpr std::size_t kGrain = 2048;
+
+struct Cluster {
+    std::vector<uint32_t> members;  // example indices, ascending
+    std::vector<uint8_t> centroid;  // stride bytes
+    uint64_t distortion = 0;        // sum of SSD to the centroid
+};
+
+struct Split {
+    bool possible = false;
+    uint64_t gain = 0;
+    Cluster a, b;
+};
+
+class Trainer {
+public:
+    Trainer(const ExampleSet& ex, const TrainParams& p) : ex_(ex), p_(p), k_(dsp::kernels()) {}
+
+    uint32_t ssd(const uint8_t* a, const uint8_t* b) const { return k_.ssd(a, b, ex_.stride); }
+
+    void compute_centroid(Cluster& c) const {
+        const std::size_t dim = ex_.dimension;
+        std::vector<uint64_t> sum(dim, 0);
+        // Chunk partial sums, added in chunk order: exact, so any partition
+        // gives the same numbers.
+        const std::size_t chunks = (c.members.size() + kGrain - 1) / kGrain;
+        std::vector<std::vector<uint64_t>> partial(chunks, std::vector<uint64_t>(dim, 0));
+        parallel_for(threads_for(c.members.size()), c.members.size(), kGrain,
+                     [&](std::size_t b, std::size_t e) {
+                         std::vector<uint64_t>& s = partial[b / kGrain];
+                         for (std::size_t i = b; i < e; ++i) {
+                             const uint8_t* v = ex_.vector(c.members[i]);
+                             for (std::size_t d = 0; d < dim; ++d) s[d] += v[d];
+                         }
+                     });
+        for (const auto& s : partial)
+            for (std::size_t d = 0; d < dim; ++d) sum[d] += s[d];
+        const uint64_t n = c.members.size();
+        c.centroid.assign(ex_.stride, 0);
+        for (std::size_t d = 0; d < dim; ++d) c.centroid[d] = uint8_t((sum[d] + n / 2) / n);
+    }
+
+    void compute_distortion(Cluster& c) const {
+        const std::size_t chunks = (c.members.size() + kGrain - 1) / kGrain;
+        std::vector<uint64_t> partial(chunks, 0);
+        parallel_for(threads_for(c.members.size()), c.members.size(), kGrain,
+                     [&](std::size_t b, std::size_t e) {
+                         uint64_t s = 0;
+                         for (std::size_t i = b; i < e; ++i)
+                             s += ssd(ex_.vector(c.members[i]), c.centroid.data());
+                         partial[b / kGrain] = s;
+                     });
+        c.distortion = std::accumulate(partial.begin(), partial.end(), uint64_t(0));
+    }
+
+    // Assign members to the nearer of two codewords (ties to the first);
+    // returns per-member flags (1 = second).
+    std::vector<uint8_t> assign(const Cluster& c, const uint8_t* ca, const uint8_t* cb) const {
+        std::vector<uint8_t> side(c.members.size());
+        parallel_for(threads_for(c.members.size()), c.members.size(), kGrain,
+                     [&](std::size_t b, std::size_t e) {
+                         for (std::size_t i = b; i < e; ++i) {
+                             const uint8_t* v = ex_.vector(c.members[i]);
+                             side[i] = ssd(v, cb) < ssd(v, ca) ? 1 : 0;
+                         }
+                     });
+        return side;
+    }
+
+    static void partition(const Cluster& c, const std::vector<uint8_t>& side, Cluster& a,
+                          Cluster& b) {
+        a.members.clear();
+        b.members.clear();
+        for (std::size_t i = 0; i < side.size(); ++i)
+            (side[i] ? b : a).members.push_back(c.members[i]);
+    }
+
+    Split try_split(const Cluster& c) const {
+        Split s;
+        if (c.members.size() < 2) return s;
+        s.possible = true;
+        // The member farthest from the centroid (lowest index on ties).
+        uint32_t far_distance = 0;
+        std::size_t far = 0;
+        for (std::size_t i = 0; i < c.members.size(); ++i) {
+            const uint32_t d = ssd(ex_.vector(c.members[i]), c.centroid.data());
+            if (d > far_distance) far_distance = d, far = i;
+        }
+        bool lloyd_ok = far_distance > 0;
+        if (lloyd_ok) {
+            std::vector<uint8_t> ca = c.centroid, cb = c.centroid;
+            const uint8_t* f = ex_.vector(c.members[far]);
+            for (std::size_t d = 0; d < ex_.dimension; ++d)
+                cb[d] = uint8_t(int(ca[d]) + (int(f[d]) - int(ca[d])) / 2);
+            if (cb == ca) std::memcpy(cb.data(), f, ex_.dimension);
+            std::vector<uint8_t> side, previous;
+            for (int it = 0; it < p_.max_lloyd_iterations; ++it) {
+                side = assign(c, ca.data(), cb.data());
+                if (side == previous) break;
+                partition(c, side, s.a, s.b);
+                if (s.a.members.empty() || s.b.members.empty()) {
+                    lloyd_ok = false;
+                    break;
+                }
+                compute_centroid(s.a);
+                compute_centroid(s.b);
+                ca = s.a.centroid;
+                cb = s.b.centroid;
+                previous.swap(side);
+            }
+        }
+        if (!lloyd_ok) {
+            // Identical vectors (or a degenerate start): split by position so
+            // that a codebook of one leaf per vector is always reachable.
+            const std::size_t half = c.members.size() / 2;
+            s.a.members.assign(c.members.begin(), c.members.begin() + std::ptrdiff_t(half));
+            s.b.members.assign(c.members.begin() + std::ptrdiff_t(half), c.members.end());
+            compute_centroid(s.a);
+            compute_centroid(s.b);
+        }
+        compute_distortion(s.a);
+        compute_distortion(s.b);
+        const uint64_t after = s.a.distortion + s.b.distortion;
+        s.gain = c.distortion > after ? c.distortion - after : 0;
+        return s;
+    }
+
+    void set_leaf(Codebook& book, std::size_t node, const Cluster& c) const {
+        const int ch = ex_.channels;
+        if (p_.representative == LeafRepresentative::Medoid) {
+            uint32_t best = UINT32_MAX;
+            uint32_t pick = c.members.front();
+            for (uint32_t m : c.members) {
+                const uint32_t d = ssd(ex_.vector(m), c.centroid.data());
+                if (d < best) best = d, pick = m;
+            }
+            book.set_leaf(node, ex_.vector(pick), ex_.pixel(pick), uint32_t(c.members.size()), pick);
+        } else {
+            uint64_t sum[kMaxChannels] = {};
+            for (uint32_t m : c.members)
+                for (int k = 0; k < ch; ++k) sum[k] += ex_.pixel(m)[k];
+            uint8_t pixel[kMaxChannels] = {};
+            const uint64_t n = c.members.size();
+            for (int k = 0; k < ch; ++k) pixel[k] = uint8_t((sum[k] + n / 2) / n);
+            book.set_leaf(node, c.centroid.data(), pixel, uint32_t(n), c.members.front());
+        }
+    }
+
+    int threads_for(std::size_t n) const { return n >= 2 * kGrain ? p_.threads : 1; }
+
+private:
+    const ExampleSet& ex_;
+    const TrainParams& p_;
+    const dsp::Kernels& k_;
+};
+
+}  // namespace
+
+Codebook train_codebook(const ExampleSet& examples, const std::vector<uint32_t>& subset,
+                        const TrainParams& params) {
+    if (subset.empty()) fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "no example neighbourhood to train on");
+    if (params.max_leaves < 1) fail(VQTEX_ERROR_INVALID_ARGUMENT, "a codebook needs at least one codeword");
+    Trainer trainer(examples, params);
+    Codebook book(examples.dimension, examples.stride, examples.channels);
+    book.add_root();
+
+    // Per node: its cluster and its tentative split, while it is a leaf.
+    std::vector<Cluster> clusters(1);
+    std::vector<Split> splits(1);
+    clusters[0].members = subset;
+    trainer.compute_centroid(clusters[0]);
+    trainer.compute_distortion(clusters[0]);
+    uint64_t total = clusters[0].distortion;
+    splits[0] = trainer.try_split(clusters[0]);
+
+    // Max-heap on gain; among equal gains the oldest node first.
+    using Entry = std::pair<uint64_t, int64_t>;  // gain, -node
+    std::priority_queue<Entry> heap;
+    if (splits[0].possible) heap.push({splits[0].gain, 0});
+    std::size_t leaves = 1;
+    const double n = double(subset.size());
+    while (leaves < params.max_leaves && !heap.empty()) {
+        if (params.distortion_threshold > 0 && double(total) / n <= params.distortion_threshold) break;
+        const std::size_t node = std::size_t(-heap.top().second);
+        heap.pop();
+        Split split = std::move(splits[node]);
+        const std::size_t first = book.split(node);
+        clusters.resize(first + 2);
+        splits.resize(first + 2);
+        clusters[first] = std::move(split.a);
+        clusters[first + 1] = std::move(split.b);
+        clusters[node] = Cluster{};
+        total -= split.gain;
+        ++leaves;
+        for (std::size_t child = first; child < first + 2; ++child) {
+            splits[child] = trainer.try_split(clusters[child]);
+            if (splits[child].possible) heap.push({splits[child].gain, -int64_t(child)});
+        }
+    }
+    for (std::size_t node = 0; node < book.node_count(); ++node)
+        if (book.node(node).first_child < 0) trainer.set_leaf(book, node, clusters[node]);
+    book.finalize();
+    return book;
+}
+
+}  // namespace vqtex

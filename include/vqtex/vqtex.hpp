@@ -1,0 +1,72 @@
+// vqtex.hpp - a thin C++ layer over vqtex.h: RAII images and exceptions
+// carrying the status. Adds no behaviour.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "vqtex.h"
+
+namespace vqtex_cpp {
+
+class Error : public std::runtime_error {
+public:
+    explicit Error(const vqtex_error& e)
+        : std::runtime_error(e.detail[0] ? e.detail : vqtex_status_message(e.status)),
+          status_(e.status) {}
+    vqtex_status status() const { return status_; }
+
+private:
+    vqtex_status status_;
+};
+
+// Owns a vqtex_image the library allocated.
+class Image {
+public:
+    Image() = default;
+    explicit Image(vqtex_image raw) : raw_(raw) {}
+    Image(const Image&) = delete;
+    Image& operator=(const Image&) = delete;
+    Image(Image&& o) noexcept : raw_(std::exchange(o.raw_, vqtex_image{})) {}
+    Image& operator=(Image&& o) noexcept {
+        if (this != &o) {
+            vqtex_image_free(&raw_);
+            raw_ = std::exchange(o.raw_, vqtex_image{});
+        }
+        return *this;
+    }
+    ~Image() { vqtex_image_free(&raw_); }
+
+    const vqtex_image& get() const { return raw_; }
+    vqtex_image* out() {
+        vqtex_image_free(&raw_);
+        return &raw_;
+    }
+    uint32_t width() const { return raw_.width; }
+    uint32_t height() const { return raw_.height; }
+    uint32_t channels() const { return raw_.channels; }
+    const uint8_t* data() const { return raw_.pixels; }
+    size_t size_bytes() const { return size_t(raw_.width) * raw_.height * raw_.channels; }
+
+private:
+    vqtex_image raw_{};
+};
+
+inline void check(vqtex_status status, const vqtex_error& error) {
+    if (status != VQTEX_OK) {
+        vqtex_error e = error;
+        e.status = status;
+        throw Error(e);
+    }
+}
+
+inline Image synthesize(const vqtex_synth_params& params, const vqtex_image& example,
+                        vqtex_synth_stats* stats = nullptr) {
+    Image out;
+    vqtex_error err{};
+    check(vqtex_synthesize(&params, &example, out.out(), stats, &err), err);
+    return out;
+}
+
+}  // namespace vqtex_cpp

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs what vqtex needs to build and test, from Debian packages, when it
+# is missing. Safe to run again: it installs nothing that is already there.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libopenimageio-dev   # all image reading and writing
+  libzstd-dev          # entropy coding of codebooks
+  libcli11-dev         # command-line parsing
+  libgtest-dev         # tests
+  libbenchmark-dev     # benchmarks
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}" >&2
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "setup: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+  sudo_cmd=(sudo)
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

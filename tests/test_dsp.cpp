@@ -1,0 +1,74 @@
+// test_dsp.cpp - every SIMD kernel gives exactly the scalar reference's
+// results (the determinism promise across CPUs).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "dsp/dsp.hpp"
+#include "rng.hpp"
+
+using namespace vqtex;
+
+namespace {
+
+std::vector<uint8_t> random_bytes(std::size_t n, uint64_t seed, int max_value = 255) {
+    Rng rng(seed);
+    std::vector<uint8_t> v(n);
+    for (auto& b : v) b = uint8_t(rng.below(uint64_t(max_value) + 1));
+    return v;
+}
+
+}  // namespace
+
+TEST(Dsp, ScalarSsdMatchesDefinition) {
+    const auto a = random_bytes(208, 1), b = random_bytes(208, 2);
+    uint32_t expected = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) expected += uint32_t((a[i] - b[i]) * (a[i] - b[i]));
+    EXPECT_EQ(dsp::scalar_kernels().ssd(a.data(), b.data(), a.size()), expected);
+}
+
+TEST(Dsp, EveryKernelSetAgreesWithScalarOnSsd) {
+    ASSERT_GE(dsp::available_kernel_count(), 1);
+    for (std::size_t n : {16u, 32u, 48u, 64u, 80u, 208u, 1024u}) {
+        for (uint64_t seed = 0; seed < 20; ++seed) {
+            const auto a = random_bytes(n, seed * 2), b = random_bytes(n, seed * 2 + 1);
+            const uint32_t ref = dsp::scalar_kernels().ssd(a.data(), b.data(), n);
+            for (int k = 0; k < dsp::available_kernel_count(); ++k)
+                EXPECT_EQ(dsp::available_kernels(k).ssd(a.data(), b.data(), n), ref)
+                    << dsp::available_kernels(k).name << " n=" << n;
+        }
+    }
+    // Extremes: all 0 against all 255.
+    std::vector<uint8_t> zeros(208, 0), full(208, 255);
+    for (int k = 0; k < dsp::available_kernel_count(); ++k)
+        EXPECT_EQ(dsp::available_kernels(k).ssd(zeros.data(), full.data(), 208), 208u * 255u * 255u);
+}
+
+TEST(Dsp, NearestAgreesWithBruteForceIncludingTies) {
+    const std::size_t stride = 64, n = 48, count = 500;
+    // Few distinct values, so equal distances are common and the tie rule
+    // (lowest index) is exercised.
+    const auto rows = random_bytes(stride * count, 7, 3);
+    for (uint64_t q = 0; q < 50; ++q) {
+        const auto query = random_bytes(stride, 100 + q, 3);
+        uint32_t best = UINT32_MAX, best_index = UINT32_MAX;
+        for (std::size_t r = 0; r < count; ++r) {
+            const uint32_t d = dsp::scalar_kernels().ssd(query.data(), rows.data() + r * stride, n);
+            if (d < best) best = d, best_index = uint32_t(r);
+        }
+        for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+            uint32_t dist = UINT32_MAX;
+            const uint32_t idx =
+                dsp::available_kernels(k).nearest(query.data(), rows.data(), stride, n, count, &dist);
+            EXPECT_EQ(idx, best_index) << dsp::available_kernels(k).name;
+            EXPECT_EQ(dist, best) << dsp::available_kernels(k).name;
+        }
+    }
+}
+
+TEST(Dsp, NearestRespectsTheBound) {
+    const auto rows = random_bytes(32 * 10, 3);
+    const auto query = random_bytes(32, 4);
+    uint32_t bound = 0;  // nothing can beat distance 0 strictly
+    EXPECT_EQ(dsp::kernels().nearest(query.data(), rows.data(), 32, 32, 10, &bound), UINT32_MAX);
+}

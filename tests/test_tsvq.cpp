@@ -1,0 +1,206 @@
+// test_tsvq.cpp - TSVQ training and search (paper section 4): the tree has
+// the requested size, training is deterministic for any thread count, full
+// backtracking equals exhaustive search, and a full codebook reproduces
+// exhaustive synthesis bit for bit.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "dsp/dsp.hpp"
+#include "pyramid.hpp"
+#include "search_exhaustive.hpp"
+#include "texture_model.hpp"
+#include "tsvq_search.hpp"
+#include "tsvq_train.hpp"
+#include "test_support.hpp"
+
+using namespace vqtex;
+
+namespace {
+
+struct Fixture {
+    std::vector<Image> pyramid;
+    NeighborhoodLayout layout;
+    ExampleSet set;
+};
+
+Fixture level0_examples(const char* name, int levels = 3) {
+    const Image img = vqtex_test::load_corpus(name);
+    auto pyr = build_pyramid(img, levels, EdgeMode::Mirror);
+    NeighborhoodLayout layout(default_shapes(levels)[0], img.channels, 0, levels);
+    ExampleSet set = collect_examples(layout, pyr, false);
+    return Fixture{std::move(pyr), layout, std::move(set)};
+}
+
+std::vector<uint32_t> all_indices(const ExampleSet& s) {
+    return choose_training_subset(s.count(), s.count(), 0);
+}
+
+}  // namespace
+
+TEST(Tsvq, TreeHasTheRequestedNumberOfLeaves) {
+    const Fixture f = level0_examples("grey_noise_64.png");
+    for (uint32_t k : {1u, 2u, 17u, 64u, 300u}) {
+        TrainParams p;
+        p.max_leaves = k;
+        const Codebook book = train_codebook(f.set, all_indices(f.set), p);
+        EXPECT_EQ(book.leaf_count(), k);
+        EXPECT_EQ(book.node_count(), 2 * std::size_t(k) - 1);
+        uint64_t weights = 0;
+        for (std::size_t l = 0; l < book.leaf_count(); ++l) weights += book.leaf_count_of(l);
+        EXPECT_EQ(weights, f.set.count());  // every training vector lands in one leaf
+    }
+}
+
+TEST(Tsvq, DistortionThresholdStopsGrowth) {
+    const Fixture f = level0_examples("grey_noise_64.png");
+    TrainParams loose;
+    loose.max_leaves = 4096;
+    loose.distortion_threshold = 1e9;  // the root already satisfies it
+    EXPECT_EQ(train_codebook(f.set, all_indices(f.set), loose).leaf_count(), 1u);
+    TrainParams medium = loose;
+    medium.distortion_threshold = 2000;
+    const std::size_t n = train_codebook(f.set, all_indices(f.set), medium).leaf_count();
+    EXPECT_GT(n, 1u);
+    EXPECT_LT(n, f.set.count());
+}
+
+TEST(Tsvq, TrainingIsDeterministicForAnyThreadCount) {
+    const Fixture f = level0_examples("cellular_128.png", 4);
+    TrainParams p;
+    p.max_leaves = 200;
+    p.threads = 1;
+    const Codebook one = train_codebook(f.set, all_indices(f.set), p);
+    for (int t : {2, 3, 7}) {
+        p.threads = t;
+        EXPECT_TRUE(train_codebook(f.set, all_indices(f.set), p) == one) << t << " threads";
+    }
+}
+
+TEST(Tsvq, MedoidLeavesAreRealExampleNeighbourhoods) {
+    const Fixture f = level0_examples("weave_128.png");
+    TrainParams p;
+    p.max_leaves = 50;
+    const Codebook book = train_codebook(f.set, all_indices(f.set), p);
+    for (std::size_t l = 0; l < book.leaf_count(); ++l) {
+        const uint32_t key = book.leaf_key(l);
+        ASSERT_LT(key, f.set.count());
+        EXPECT_TRUE(std::equal(f.set.vector(key), f.set.vector(key) + f.set.stride, book.leaf_codeword(l)));
+        EXPECT_TRUE(std::equal(f.set.pixel(key), f.set.pixel(key) + 3, book.leaf_pixel(l)));
+    }
+}
+
+TEST(Tsvq, InternalCodewordsAreDerivedFromTheLeaves) {
+    // The decoder rebuilds the search structure from leaves and topology
+    // alone: finalize() on a copy with scrambled internal codewords restores them.
+    const Fixture f = level0_examples("weave_128.png");
+    TrainParams p;
+    p.max_leaves = 40;
+    const Codebook book = train_codebook(f.set, all_indices(f.set), p);
+    Codebook copy = book;
+    for (std::size_t n = 0; n < copy.node_count(); ++n)
+        if (copy.node(n).first_child >= 0) copy.codeword(n)[0] ^= 0x5A;
+    copy.finalize();
+    EXPECT_TRUE(copy == book);
+}
+
+TEST(Tsvq, FullBacktrackingEqualsExhaustiveSearchOverTheCodebook) {
+    const Fixture f = level0_examples("clouds_128.png", 4);
+    TrainParams p;
+    p.max_leaves = 256;
+    auto book = std::make_shared<const Codebook>(train_codebook(f.set, all_indices(f.set), p));
+    const TsvqMatcher matcher(book, uint32_t(book->leaf_count()));
+    auto scratch = matcher.make_scratch();
+    for (std::size_t i = 0; i < f.set.count(); i += 7) {
+        const uint8_t* q = f.set.vector(i);
+        EXPECT_EQ(matcher.search(q, uint32_t(book->leaf_count()), scratch.get()),
+                  matcher.nearest_leaf_exhaustive(q));
+    }
+}
+
+TEST(Tsvq, MoreBacktrackingNeverFindsAWorseLeaf) {
+    const Fixture f = level0_examples("cellular_128.png", 4);
+    TrainParams p;
+    p.max_leaves = 300;
+    auto book = std::make_shared<const Codebook>(train_codebook(f.set, all_indices(f.set), p));
+    const TsvqMatcher matcher(book, 1);
+    const dsp::Kernels& k = dsp::kernels();
+    std::size_t improved = 0;
+    for (std::size_t i = 0; i < f.set.count(); i += 11) {
+        const uint8_t* q = f.set.vector(i);
+        uint32_t previous = UINT32_MAX;
+        for (uint32_t L : {1u, 2u, 4u, 16u, 300u}) {
+            const uint32_t d = k.ssd(q, book->leaf_codeword(matcher.search(q, L, nullptr)), book->stride());
+            EXPECT_LE(d, previous);
+            if (d < previous && previous != UINT32_MAX) ++improved;
+            previous = d;
+        }
+    }
+    EXPECT_GT(improved, 0u);  // backtracking does something
+}
+
+TEST(Tsvq, OneLeafPerTrainingVectorIsPossibleEvenWithDuplicates) {
+    // The checkerboard has many identical neighbourhoods: Lloyd cannot split
+    // them, the trainer must still reach one leaf per vector.
+    const Fixture f = level0_examples("checks_p16_64.png");
+    TrainParams p;
+    p.max_leaves = uint32_t(f.set.count());
+    const Codebook book = train_codebook(f.set, all_indices(f.set), p);
+    ASSERT_EQ(book.leaf_count(), f.set.count());
+    std::set<uint32_t> keys;
+    for (std::size_t l = 0; l < book.leaf_count(); ++l) keys.insert(book.leaf_key(l));
+    EXPECT_EQ(keys.size(), f.set.count());
+}
+
+TEST(Tsvq, FullCodebookWithFullBacktrackingSynthesisesExactlyLikeExhaustive) {
+    for (const char* name : {"checks_p16_64.png", "grey_noise_64.png", "leaves_rgba_64.png"}) {
+        const Image ex = vqtex_test::load_corpus(name);
+        vqtex_synth_params p = vqtex_test::default_params(48, 40, 21);
+        p.search = VQTEX_SEARCH_EXHAUSTIVE;
+        const Image exhaustive = vqtex_test::synthesize(ex, p);
+        p.search = VQTEX_SEARCH_TSVQ;
+        p.model.codeword_fraction = 1.0f;
+        p.backtrack = 1u << 30;  // visit every leaf
+        const Image tsvq = vqtex_test::synthesize(ex, p);
+        EXPECT_EQ(tsvq, exhaustive) << name;
+    }
+}
+
+TEST(Tsvq, TrainingSubsetIsDeterministicAndSized) {
+    const auto a = choose_training_subset(1000, 100, 5);
+    const auto b = choose_training_subset(1000, 100, 5);
+    const auto c = choose_training_subset(1000, 100, 6);
+    EXPECT_EQ(a, b);
+    EXPECT_NE(a, c);
+    EXPECT_EQ(a.size(), 100u);
+    EXPECT_TRUE(std::is_sorted(a.begin(), a.end()));
+    EXPECT_EQ(std::set<uint32_t>(a.begin(), a.end()).size(), 100u);
+}
+
+TEST(Tsvq, TrainFractionLimitsTheTrainingSet) {
+    const Image ex = vqtex_test::load_corpus("cellular_128.png");
+    vqtex_model_params mp;
+    vqtex_model_params_init(&mp);
+    mp.train_fraction = 0.1f;
+    mp.codeword_fraction = 1.0f;
+    const AnalysisResult a = analyse_example(ex, mp, VQTEX_SEARCH_TSVQ, 1, 1, nullptr);
+    // With all leaves kept, leaves = training vectors used = 10% of the level.
+    EXPECT_NEAR(double(a.codebooks[0]->leaf_count()), 0.1 * double(a.training_vectors[0]), 1.0);
+}
+
+TEST(Tsvq, NearTieChoiceIsTheSameForTsvqAndExhaustive) {
+    // With a tolerance, the winner among near-ties depends only on the set of
+    // qualifying candidates and the per-pixel salt, not on the search order:
+    // a full codebook searched fully picks exactly what exhaustive search picks.
+    const Image ex = vqtex_test::load_corpus("grey_noise_64.png");
+    vqtex_synth_params p = vqtex_test::default_params(40, 40, 5);
+    p.tolerance = 64;
+    p.search = VQTEX_SEARCH_EXHAUSTIVE;
+    const Image exhaustive = vqtex_test::synthesize(ex, p);
+    p.search = VQTEX_SEARCH_TSVQ;
+    p.model.codeword_fraction = 1.0f;
+    p.backtrack = 1u << 30;
+    EXPECT_EQ(vqtex_test::synthesize(ex, p), exhaustive);
+    p.tolerance = 0;
+    EXPECT_NE(vqtex_test::synthesize(ex, p), exhaustive);  // the tolerance does something
+}

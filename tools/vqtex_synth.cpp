@@ -1,0 +1,134 @@
+// vqtex-synth - synthesise a new, tileable texture of any size from an
+// example image (paper sections 2-4), through the public API only.
+#include <cstdio>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli_common.hpp"
+#include "image_io.hpp"
+#include "vqtex/vqtex.h"
+
+using namespace vqtex_tools;
+
+int main(int argc, char** argv) {
+    CLI::App app{"vqtex-synth: synthesise a tileable texture of any size from an example image.\n"
+                 "Example: vqtex-synth corpus/bricks_128.png bricks_512.png --size 512x512"};
+    app.set_version_flag("--version", std::string("vqtex ") + vqtex_version_string());
+    std::string input, output, size = "256x256", shapes, codewords, leaf = "medoid", init = "parent";
+    uint64_t seed = 1;
+    uint32_t levels = 0, backtrack = 0, threads = 0, tolerance = 0;
+    bool no_seam_closing = false;
+    double train_fraction = 1.0;
+    bool exhaustive = false, tsvq = false, tileable = false, json = false, quiet = false;
+    app.add_option("input", input, "example image (any format OpenImageIO reads)")->required();
+    app.add_option("output", output, "output image (format from the extension: .png, .tif, .exr ...)")->required();
+    app.add_option("-s,--size", size, "output size WxH (1 to 16384 per side)")->capture_default_str();
+    app.add_option("--seed", seed, "random seed: different seeds give different textures")->capture_default_str();
+    app.add_option("--levels", levels, "pyramid levels (default: automatic, 4 for 128x128)");
+    app.add_option("--shapes", shapes,
+                   "neighbourhood per level, finest first, RxC:k (default for 4 levels 9x9:2,7x7:2,5x5:2,5x5:1)");
+    auto* ex = app.add_flag("--exhaustive", exhaustive, "exact exhaustive search (slow reference)");
+    app.add_flag("--tsvq", tsvq, "TSVQ codebook search (default)")->excludes(ex);
+    app.add_option("-k,--codewords", codewords,
+                   "TSVQ leaves: K for every level, K0,K1,.. finest first, or a fraction like 0.125 (default: all)");
+    app.add_option("-L,--backtrack", backtrack, "TSVQ leaves visited per search (default 2)");
+    app.add_option("--train-fraction", train_fraction, "train codebooks on this fraction of the vectors")
+        ->check(CLI::Range(1e-6, 1.0));
+    app.add_option("--leaf", leaf, "leaf representative: medoid (sharper, default) or centroid")
+        ->check(CLI::IsMember({"medoid", "centroid"}));
+    app.add_option("--init", init, "level initialisation: parent (upsampled coarser level, default) or noise (paper)")
+        ->check(CLI::IsMember({"parent", "noise"}));
+    app.add_option("--tolerance", tolerance,
+                   "choose at random (seeded) among matches within best*(1+T/256); 0 = nearest")
+        ->check(CLI::Range(0, 4096));
+    app.add_flag("--no-seam-closing", no_seam_closing,
+                 "skip re-matching the rows around the top/bottom wrap (the paper's plain scan)");
+    app.add_flag("--tileable-example", tileable, "the example tiles: use wrap-around neighbourhoods");
+    app.add_option("-j,--threads", threads, "threads (default: all cores; output is identical)");
+    app.add_flag("--json", json, "print machine-readable statistics on stdout");
+    app.add_flag("-q,--quiet", quiet, "print nothing but errors");
+    CLI11_PARSE(app, argc, argv);
+
+    try {
+        vqtex_synth_params params;
+        vqtex_synth_params_init(&params);
+        parse_size(size, params.width, params.height);
+        params.seed = seed;
+        params.model.levels = levels;
+        if (!shapes.empty()) parse_shapes(shapes, params.model);
+        if (!codewords.empty()) parse_codewords(codewords, params.model);
+        if (backtrack) params.backtrack = backtrack;
+        params.model.train_fraction = float(train_fraction);
+        params.model.leaf = leaf == "centroid" ? VQTEX_LEAF_CENTROID : VQTEX_LEAF_MEDOID;
+        params.model.example_tileable = tileable ? 1 : 0;
+        params.search = exhaustive ? VQTEX_SEARCH_EXHAUSTIVE : VQTEX_SEARCH_TSVQ;
+        params.threads = threads;
+        params.tolerance = tolerance;
+        params.model.seam_closing = no_seam_closing ? 0 : 1;
+        params.init = init == "noise" ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
+
+        const double t_load = now_seconds();
+        LoadedImage example = load_image(input);
+        if (!example.notice.empty() && !quiet)
+            std::fprintf(stderr, "vqtex-synth: note: %s: %s\n", input.c_str(), example.notice.c_str());
+        ProgressBar bar(!quiet && !json);
+        params.progress = ProgressBar::callback;
+        params.progress_user = &bar;
+
+        vqtex_image ex_img{example.width, example.height, example.channels, example.pixels.data()};
+        vqtex_image out{};
+        vqtex_synth_stats stats{};
+        vqtex_error err{};
+        const double t0 = now_seconds();
+        if (vqtex_synthesize(&params, &ex_img, &out, &stats, &err) != VQTEX_OK) {
+            bar.finish();
+            std::fprintf(stderr, "vqtex-synth: error: %s\n", err.detail);
+            return 1;
+        }
+        const double t1 = now_seconds();
+        bar.finish();
+        try {
+            save_image(output, out.width, out.height, out.channels, out.pixels);
+        } catch (...) {
+            vqtex_image_free(&out);
+            throw;
+        }
+        vqtex_image_free(&out);
+        const double t2 = now_seconds();
+        if (json) {
+            std::printf("{\"input\":%s,\"output\":%s,\"example_width\":%u,\"example_height\":%u,"
+                        "\"channels\":%u,\"width\":%u,\"height\":%u,\"seed\":%llu,\"search\":%s,"
+                        "\"levels\":%u,\"model_bytes\":%llu,\"analyse_seconds\":%.6f,"
+                        "\"synthesise_seconds\":%.6f,\"total_seconds\":%.6f,\"codewords\":[",
+                        json_string(input).c_str(), json_string(output).c_str(), example.width,
+                        example.height, example.channels, params.width, params.height,
+                        (unsigned long long)seed, exhaustive ? "\"exhaustive\"" : "\"tsvq\"",
+                        stats.levels, (unsigned long long)stats.model_bytes, stats.analyse_seconds,
+                        stats.synthesise_seconds, t2 - t_load);
+            for (uint32_t l = 0; l < stats.levels; ++l)
+                std::printf("%s%u", l ? "," : "", stats.codewords[l]);
+            std::printf("]}\n");
+        } else if (!quiet) {
+            std::printf("example   %s  %ux%u, %u channel%s\n", input.c_str(), example.width,
+                        example.height, example.channels, example.channels == 1 ? "" : "s");
+            std::printf("model     %u levels, %s search, %.1f KiB in memory\n", stats.levels,
+                        exhaustive ? "exhaustive" : "TSVQ", double(stats.model_bytes) / 1024.0);
+            for (uint32_t l = 0; l < stats.levels; ++l)
+                std::printf("  level %u  {%ux%u,%u}  %6u vectors  %6u %s  depth %u\n", l,
+                            stats.shapes[l].rows, stats.shapes[l].cols, stats.shapes[l].levels,
+                            stats.training_vectors[l], stats.codewords[l],
+                            exhaustive ? "candidates" : "codewords", stats.tree_depth[l]);
+            std::printf("output    %s  %ux%u, tileable, seed %llu\n", output.c_str(), params.width,
+                        params.height, (unsigned long long)seed);
+            std::printf("time      analyse %.3f s, synthesise %.3f s (%.0f pixels/s), total %.3f s\n",
+                        stats.analyse_seconds, stats.synthesise_seconds,
+                        double(params.width) * params.height / std::max(stats.synthesise_seconds, 1e-9),
+                        t1 - t0);
+        }
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "vqtex-synth: error: %s\n", e.what());
+        return 1;
+    }
+}
