@@ -51,6 +51,7 @@ constexpr std::size_t kGrain = 2048;
 
 struct Cluster {
     std::vector<uint32_t> members;  // example indices, ascending
+    std::vector<uint64_t> sum;      // per dimension, exact
     std::vector<uint8_t> centroid;  // stride bytes
     uint64_t distortion = 0;        // sum of SSD to the centroid
 };
@@ -67,26 +68,26 @@ public:
 
     uint32_t ssd(const uint8_t* a, const uint8_t* b) const { return k_.ssd(a, b, ex_.stride); }
 
-    void compute_centroid(Cluster& c) const {
-        const std::size_t dim = ex_.dimension;
-        std::vector<uint64_t> sum(dim, 0);
-        // Chunk partial sums, added in chunk order: exact, so any partition
-        // gives the same numbers.
-        const std::size_t chunks = (c.members.size() + kGrain - 1) / kGrain;
-        std::vector<std::vector<uint64_t>> partial(chunks, std::vector<uint64_t>(dim, 0));
-        parallel_for(threads_for(c.members.size()), c.members.size(), kGrain,
-                     [&](std::size_t b, std::size_t e) {
-                         std::vector<uint64_t>& s = partial[b / kGrain];
-                         for (std::size_t i = b; i < e; ++i) {
-                             const uint8_t* v = ex_.vector(c.members[i]);
-                             for (std::size_t d = 0; d < dim; ++d) s[d] += v[d];
-                         }
-                     });
-        for (const auto& s : partial)
-            for (std::size_t d = 0; d < dim; ++d) sum[d] += s[d];
-        const uint64_t n = c.members.size();
-        c.centroid.assign(ex_.stride, 0);
-        for (std::size_t d = 0; d < dim; ++d) c.centroid[d] = uint8_t((sum[d] + n / 2) / n);
+    void add(std::vector<uint64_t>& sum, uint32_t member) const {
+        const uint8_t* v = ex_.vector(member);
+        for (std::size_t d = 0; d < ex_.dimension; ++d) sum[d] += v[d];
+    }
+    void subtract(std::vector<uint64_t>& sum, uint32_t member) const {
+        const uint8_t* v = ex_.vector(member);
+        for (std::size_t d = 0; d < ex_.dimension; ++d) sum[d] -= v[d];
+    }
+
+    std::vector<uint8_t> mean(const std::vector<uint64_t>& sum, uint64_t n) const {
+        std::vector<uint8_t> m(ex_.stride, 0);
+        for (std::size_t d = 0; d < ex_.dimension; ++d) m[d] = uint8_t((sum[d] + n / 2) / n);
+        return m;
+    }
+
+    // Sum and centroid from the members.
+    void summarise(Cluster& c) const {
+        c.sum.assign(ex_.dimension, 0);
+        for (uint32_t m : c.members) add(c.sum, m);
+        c.centroid = mean(c.sum, c.members.size());
     }
 
     void compute_distortion(Cluster& c) const {
@@ -102,10 +103,10 @@ public:
         c.distortion = std::accumulate(partial.begin(), partial.end(), uint64_t(0));
     }
 
-    // Assign members to the nearer of two codewords (ties to the first);
-    // returns per-member flags (1 = second).
-    std::vector<uint8_t> assign(const Cluster& c, const uint8_t* ca, const uint8_t* cb) const {
-        std::vector<uint8_t> side(c.members.size());
+    // Assign members to the nearer of two codewords (ties to the first):
+    // per-member flags, 1 = second.
+    void assign(const Cluster& c, const uint8_t* ca, const uint8_t* cb, std::vector<uint8_t>& side) const {
+        side.resize(c.members.size());
         parallel_for(threads_for(c.members.size()), c.members.size(), kGrain,
                      [&](std::size_t b, std::size_t e) {
                          for (std::size_t i = b; i < e; ++i) {
@@ -113,28 +114,21 @@ public:
                              side[i] = ssd(v, cb) < ssd(v, ca) ? 1 : 0;
                          }
                      });
-        return side;
-    }
-
-    static void partition(const Cluster& c, const std::vector<uint8_t>& side, Cluster& a,
-                          Cluster& b) {
-        a.members.clear();
-        b.members.clear();
-        for (std::size_t i = 0; i < side.size(); ++i)
-            (side[i] ? b : a).members.push_back(c.members[i]);
     }
 
     Split try_split(const Cluster& c) const {
         Split s;
-        if (c.members.size() < 2) return s;
+        const std::size_t n = c.members.size();
+        if (n < 2) return s;
         s.possible = true;
         // The member farthest from the centroid (lowest index on ties).
         uint32_t far_distance = 0;
         std::size_t far = 0;
-        for (std::size_t i = 0; i < c.members.size(); ++i) {
+        for (std::size_t i = 0; i < n; ++i) {
             const uint32_t d = ssd(ex_.vector(c.members[i]), c.centroid.data());
             if (d > far_distance) far_distance = d, far = i;
         }
+        std::vector<uint8_t> side;
         bool lloyd_ok = far_distance > 0;
         if (lloyd_ok) {
             std::vector<uint8_t> ca = c.centroid, cb = c.centroid;
@@ -142,31 +136,49 @@ public:
             for (std::size_t d = 0; d < ex_.dimension; ++d)
                 cb[d] = uint8_t(int(ca[d]) + (int(f[d]) - int(ca[d])) / 2);
             if (cb == ca) std::memcpy(cb.data(), f, ex_.dimension);
-            std::vector<uint8_t> side, previous;
+            // Lloyd iterations with sums updated only for the members that
+            // change sides, so later iterations cost little beyond the
+            // distances. The sums are exact, so this is the same partition
+            // plain recomputation gives.
+            std::vector<uint8_t> next;
+            std::vector<uint64_t> sum_b(ex_.dimension, 0);
+            std::size_t count_b = 0;
+            side.assign(n, 0);
             for (int it = 0; it < p_.max_lloyd_iterations; ++it) {
-                side = assign(c, ca.data(), cb.data());
-                if (side == previous) break;
-                partition(c, side, s.a, s.b);
-                if (s.a.members.empty() || s.b.members.empty()) {
+                assign(c, ca.data(), cb.data(), next);
+                if (it > 0 && next == side) break;
+                for (std::size_t i = 0; i < n; ++i) {
+                    if (next[i] == side[i]) continue;
+                    if (next[i]) add(sum_b, c.members[i]), ++count_b;
+                    else subtract(sum_b, c.members[i]), --count_b;
+                }
+                side.swap(next);
+                if (count_b == 0 || count_b == n) {
                     lloyd_ok = false;
                     break;
                 }
-                compute_centroid(s.a);
-                compute_centroid(s.b);
-                ca = s.a.centroid;
-                cb = s.b.centroid;
-                previous.swap(side);
+                std::vector<uint64_t> sum_a = c.sum;
+                for (std::size_t d = 0; d < ex_.dimension; ++d) sum_a[d] -= sum_b[d];
+                ca = mean(sum_a, n - count_b);
+                cb = mean(sum_b, count_b);
             }
         }
-        if (!lloyd_ok) {
+        if (lloyd_ok) {
+            for (std::size_t i = 0; i < n; ++i) (side[i] ? s.b : s.a).members.push_back(c.members[i]);
+        } else {
             // Identical vectors (or a degenerate start): split by position so
             // that a codebook of one leaf per vector is always reachable.
-            const std::size_t half = c.members.size() / 2;
+            const std::size_t half = n / 2;
             s.a.members.assign(c.members.begin(), c.members.begin() + std::ptrdiff_t(half));
             s.b.members.assign(c.members.begin() + std::ptrdiff_t(half), c.members.end());
-            compute_centroid(s.a);
-            compute_centroid(s.b);
         }
+        // The smaller side is summed; the larger is the parent minus it.
+        Cluster& small = s.a.members.size() <= s.b.members.size() ? s.a : s.b;
+        Cluster& large = &small == &s.a ? s.b : s.a;
+        summarise(small);
+        large.sum = c.sum;
+        for (std::size_t d = 0; d < ex_.dimension; ++d) large.sum[d] -= small.sum[d];
+        large.centroid = mean(large.sum, large.members.size());
         compute_distortion(s.a);
         compute_distortion(s.b);
         const uint64_t after = s.a.distortion + s.b.distortion;
@@ -217,7 +229,7 @@ Codebook train_codebook(const ExampleSet& examples, const std::vector<uint32_t>&
     std::vector<Cluster> clusters(1);
     std::vector<Split> splits(1);
     clusters[0].members = subset;
-    trainer.compute_centroid(clusters[0]);
+    trainer.summarise(clusters[0]);
     trainer.compute_distortion(clusters[0]);
     uint64_t total = clusters[0].distortion;
     splits[0] = trainer.try_split(clusters[0]);

@@ -52,31 +52,58 @@ void Codebook::finalize() {
         nodes_[i].leaf = int32_t(leaf_nodes_.size());
         leaf_nodes_.push_back(uint32_t(i));
     }
-    // Children always come after their parent, so a reverse sweep sees every
-    // subtree complete before its root. Sums are exact 64-bit integers.
-    std::vector<uint64_t> weight(nodes_.size(), 0);
-    std::vector<uint64_t> sums(nodes_.size() * dimension_, 0);
-    for (std::size_t n = nodes_.size(); n-- > 0;) {
-        uint64_t* s = sums.data() + n * dimension_;
-        const TsvqNode& nd = nodes_[n];
+    // Post-order walk with an explicit stack; sums live only along the
+    // current path (one buffer per depth), so memory is O(depth x dimension)
+    // rather than O(nodes x dimension). Sums are exact 64-bit integers.
+    struct Frame {
+        std::size_t node;
+        bool expanded;
+    };
+    std::vector<Frame> stack{{0, false}};
+    std::vector<std::vector<uint64_t>> sums;  // sums[d]: subtree sum of the node at stack depth d
+    std::vector<uint64_t> weights;
+    while (!stack.empty()) {
+        Frame& f = stack.back();
+        const std::size_t depth = stack.size() - 1;
+        if (sums.size() <= depth + 2) {
+            sums.resize(depth + 3, std::vector<uint64_t>(dimension_, 0));
+            weights.resize(depth + 3, 0);
+        }
+        const TsvqNode& nd = nodes_[f.node];
         if (nd.first_child < 0) {
             // A leaf with weight 0 (possible only in hand-made codebooks)
             // still counts once, so every mean is defined.
-            weight[n] = std::max<uint64_t>(1, node_weights_[n]);
-            const uint8_t* cw = codeword(n);
-            for (std::size_t d = 0; d < dimension_; ++d) s[d] = uint64_t(cw[d]) * weight[n];
+            const uint64_t w = std::max<uint64_t>(1, node_weights_[f.node]);
+            const uint8_t* cw = codeword(f.node);
+            for (std::size_t d = 0; d < dimension_; ++d) sums[depth][d] = uint64_t(cw[d]) * w;
+            weights[depth] = w;
+            stack.pop_back();
+        } else if (!f.expanded) {
+            f.expanded = true;
+            // Both children are summed into depth + 1 and depth + 2 scratch
+            // slots in turn; accumulate into this frame's slot.
+            std::fill(sums[depth].begin(), sums[depth].end(), 0);
+            weights[depth] = 0;
+            stack.push_back({std::size_t(nd.first_child) + 1, false});
+            stack.push_back({std::size_t(nd.first_child), false});
             continue;
+        } else {
+            const uint64_t w = weights[depth];
+            uint8_t* cw = codeword(f.node);
+            for (std::size_t d = 0; d < dimension_; ++d) cw[d] = uint8_t((sums[depth][d] + w / 2) / w);
+            std::memset(cw + dimension_, 0, stride_ - dimension_);
+            stack.pop_back();
         }
-        const std::size_t a = std::size_t(nd.first_child), b = a + 1;
-        weight[n] = weight[a] + weight[b];
-        const uint64_t* sa = sums.data() + a * dimension_;
-        const uint64_t* sb = sums.data() + b * dimension_;
-        uint8_t* cw = codeword(n);
-        for (std::size_t d = 0; d < dimension_; ++d) {
-            s[d] = sa[d] + sb[d];
-            cw[d] = uint8_t((s[d] + weight[n] / 2) / weight[n]);
+        // A finished subtree adds itself into its parent's slot.
+        if (!stack.empty()) {
+            const std::size_t parent = stack.size() - 1;
+            // The sibling frame (if still pending) sits between; find the
+            // expanded ancestor, which is the nearest expanded frame.
+            std::size_t p = parent;
+            while (!stack[p].expanded) --p;
+            for (std::size_t d = 0; d < dimension_; ++d) sums[p][d] += sums[depth][d];
+            weights[p] += weights[depth];
         }
-        std::memset(cw + dimension_, 0, stride_ - dimension_);
     }
 }
 
