@@ -79,6 +79,16 @@ NeighborhoodLayout::NeighborhoodLayout(const Shape& shape, int channels, int lev
     stride_ = dsp::padded_length(dimension_);
 }
 
+std::vector<uint16_t> NeighborhoodLayout::entry_key_offsets() const {
+    std::vector<uint16_t> offsets;
+    for (std::size_t t = 0; t < taps_.size(); ++t) {
+        const Tap& tap = taps_[t];
+        if (tap.depth != 0 || tap.dx < -1 || tap.dx > 1 || tap.dy < -1 || tap.dy > 1) continue;
+        for (int c = 0; c < channels_; ++c) offsets.push_back(uint16_t(t * std::size_t(channels_) + std::size_t(c)));
+    }
+    return offsets;
+}
+
 void NeighborhoodLayout::gather_wrapped(const std::vector<Image>& pyramid, int x, int y,
                                         uint8_t* out) const {
     uint8_t* o = out;

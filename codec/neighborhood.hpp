@@ -73,6 +73,11 @@ public:
     std::size_t stride() const { return stride_; }
     const std::vector<Tap>& taps() const { return taps_; }
 
+    // Byte offsets of the short key a codebook entry carries: the taps of
+    // the current level adjacent to the pixel (4 for a causal shape: left,
+    // upper left, above, upper right; 8 for a symmetric one).
+    std::vector<uint16_t> entry_key_offsets() const;
+
     // Gather the neighbourhood of (x, y) at this level from `pyramid`
     // (toroidal), into `out` (stride() bytes, padding zeroed).
     void gather_wrapped(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const;

@@ -52,7 +52,8 @@ namespace {
 
 // Exhaustive candidates or a trained codebook for one level's example set;
 // codebooks are recorded in result.codebooks[slot].
-std::shared_ptr<const Matcher> build_matcher(ExampleSet& set, const vqtex_model_params& params,
+std::shared_ptr<const Matcher> build_matcher(ExampleSet& set, const std::vector<uint16_t>& key_offsets,
+                                             const vqtex_model_params& params,
                                              vqtex_search search, uint32_t backtrack, int threads,
                                              int slot, AnalysisResult& result) {
     if (search == VQTEX_SEARCH_EXHAUSTIVE) {
@@ -72,6 +73,8 @@ std::shared_ptr<const Matcher> build_matcher(ExampleSet& set, const vqtex_model_
     tp.representative = params.leaf == VQTEX_LEAF_CENTROID ? LeafRepresentative::Centroid
                                                            : LeafRepresentative::Medoid;
     tp.threads = threads;
+    tp.entries_per_leaf = params.entries_per_leaf ? params.entries_per_leaf : 1;
+    tp.key_offsets = key_offsets;
     auto book = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
     result.model_bytes += book->memory_bytes();
     result.codebooks[std::size_t(slot)] = book;
@@ -85,6 +88,9 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
                                const ProgressFn& progress) {
     if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example image is empty (0x0)");
     const ModelPlan plan = plan_model(params, example.width, example.height);
+    if (params.entries_per_leaf > TsvqMatcher::kMaxEntries)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "entries per leaf must be 1 to " +
+                                               std::to_string(TsvqMatcher::kMaxEntries));
     const bool tileable = params.example_tileable != 0;
     const std::vector<Image> pyramid =
         build_pyramid(example, plan.levels, tileable ? EdgeMode::Wrap : EdgeMode::Mirror);
@@ -110,7 +116,7 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
         LevelModel& lm = result.model.levels[std::size_t(l)];
         lm.shape = layout.shape();
         lm.histogram = histogram_of(pyramid[std::size_t(l)]);
-        lm.matcher = build_matcher(set, params, search, backtrack, threads, l, result);
+        lm.matcher = build_matcher(set, layout.entry_key_offsets(), params, search, backtrack, threads, l, result);
         if (params.seam_closing) {
             lm.closing_shape = layout.shape();
             lm.closing_shape.causal = false;
@@ -119,7 +125,7 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
             if (closing_set.count() > 0) {
                 AnalysisResult scratch;
                 scratch.codebooks.resize(1);
-                lm.closing = build_matcher(closing_set, params, search, backtrack, threads, 0, scratch);
+                lm.closing = build_matcher(closing_set, closing_layout.entry_key_offsets(), params, search, backtrack, threads, 0, scratch);
                 result.model_bytes += scratch.model_bytes;
             }
         }

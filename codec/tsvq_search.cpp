@@ -103,9 +103,45 @@ std::size_t TsvqMatcher::nearest_leaf_exhaustive(const uint8_t* query) const {
     return best_leaf;
 }
 
+std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, uint64_t salt) const {
+    const Codebook& b = *book_;
+    const std::size_t count = b.entry_count(leaf);
+    if (count == 1) return 0;
+    // The entry whose short key is nearest the query's adjacent pixels; among
+    // near-ties (within a quarter of the best plus a small absolute slack,
+    // so exact local copies do not always win) the one the pixel's salt ranks
+    // first. The leaf's other continuations then appear about as often as
+    // they do in the example, instead of its commonest one everywhere.
+    const auto& offsets = b.key_offsets();
+    const int ch = b.channels();
+    uint32_t distance[kMaxEntries];
+    uint32_t best = UINT32_MAX;
+    const std::size_t n = std::min<std::size_t>(count, kMaxEntries);
+    for (std::size_t i = 0; i < n; ++i) {
+        const uint8_t* key = b.entry(leaf, i) + ch;
+        uint32_t d = 0;
+        for (std::size_t k = 0; k < offsets.size(); ++k) {
+            const int diff = int(key[k]) - int(query[offsets[k]]);
+            d += uint32_t(diff * diff);
+        }
+        distance[i] = d;
+        best = std::min(best, d);
+    }
+    const uint32_t threshold = best + best / 4 + uint32_t(4 * offsets.size());
+    std::size_t chosen = 0;
+    uint64_t chosen_rank = UINT64_MAX;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (distance[i] > threshold) continue;
+        const uint64_t rank = candidate_rank(salt ^ 0x5EEDull, uint32_t(i));
+        if (rank < chosen_rank) chosen = i, chosen_rank = rank;
+    }
+    return chosen;
+}
+
 const uint8_t* TsvqMatcher::match(const uint8_t* query, const MatchContext& context,
                                   MatchScratch* scratch) const {
-    return book_->leaf_pixel(search(query, backtrack_, scratch, context));
+    const std::size_t leaf = search(query, backtrack_, scratch, context);
+    return book_->entry(leaf, choose_entry(leaf, query, context.salt));
 }
 
 }  // namespace vqtex

@@ -26,7 +26,12 @@ public:
                        const MatchContext& context = {}) const;
     // The exactly nearest leaf by brute force over all leaves (the oracle).
     std::size_t nearest_leaf_exhaustive(const uint8_t* query) const;
+    // Which entry of `leaf` to output for this query (see tsvq_tree.hpp).
+    std::size_t choose_entry(std::size_t leaf, const uint8_t* query, uint64_t salt) const;
     const Codebook& codebook() const { return *book_; }
+
+    // Entries per leaf the search considers; more are never stored.
+    static constexpr std::size_t kMaxEntries = 64;
 
 private:
     std::shared_ptr<const Codebook> book_;

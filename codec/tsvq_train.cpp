@@ -28,6 +28,7 @@
 
 #include "dsp/dsp.hpp"
 #include "error.hpp"
+#include "matcher.hpp"
 #include "parallel.hpp"
 #include "rng.hpp"
 
@@ -188,14 +189,21 @@ public:
 
     void set_leaf(Codebook& book, std::size_t node, const Cluster& c) const {
         const int ch = ex_.channels;
+        const std::size_t entry_size = book.entry_size();
+        std::vector<uint8_t> entries;
+        auto add_entry = [&](uint32_t member, const uint8_t* pixel) {
+            entries.insert(entries.end(), pixel, pixel + ch);
+            for (uint16_t o : book.key_offsets()) entries.push_back(ex_.vector(member)[o]);
+        };
+        uint32_t representative;
         if (p_.representative == LeafRepresentative::Medoid) {
             uint32_t best = UINT32_MAX;
-            uint32_t pick = c.members.front();
+            representative = c.members.front();
             for (uint32_t m : c.members) {
                 const uint32_t d = ssd(ex_.vector(m), c.centroid.data());
-                if (d < best) best = d, pick = m;
+                if (d < best) best = d, representative = m;
             }
-            book.set_leaf(node, ex_.vector(pick), ex_.pixel(pick), uint32_t(c.members.size()), pick);
+            add_entry(representative, ex_.pixel(representative));
         } else {
             uint64_t sum[kMaxChannels] = {};
             for (uint32_t m : c.members)
@@ -203,8 +211,28 @@ public:
             uint8_t pixel[kMaxChannels] = {};
             const uint64_t n = c.members.size();
             for (int k = 0; k < ch; ++k) pixel[k] = uint8_t((sum[k] + n / 2) / n);
-            book.set_leaf(node, c.centroid.data(), pixel, uint32_t(n), c.members.front());
+            representative = c.members.front();
+            // The centroid's own key: its codeword at the key taps.
+            entries.insert(entries.end(), pixel, pixel + ch);
+            for (uint16_t o : book.key_offsets()) entries.push_back(c.centroid[o]);
         }
+        if (p_.entries_per_leaf > 1 && c.members.size() > 1) {
+            // A fixed pseudo-random sample of the other members: an unbiased
+            // sample of what follows this context in the example.
+            std::vector<uint32_t> others;
+            for (uint32_t m : c.members)
+                if (m != representative) others.push_back(m);
+            std::sort(others.begin(), others.end(), [](uint32_t a, uint32_t b) {
+                return candidate_rank(0x656E74726965ull /* "entrie" */, a) <
+                       candidate_rank(0x656E74726965ull, b);
+            });
+            const std::size_t extra = std::min<std::size_t>(others.size(), p_.entries_per_leaf - 1);
+            for (std::size_t i = 0; i < extra; ++i) add_entry(others[i], ex_.pixel(others[i]));
+        }
+        const uint8_t* cw = p_.representative == LeafRepresentative::Medoid ? ex_.vector(representative)
+                                                                            : c.centroid.data();
+        book.set_leaf(node, cw, uint32_t(c.members.size()), representative, entries.data(),
+                      entries.size() / entry_size);
     }
 
     int threads_for(std::size_t n) const { return n >= 2 * kGrain ? p_.threads : 1; }
@@ -222,7 +250,8 @@ Codebook train_codebook(const ExampleSet& examples, const std::vector<uint32_t>&
     if (subset.empty()) fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "no example neighbourhood to train on");
     if (params.max_leaves < 1) fail(VQTEX_ERROR_INVALID_ARGUMENT, "a codebook needs at least one codeword");
     Trainer trainer(examples, params);
-    Codebook book(examples.dimension, examples.stride, examples.channels);
+    Codebook book(examples.dimension, examples.stride, examples.channels,
+                  params.entries_per_leaf > 1 ? params.key_offsets : std::vector<uint16_t>{});
     book.add_root();
 
     // Per node: its cluster and its tentative split, while it is a leaf.

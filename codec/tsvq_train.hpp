@@ -23,6 +23,10 @@ struct TrainParams {
     double distortion_threshold = 0.0;   // stop when mean SSD per vector <= this (0: off)
     LeafRepresentative representative = LeafRepresentative::Medoid;
     int max_lloyd_iterations = 20;
+    // Entries per leaf (see tsvq_tree.hpp): the representative plus up to
+    // entries_per_leaf - 1 more members, each with its short key.
+    uint32_t entries_per_leaf = 1;
+    std::vector<uint16_t> key_offsets;
     int threads = 1;
 };
 

@@ -204,3 +204,33 @@ TEST(Tsvq, NearTieChoiceIsTheSameForTsvqAndExhaustive) {
     p.tolerance = 0;
     EXPECT_NE(vqtex_test::synthesize(ex, p), exhaustive);  // the tolerance does something
 }
+
+TEST(Tsvq, EntriesKeepRareContinuationsAlive) {
+    // With a small codebook, one output per leaf collapses the texture into
+    // its commonest patterns; several entries per leaf keep the variety of
+    // the example. Measured as the number of distinct output colours.
+    const Image ex = vqtex_test::load_corpus("cellular_128.png");
+    auto distinct = [](const Image& img) {
+        std::set<uint32_t> colours;
+        for (std::size_t i = 0; i < img.pixel_count(); ++i)
+            colours.insert(uint32_t(img.pixels[i * 3]) << 16 | uint32_t(img.pixels[i * 3 + 1]) << 8 |
+                           img.pixels[i * 3 + 2]);
+        return colours.size();
+    };
+    vqtex_synth_params p = vqtex_test::default_params(128, 128, 3);
+    p.model.codeword_fraction = 0.03f;
+    p.model.entries_per_leaf = 1;
+    const std::size_t one = distinct(vqtex_test::synthesize(ex, p));
+    p.model.entries_per_leaf = 16;
+    const Image many = vqtex_test::synthesize(ex, p);
+    EXPECT_GT(distinct(many), 2 * one);
+    // Entries are real example pixels: every output colour exists in the example.
+    const std::size_t in_example = distinct(ex);
+    std::set<uint32_t> ex_colours;
+    for (std::size_t i = 0; i < ex.pixel_count(); ++i)
+        ex_colours.insert(uint32_t(ex.pixels[i * 3]) << 16 | uint32_t(ex.pixels[i * 3 + 1]) << 8 | ex.pixels[i * 3 + 2]);
+    for (std::size_t i = 0; i < many.pixel_count(); ++i)
+        EXPECT_TRUE(ex_colours.count(uint32_t(many.pixels[i * 3]) << 16 | uint32_t(many.pixels[i * 3 + 1]) << 8 |
+                                     many.pixels[i * 3 + 2]));
+    EXPECT_GT(in_example, 0u);
+}

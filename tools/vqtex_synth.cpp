@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string("vqtex ") + vqtex_version_string());
     std::string input, output, size = "256x256", shapes, codewords, leaf = "medoid", init = "parent";
     uint64_t seed = 1;
-    uint32_t levels = 0, backtrack = 0, threads = 0, tolerance = 0;
+    uint32_t levels = 0, backtrack = 0, threads = 0, tolerance = 0, entries = 0;
     bool no_seam_closing = false;
     double train_fraction = 1.0;
     bool exhaustive = false, tsvq = false, tileable = false, json = false, quiet = false;
@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
     app.add_option("-k,--codewords", codewords,
                    "TSVQ leaves: K for every level, K0,K1,.. finest first, or a fraction like 0.125 (default: all)");
     app.add_option("-L,--backtrack", backtrack, "TSVQ leaves visited per search (default 2)");
+    app.add_option("--entries", entries, "outputs per TSVQ leaf (1 to 64): keeps rarer continuations of small codebooks")
+        ->check(CLI::Range(1, 64));
     app.add_option("--train-fraction", train_fraction, "train codebooks on this fraction of the vectors")
         ->check(CLI::Range(1e-6, 1.0));
     app.add_option("--leaf", leaf, "leaf representative: medoid (sharper, default) or centroid")
@@ -60,6 +62,7 @@ int main(int argc, char** argv) {
         if (!codewords.empty()) parse_codewords(codewords, params.model);
         if (backtrack) params.backtrack = backtrack;
         params.model.train_fraction = float(train_fraction);
+        params.model.entries_per_leaf = entries;
         params.model.leaf = leaf == "centroid" ? VQTEX_LEAF_CENTROID : VQTEX_LEAF_MEDOID;
         params.model.example_tileable = tileable ? 1 : 0;
         params.search = exhaustive ? VQTEX_SEARCH_EXHAUSTIVE : VQTEX_SEARCH_TSVQ;

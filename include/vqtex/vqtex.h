@@ -124,6 +124,7 @@ typedef struct vqtex_model_params {
     vqtex_leaf leaf;                          /* [--leaf] */
     float distortion_threshold;               /* stop splitting at this mean SSD per vector (0 = off) */
     uint64_t training_seed;                   /* seeds the training subset */
+    uint32_t entries_per_leaf;                /* outputs per TSVQ leaf, 1 to 64 (0 = default) [--entries] */
     uint32_t seam_closing;                    /* 1: also build symmetric matchers that re-match
                                                  the rows around the top/bottom wrap (default) [--no-seam-closing] */
 } vqtex_model_params;
