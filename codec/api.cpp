@@ -6,6 +6,7 @@
 #include <cstring>
 #include <new>
 
+#include "api_support.hpp"
 #include "error.hpp"
 #include "image.hpp"
 #include "parallel.hpp"
@@ -15,70 +16,7 @@
 
 using namespace vqtex;
 
-namespace {
 
-constexpr uint32_t kMaxOutputSide = 16384;
-
-vqtex_status report(vqtex_error* error, vqtex_status status, const char* detail) {
-    if (error) {
-        error->status = status;
-        std::snprintf(error->detail, sizeof error->detail, "%s", detail);
-    }
-    return status;
-}
-
-// Runs `body`, mapping exceptions to statuses.
-template <typename Fn>
-vqtex_status guarded(vqtex_error* error, Fn&& body) {
-    if (error) {
-        error->status = VQTEX_OK;
-        error->detail[0] = '\0';
-    }
-    try {
-        body();
-        return VQTEX_OK;
-    } catch (const Error& e) {
-        return report(error, e.status(), e.what());
-    } catch (const std::bad_alloc&) {
-        return report(error, VQTEX_ERROR_OUT_OF_MEMORY, "out of memory");
-    } catch (const std::exception& e) {
-        return report(error, VQTEX_ERROR_INTERNAL, e.what());
-    } catch (...) {
-        return report(error, VQTEX_ERROR_INTERNAL, "unknown internal error");
-    }
-}
-
-Image image_from_c(const vqtex_image* in, const char* what) {
-    if (!in) fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " is NULL");
-    if (in->width == 0 || in->height == 0)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has zero size (" +
-                                               std::to_string(in->width) + "x" +
-                                               std::to_string(in->height) + ")");
-    if (in->channels < 1 || in->channels > 4)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has " +
-                                               std::to_string(in->channels) +
-                                               " channels; 1 to 4 are supported");
-    if (in->width > 65536 || in->height > 65536)
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, std::string(what) + " is larger than 65536 on a side");
-    if (!in->pixels) fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has no pixels");
-    Image img(int(in->width), int(in->height), int(in->channels));
-    std::memcpy(img.pixels.data(), in->pixels, img.byte_count());
-    return img;
-}
-
-void image_to_c(Image&& img, vqtex_image* out) {
-    uint8_t* p = static_cast<uint8_t*>(std::malloc(img.byte_count()));
-    if (!p) throw std::bad_alloc();
-    std::memcpy(p, img.pixels.data(), img.byte_count());
-    out->width = uint32_t(img.width);
-    out->height = uint32_t(img.height);
-    out->channels = uint32_t(img.channels);
-    out->pixels = p;
-}
-
-int resolve_threads(uint32_t threads) { return threads ? int(threads) : hardware_threads(); }
-
-}  // namespace
 
 extern "C" {
 
@@ -99,6 +37,11 @@ const char* vqtex_status_message(vqtex_status status) {
         case VQTEX_ERROR_OUT_OF_MEMORY: return "out of memory";
         case VQTEX_ERROR_CANCELLED: return "cancelled";
         case VQTEX_ERROR_LIMIT_EXCEEDED: return "size limit exceeded";
+        case VQTEX_ERROR_BAD_MAGIC: return "not a vqtex file (bad magic)";
+        case VQTEX_ERROR_UNSUPPORTED_VERSION: return "unsupported format version";
+        case VQTEX_ERROR_TRUNCATED: return "file is truncated";
+        case VQTEX_ERROR_CHECKSUM: return "checksum mismatch";
+        case VQTEX_ERROR_CORRUPT: return "corrupt file";
         case VQTEX_ERROR_INTERNAL: return "internal error";
     }
     return "unknown status";

@@ -50,15 +50,21 @@ uint32_t codewords_for_level(const vqtex_model_params& params, int level,
 
 namespace {
 
-// Exhaustive candidates or a trained codebook for one level's example set;
-// codebooks are recorded in result.codebooks[slot].
-std::shared_ptr<const Matcher> build_matcher(ExampleSet& set, const std::vector<uint16_t>& key_offsets,
-                                             const vqtex_model_params& params,
-                                             vqtex_search search, uint32_t backtrack, int threads,
-                                             int slot, AnalysisResult& result) {
+// Exhaustive candidates or a trained codebook for one level's example set.
+struct BuiltMatcher {
+    std::shared_ptr<const Matcher> matcher;
+    std::shared_ptr<const Codebook> codebook;  // TSVQ only
+    std::size_t bytes = 0;
+};
+
+BuiltMatcher build_matcher(ExampleSet& set, const std::vector<uint16_t>& key_offsets,
+                           const vqtex_model_params& params, vqtex_search search, uint32_t backtrack,
+                           int threads, int level) {
+    BuiltMatcher built;
     if (search == VQTEX_SEARCH_EXHAUSTIVE) {
-        result.model_bytes += set.vectors.size() + set.pixels.size();
-        return std::make_shared<ExhaustiveMatcher>(std::move(set));
+        built.bytes = set.vectors.size() + set.pixels.size();
+        built.matcher = std::make_shared<ExhaustiveMatcher>(std::move(set));
+        return built;
     }
     std::size_t subset_size = set.count();
     if (params.train_fraction > 0 && params.train_fraction < 1)
@@ -66,19 +72,19 @@ std::shared_ptr<const Matcher> build_matcher(ExampleSet& set, const std::vector<
             1, std::size_t(std::llround(double(subset_size) * params.train_fraction)));
     if (params.train_count > 0) subset_size = std::min<std::size_t>(subset_size, params.train_count);
     const std::vector<uint32_t> subset =
-        choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(slot));
+        choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level));
     TrainParams tp;
-    tp.max_leaves = codewords_for_level(params, slot, subset.size());
+    tp.max_leaves = codewords_for_level(params, level, subset.size());
     tp.distortion_threshold = params.distortion_threshold;
     tp.representative = params.leaf == VQTEX_LEAF_CENTROID ? LeafRepresentative::Centroid
                                                            : LeafRepresentative::Medoid;
     tp.threads = threads;
     tp.entries_per_leaf = params.entries_per_leaf ? params.entries_per_leaf : 1;
     tp.key_offsets = key_offsets;
-    auto book = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
-    result.model_bytes += book->memory_bytes();
-    result.codebooks[std::size_t(slot)] = book;
-    return std::make_shared<TsvqMatcher>(book, backtrack);
+    built.codebook = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
+    built.bytes = built.codebook->memory_bytes();
+    built.matcher = std::make_shared<TsvqMatcher>(built.codebook, backtrack);
+    return built;
 }
 
 }  // namespace
@@ -99,6 +105,7 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
     result.model.channels = example.channels;
     result.model.levels.resize(std::size_t(plan.levels));
     result.codebooks.resize(std::size_t(plan.levels));
+    result.closing_codebooks.resize(std::size_t(plan.levels));
     result.training_vectors.resize(std::size_t(plan.levels));
     for (int l = plan.levels - 1; l >= 0; --l) {
         const NeighborhoodLayout layout(plan.shapes[std::size_t(l)], example.channels, l, plan.levels);
@@ -116,17 +123,24 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
         LevelModel& lm = result.model.levels[std::size_t(l)];
         lm.shape = layout.shape();
         lm.histogram = histogram_of(pyramid[std::size_t(l)]);
-        lm.matcher = build_matcher(set, layout.entry_key_offsets(), params, search, backtrack, threads, l, result);
+        BuiltMatcher causal = build_matcher(set, layout.entry_key_offsets(), params, search, backtrack,
+                                            threads, l);
+        lm.matcher = causal.matcher;
+        result.codebooks[std::size_t(l)] = causal.codebook;
+        result.model_bytes += causal.bytes;
         if (params.seam_closing) {
-            lm.closing_shape = layout.shape();
-            lm.closing_shape.causal = false;
-            const NeighborhoodLayout closing_layout(lm.closing_shape, example.channels, l, plan.levels);
+            Shape closing_shape = layout.shape();
+            closing_shape.causal = false;
+            const NeighborhoodLayout closing_layout(closing_shape, example.channels, l, plan.levels);
             ExampleSet closing_set = collect_examples(closing_layout, pyramid, tileable);
+            // A level too small for the symmetric window simply keeps its seam.
             if (closing_set.count() > 0) {
-                AnalysisResult scratch;
-                scratch.codebooks.resize(1);
-                lm.closing = build_matcher(closing_set, closing_layout.entry_key_offsets(), params, search, backtrack, threads, 0, scratch);
-                result.model_bytes += scratch.model_bytes;
+                BuiltMatcher closing = build_matcher(closing_set, closing_layout.entry_key_offsets(), params,
+                                                     search, backtrack, threads, l);
+                lm.closing_shape = closing_shape;
+                lm.closing = closing.matcher;
+                result.closing_codebooks[std::size_t(l)] = closing.codebook;
+                result.model_bytes += closing.bytes;
             }
         }
         if (progress && !progress(uint64_t(plan.levels - l), uint64_t(plan.levels)))

@@ -28,7 +28,8 @@ uint32_t codewords_for_level(const vqtex_model_params& params, int level,
 
 struct AnalysisResult {
     TextureModel model;
-    std::vector<std::shared_ptr<const Codebook>> codebooks;  // TSVQ only; [0] = finest
+    std::vector<std::shared_ptr<const Codebook>> codebooks;          // TSVQ only; [0] = finest
+    std::vector<std::shared_ptr<const Codebook>> closing_codebooks;  // TSVQ with seam closing
     std::vector<std::size_t> training_vectors;
     std::size_t model_bytes = 0;
 };

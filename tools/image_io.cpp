@@ -10,6 +10,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "vqtex/vqtex.h"
+
 namespace vqtex_tools {
 
 namespace fs = std::filesystem;
@@ -82,6 +84,65 @@ void save_image(const std::string& path, uint32_t width, uint32_t height, uint32
         fs::remove(tmp, ec);
         throw std::runtime_error("cannot write '" + path + "': " + ec.message());
     }
+}
+
+std::vector<uint8_t> load_bytes(const std::string& path) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw std::runtime_error("cannot read '" + path + "': " + (fs::exists(path) ? "permission denied" : "no such file"));
+    std::vector<uint8_t> bytes;
+    uint8_t buf[65536];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) bytes.insert(bytes.end(), buf, buf + n);
+    const bool failed = std::ferror(f) != 0;
+    std::fclose(f);
+    if (failed) throw std::runtime_error("cannot read '" + path + "': read error");
+    return bytes;
+}
+
+std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_image* levels, uint32_t count) {
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) throw std::runtime_error("cannot write '" + path + "': unknown image format for this extension");
+    std::vector<std::string> written;
+    if (out->supports("mipmap")) {
+        const std::string tmp = temporary_name_for(path);
+        bool ok = true;
+        for (uint32_t i = 0; i < count && ok; ++i) {
+            OIIO::ImageSpec spec(int(levels[i].width), int(levels[i].height), int(levels[i].channels),
+                                 OIIO::TypeDesc::UINT8);
+            ok = out->open(tmp, spec, i == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel) &&
+                 out->write_image(OIIO::TypeDesc::UINT8, levels[i].pixels);
+        }
+        ok = ok && out->close();
+        std::error_code ec;
+        if (!ok) {
+            const std::string why = out->geterror();
+            fs::remove(tmp, ec);
+            throw std::runtime_error("cannot write '" + path + "': " + why);
+        }
+        fs::rename(tmp, path, ec);
+        if (ec) {
+            fs::remove(tmp, ec);
+            throw std::runtime_error("cannot write '" + path + "': " + ec.message());
+        }
+        written.push_back(path);
+        return written;
+    }
+    const fs::path p(path);
+    try {
+        for (uint32_t i = 0; i < count; ++i) {
+            const std::string name = i == 0 ? path
+                                            : (p.parent_path() / (p.stem().string() + "_mip" + std::to_string(i) +
+                                                                  p.extension().string()))
+                                                  .string();
+            save_image(name, levels[i].width, levels[i].height, levels[i].channels, levels[i].pixels);
+            written.push_back(name);
+        }
+    } catch (...) {
+        std::error_code ec;
+        for (const auto& w : written) fs::remove(w, ec);
+        throw;
+    }
+    return written;
 }
 
 void save_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {

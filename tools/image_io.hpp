@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "vqtex/vqtex.h"
+
 namespace vqtex_tools {
 
 struct LoadedImage {
@@ -22,6 +24,15 @@ LoadedImage load_image(const std::string& path);
 // Writes 8-bit pixels; the format follows the file name's extension.
 void save_image(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
                 const uint8_t* pixels);
+
+// Reads a whole file; throws with a one-line message naming it.
+std::vector<uint8_t> load_bytes(const std::string& path);
+
+// Writes a mip chain: one MIP-mapped file when the format supports it
+// (TIFF, OpenEXR), else one file per level named STEM_mipN.EXT (level 0 is
+// PATH itself). Returns the files written. All or nothing.
+std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_image* levels,
+                                        uint32_t count);
 
 // Writes bytes atomically (temporary file + rename).
 void save_bytes(const std::string& path, const std::vector<uint8_t>& bytes);

@@ -52,6 +52,11 @@ typedef enum vqtex_status {
     VQTEX_ERROR_OUT_OF_MEMORY = 3,
     VQTEX_ERROR_CANCELLED = 4,        /* the progress callback returned 0 */
     VQTEX_ERROR_LIMIT_EXCEEDED = 5,   /* a size is above the configured cap */
+    VQTEX_ERROR_BAD_MAGIC = 6,        /* not a vqtex file */
+    VQTEX_ERROR_UNSUPPORTED_VERSION = 7, /* a format version this library cannot read */
+    VQTEX_ERROR_TRUNCATED = 8,        /* the file ends early */
+    VQTEX_ERROR_CHECKSUM = 9,         /* the file's checksum does not match its bytes */
+    VQTEX_ERROR_CORRUPT = 10,         /* inconsistent or invalid data inside the file */
     VQTEX_ERROR_INTERNAL = 99
 } vqtex_status;
 
@@ -166,6 +171,106 @@ typedef struct vqtex_synth_stats {
 VQTEX_API vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_image* example,
                                         vqtex_image* out, vqtex_synth_stats* stats,
                                         vqtex_error* error);
+
+/* ---- The codec -------------------------------------------------------------
+ * The encoder builds the model of an example and writes only its codebooks
+ * into a compact file; the decoder regenerates a texture of any size from
+ * the file by synthesis. See docs/FORMAT.md. */
+
+#define VQTEX_QUALITY_DEFAULT 50
+
+typedef struct vqtex_encode_params {
+    uint32_t struct_size;       /* set by vqtex_encode_params_init */
+    vqtex_model_params model;   /* filled by the quality preset; tweak after */
+    uint32_t precision;         /* bits per codeword and key sample, 1 to 8 [--precision] */
+    uint32_t pixel_precision;   /* bits per output pixel sample, 1 to 8 */
+    uint32_t backtrack;         /* TSVQ leaves the decoder visits per search [--backtrack] */
+    vqtex_init init;            /* how decoding starts each level */
+    uint64_t seed;              /* default decoding seed stored in the file [--seed] */
+    uint64_t target_size;       /* bytes; nonzero: the best quality preset whose file fits [--target-size] */
+    uint32_t threads;           /* 0 = all cores [--threads] */
+    vqtex_progress_fn progress;
+    void* progress_user;
+} vqtex_encode_params;
+
+/* Defaults: the preset for VQTEX_QUALITY_DEFAULT. */
+VQTEX_API void vqtex_encode_params_init(vqtex_encode_params* params);
+/* Fills the model and precision fields from a quality preset, 0 (smallest
+ * file) to 100 (best texture) [--quality]. Other fields are untouched. */
+VQTEX_API vqtex_status vqtex_encode_params_preset(vqtex_encode_params* params, int quality);
+
+typedef struct vqtex_encode_stats {
+    uint64_t bytes;
+    uint32_t quality;        /* the preset used (target-size search), or 0 */
+    uint32_t levels;
+    uint32_t codewords[VQTEX_MAX_LEVELS];
+    uint32_t entries[VQTEX_MAX_LEVELS];
+    double seconds;
+    uint32_t attempts;       /* encodes tried by the target-size search */
+} vqtex_encode_stats;
+
+/* Encodes an example into a new buffer (*data, *size), freed with
+ * vqtex_free(). On failure *data is NULL. stats and error may be NULL. */
+VQTEX_API vqtex_status vqtex_encode(const vqtex_encode_params* params, const vqtex_image* example,
+                                    uint8_t** data, size_t* size, vqtex_encode_stats* stats,
+                                    vqtex_error* error);
+
+VQTEX_API void vqtex_free(void* data);
+
+#define VQTEX_SEED_FROM_FILE UINT64_MAX
+
+typedef struct vqtex_decode_params {
+    uint32_t struct_size;    /* set by vqtex_decode_params_init */
+    uint32_t width, height;  /* output size, 1 to 16384 each; 0 = the exemplar's size [--size] */
+    uint64_t seed;           /* VQTEX_SEED_FROM_FILE (default) or any seed [--seed] */
+    uint32_t threads;        /* 0 = all cores; the output is the same for any count [--threads] */
+    uint64_t memory_limit;   /* bytes the decoder may allocate; default 1 GiB [--memory-limit] */
+    vqtex_progress_fn progress;
+    void* progress_user;
+} vqtex_decode_params;
+
+VQTEX_API void vqtex_decode_params_init(vqtex_decode_params* params);
+
+/* Decodes a file into a new image (free with vqtex_image_free). */
+VQTEX_API vqtex_status vqtex_decode(const vqtex_decode_params* params, const uint8_t* data, size_t size,
+                                    vqtex_image* out, vqtex_error* error);
+
+/* Decodes the whole synthesised pyramid as a mip chain: levels[0] is the
+ * texture, each next level half the size (rounded up) down to 1x1. The
+ * synthesised pyramid levels come first; below them, levels are the
+ * binomial-filtered, toroidal reduction of the one above. `levels` must hold
+ * `capacity` images; *count receives how many were written. */
+VQTEX_API vqtex_status vqtex_decode_mips(const vqtex_decode_params* params, const uint8_t* data,
+                                         size_t size, vqtex_image* levels, uint32_t capacity,
+                                         uint32_t* count, vqtex_error* error);
+
+#define VQTEX_MAX_SECTIONS 64
+
+typedef struct vqtex_section_info {
+    char tag[5];             /* "LEVL", "HIST", "TOPO", "CODE", "ENTR" */
+    uint32_t level;
+    uint32_t kind;           /* 0 causal tree (or none), 1 closing tree */
+    uint64_t raw_bytes;
+    uint64_t stored_bytes;
+} vqtex_section_info;
+
+typedef struct vqtex_file_info {
+    uint32_t format_version;
+    uint64_t file_bytes;
+    uint32_t exemplar_width, exemplar_height, channels, levels;
+    uint32_t seam_closing, init, backtrack, precision, pixel_precision;
+    uint64_t seed;
+    vqtex_shape shapes[VQTEX_MAX_LEVELS];
+    uint32_t codewords[VQTEX_MAX_LEVELS];          /* causal tree leaves */
+    uint32_t entries[VQTEX_MAX_LEVELS];            /* causal tree entries */
+    uint32_t closing_codewords[VQTEX_MAX_LEVELS];
+    uint32_t section_count;
+    vqtex_section_info sections[VQTEX_MAX_SECTIONS];
+} vqtex_file_info;
+
+/* Verifies and describes a file (everything the decoder checks). */
+VQTEX_API vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_limit,
+                                     vqtex_file_info* info, vqtex_error* error);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,79 @@
+// api_support.hpp - helpers shared by the exported C functions: the
+// exception-to-status guard and image conversion at the boundary.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <string>
+
+#include "error.hpp"
+#include "image.hpp"
+#include "parallel.hpp"
+#include "vqtex/vqtex.h"
+
+namespace vqtex {
+
+inline constexpr uint32_t kMaxOutputSide = 16384;
+
+inline vqtex_status report(vqtex_error* error, vqtex_status status, const char* detail) {
+    if (error) {
+        error->status = status;
+        std::snprintf(error->detail, sizeof error->detail, "%s", detail);
+    }
+    return status;
+}
+
+// Runs `body`, mapping exceptions to statuses; no exception escapes.
+template <typename Fn>
+vqtex_status guarded(vqtex_error* error, Fn&& body) {
+    if (error) {
+        error->status = VQTEX_OK;
+        error->detail[0] = '\0';
+    }
+    try {
+        body();
+        return VQTEX_OK;
+    } catch (const Error& e) {
+        return report(error, e.status(), e.what());
+    } catch (const std::bad_alloc&) {
+        return report(error, VQTEX_ERROR_OUT_OF_MEMORY, "out of memory");
+    } catch (const std::exception& e) {
+        return report(error, VQTEX_ERROR_INTERNAL, e.what());
+    } catch (...) {
+        return report(error, VQTEX_ERROR_INTERNAL, "unknown internal error");
+    }
+}
+
+inline Image image_from_c(const vqtex_image* in, const char* what) {
+    if (!in) fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " is NULL");
+    if (in->width == 0 || in->height == 0)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has zero size (" +
+                                               std::to_string(in->width) + "x" +
+                                               std::to_string(in->height) + ")");
+    if (in->channels < 1 || in->channels > 4)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has " +
+                                               std::to_string(in->channels) +
+                                               " channels; 1 to 4 are supported");
+    if (in->width > 65536 || in->height > 65536 || uint64_t(in->width) * in->height > (uint64_t(1) << 30))
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, std::string(what) + " is larger than 65536 on a side or 2^30 pixels");
+    if (!in->pixels) fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has no pixels");
+    Image img(int(in->width), int(in->height), int(in->channels));
+    std::memcpy(img.pixels.data(), in->pixels, img.byte_count());
+    return img;
+}
+
+inline void image_to_c(Image&& img, vqtex_image* out) {
+    uint8_t* p = static_cast<uint8_t*>(std::malloc(img.byte_count()));
+    if (!p) throw std::bad_alloc();
+    std::memcpy(p, img.pixels.data(), img.byte_count());
+    out->width = uint32_t(img.width);
+    out->height = uint32_t(img.height);
+    out->channels = uint32_t(img.channels);
+    out->pixels = p;
+}
+
+inline int resolve_threads(uint32_t threads) { return threads ? int(threads) : hardware_threads(); }
+
+}  // namespace vqtex

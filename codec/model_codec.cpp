@@ -1,0 +1,430 @@
+// model_codec.cpp - the codebook coding of docs/FORMAT.md: quantisation,
+// prediction, and the section layout. zstd (container.cpp) does the rest.
+//
+// What is predicted from what:
+//   - Leaf codewords are quantised to `precision` bits and, visiting the
+//     leaves depth-first so that neighbours in the tree are neighbours in
+//     the stream, each is coded as its difference from the previous leaf.
+//     The stream is planar (all leaves' first sample, then the second ...),
+//     which is the layout zstd models best.
+//   - Entry keys are the same pixels as some samples of the codeword (the
+//     taps next to the centre), so each is coded as its difference from the
+//     leaf codeword at that tap; entry 0's key usually is the codeword's.
+//   - Entry pixels are predicted from their own key (or the codeword) with
+//     the median edge detector of LOCO-I: left, above and upper-left.
+#include "model_codec.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "bitstream.hpp"
+#include "error.hpp"
+#include "neighborhood.hpp"
+#include "noise.hpp"
+#include "tsvq_search.hpp"
+
+namespace vqtex {
+namespace {
+
+constexpr char kTagLevel[4] = {'L', 'E', 'V', 'L'};
+constexpr char kTagHistogram[4] = {'H', 'I', 'S', 'T'};
+constexpr char kTagTopology[4] = {'T', 'O', 'P', 'O'};
+constexpr char kTagCodewords[4] = {'C', 'O', 'D', 'E'};
+constexpr char kTagEntries[4] = {'E', 'N', 'T', 'R'};
+
+constexpr uint32_t kMaxLeaves = 1u << 24;
+
+bool tag_is(const Section& s, const char tag[4]) { return std::memcmp(s.tag.data(), tag, 4) == 0; }
+
+// Leaves in depth-first order (first child first).
+std::vector<uint32_t> depth_first_leaves(const std::vector<int32_t>& first_child) {
+    std::vector<uint32_t> leaves, stack{0};
+    uint32_t leaf = 0;
+    std::vector<uint32_t> leaf_of(first_child.size(), 0);
+    for (std::size_t n = 0; n < first_child.size(); ++n)
+        if (first_child[n] < 0) leaf_of[n] = leaf++;
+    while (!stack.empty()) {
+        const uint32_t n = stack.back();
+        stack.pop_back();
+        if (first_child[n] < 0) {
+            leaves.push_back(leaf_of[n]);
+        } else {
+            stack.push_back(uint32_t(first_child[n]) + 1);
+            stack.push_back(uint32_t(first_child[n]));
+        }
+    }
+    return leaves;
+}
+
+std::vector<int32_t> topology_of(const Codebook& b) {
+    std::vector<int32_t> fc(b.node_count());
+    for (std::size_t n = 0; n < b.node_count(); ++n) fc[n] = b.node(n).first_child;
+    return fc;
+}
+
+uint8_t med_predict(int a, int b, int c) {
+    const int lo = std::min(a, b), hi = std::max(a, b);
+    if (c >= hi) return uint8_t(lo);
+    if (c <= lo) return uint8_t(hi);
+    return uint8_t(a + b - c);
+}
+
+// Offsets (first channel) of the left, above and upper-left taps of a
+// layout, used to predict entry pixels.
+struct PredictorTaps {
+    int left = -1, up = -1, up_left = -1;
+};
+PredictorTaps predictor_taps(const NeighborhoodLayout& layout) {
+    PredictorTaps p;
+    const auto& taps = layout.taps();
+    for (std::size_t t = 0; t < taps.size(); ++t) {
+        if (taps[t].depth != 0) continue;
+        const int o = int(t) * layout.channels();
+        if (taps[t].dx == -1 && taps[t].dy == 0) p.left = o;
+        if (taps[t].dx == 0 && taps[t].dy == -1) p.up = o;
+        if (taps[t].dx == -1 && taps[t].dy == -1) p.up_left = o;
+    }
+    return p;
+}
+
+uint8_t predict_pixel(const uint8_t* source, const PredictorTaps& p, int channel) {
+    if (p.left < 0 || p.up < 0 || p.up_left < 0) return 128;
+    return med_predict(source[p.left + channel], source[p.up + channel], source[p.up_left + channel]);
+}
+
+struct TreeSections {
+    std::vector<uint8_t> topology, codewords, entries;
+};
+
+TreeSections encode_tree(const Codebook& b, const NeighborhoodLayout& layout, const EncodeSettings& s) {
+    TreeSections out;
+    const std::size_t k = b.leaf_count(), dim = b.dimension(), ch = std::size_t(b.channels());
+    const std::size_t key_len = b.key_length();
+    std::size_t max_entries = 1;
+    for (std::size_t l = 0; l < k; ++l) max_entries = std::max(max_entries, b.entry_count(l));
+
+    ByteWriter topo;
+    topo.varint(k);
+    topo.varint(max_entries);
+    // Breadth-first node order: one bit per node, 1 = internal.
+    std::vector<uint8_t> bits((b.node_count() + 7) / 8, 0);
+    for (std::size_t n = 0; n < b.node_count(); ++n)
+        if (b.node(n).first_child >= 0) bits[n / 8] |= uint8_t(1u << (n % 8));
+    topo.bytes(bits);
+    for (std::size_t l = 0; l < k; ++l) topo.varint(b.leaf_count_of(l));
+    if (max_entries > 1)
+        for (std::size_t l = 0; l < k; ++l) topo.u8(uint8_t(b.entry_count(l) - 1));
+    out.topology = std::move(topo.data());
+
+    const std::vector<uint32_t> order = depth_first_leaves(topology_of(b));
+    const int p = s.precision, pp = s.pixel_precision;
+    const uint8_t mask = uint8_t((1u << p) - 1), pixel_mask = uint8_t((1u << pp) - 1);
+    // Codewords: planar, delta to the previous leaf depth-first.
+    out.codewords.resize(k * dim);
+    std::vector<uint8_t> dequantised(k * dim);
+    for (std::size_t d = 0; d < dim; ++d) {
+        uint8_t previous = 0;
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint8_t q = quantise(b.leaf_codeword(order[i])[d], p);
+            out.codewords[d * k + i] = uint8_t((q - previous) & mask);
+            previous = q;
+            dequantised[order[i] * dim + d] = dequantise(q, p);
+        }
+    }
+    // Entries: keys (planar per key position), then pixels (planar per channel).
+    const PredictorTaps taps = predictor_taps(layout);
+    const auto& key_offsets = b.key_offsets();
+    std::vector<uint8_t> keys, pixels;
+    for (std::size_t kpos = 0; kpos < key_len; ++kpos)
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint32_t leaf = order[i];
+            const uint8_t base = quantise(b.leaf_codeword(leaf)[key_offsets[kpos]], p);
+            for (std::size_t e = 0; e < b.entry_count(leaf); ++e)
+                keys.push_back(uint8_t((quantise(b.entry(leaf, e)[ch + kpos], p) - base) & mask));
+        }
+    std::vector<uint8_t> source(dim);
+    for (std::size_t c = 0; c < ch; ++c)
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint32_t leaf = order[i];
+            for (std::size_t e = 0; e < b.entry_count(leaf); ++e) {
+                // Predict from what the decoder will have: the dequantised
+                // codeword, with this entry's dequantised key over it.
+                std::memcpy(source.data(), dequantised.data() + leaf * dim, dim);
+                for (std::size_t kpos = 0; kpos < key_len; ++kpos)
+                    source[key_offsets[kpos]] = dequantise(quantise(b.entry(leaf, e)[ch + kpos], p), p);
+                const uint8_t predicted = quantise(predict_pixel(source.data(), taps, int(c)), pp);
+                const uint8_t actual = quantise(b.entry(leaf, e)[c], pp);
+                pixels.push_back(uint8_t((actual - predicted) & pixel_mask));
+            }
+        }
+    out.entries = std::move(keys);
+    out.entries.insert(out.entries.end(), pixels.begin(), pixels.end());
+    return out;
+}
+
+std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology_bytes,
+                                            const std::vector<uint8_t>& codeword_bytes,
+                                            const std::vector<uint8_t>& entry_bytes,
+                                            const NeighborhoodLayout& layout, int precision,
+                                            int pixel_precision, const std::string& where) {
+    ByteReader topo(topology_bytes.data(), topology_bytes.size(), "topology of " + where);
+    // Each leaf costs at least two topology bits and one weight byte, so a
+    // leaf count above the section size is a lie; check before allocating.
+    const uint64_t k = topo.varint_in("leaf count", 1, std::min<uint64_t>(kMaxLeaves, topology_bytes.size()));
+    const uint64_t max_entries = topo.varint_in("entries per leaf", 1, TsvqMatcher::kMaxEntries);
+    const std::size_t nodes = std::size_t(2 * k - 1);
+    const uint8_t* bits = topo.bytes((nodes + 7) / 8, "topology bits");
+    std::vector<int32_t> first_child(nodes, -1);
+    std::size_t next = 1, leaves = 0;
+    for (std::size_t n = 0; n < nodes; ++n) {
+        if (n >= next) topo.corrupt("topology is not a tree (node " + std::to_string(n) + " unreachable)");
+        if (bits[n / 8] & (1u << (n % 8))) {
+            if (next + 2 > nodes) topo.corrupt("topology has more nodes than 2 x leaves - 1");
+            first_child[n] = int32_t(next);
+            next += 2;
+        } else {
+            ++leaves;
+        }
+    }
+    if (leaves != k || next != nodes) topo.corrupt("topology does not have the declared " + std::to_string(k) + " leaves");
+    for (std::size_t n = nodes; n < ((nodes + 7) / 8) * 8; ++n)
+        if (bits[n / 8] & (1u << (n % 8))) topo.corrupt("padding bits after the topology are not zero");
+    std::vector<uint32_t> weights(k), entry_counts(k, 1);
+    for (auto& w : weights) w = uint32_t(topo.varint_in("leaf weight", 1, UINT32_MAX));
+    if (max_entries > 1)
+        for (auto& e : entry_counts) {
+            e = uint32_t(topo.u8("entry count")) + 1;
+            if (e > max_entries) topo.corrupt("a leaf has more entries than the declared maximum");
+        }
+    topo.expect_end();
+
+    const std::size_t dim = layout.dimension(), ch = std::size_t(layout.channels());
+    const std::vector<uint16_t> key_offsets = max_entries > 1 ? layout.entry_key_offsets() : std::vector<uint16_t>{};
+    const std::size_t key_len = key_offsets.size();
+    if (codeword_bytes.size() != k * dim)
+        fail(VQTEX_ERROR_CORRUPT, "codewords of " + where + ": " + std::to_string(codeword_bytes.size()) +
+                                      " bytes for " + std::to_string(k) + " leaves of " + std::to_string(dim) +
+                                      " samples");
+    uint64_t total_entries = 0;
+    for (uint32_t e : entry_counts) total_entries += e;
+    if (entry_bytes.size() != total_entries * (key_len + ch))
+        fail(VQTEX_ERROR_CORRUPT, "entries of " + where + ": " + std::to_string(entry_bytes.size()) +
+                                      " bytes for " + std::to_string(total_entries) + " entries");
+
+    const std::vector<uint32_t> order = depth_first_leaves(first_child);
+    const uint8_t mask = uint8_t((1u << precision) - 1), pixel_mask = uint8_t((1u << pixel_precision) - 1);
+    std::vector<uint8_t> quantised(k * dim), codewords(k * dim);
+    for (std::size_t d = 0; d < dim; ++d) {
+        uint8_t previous = 0;
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint8_t q = uint8_t((previous + codeword_bytes[d * k + i]) & mask);
+            quantised[order[i] * dim + d] = q;
+            codewords[order[i] * dim + d] = dequantise(q, precision);
+            previous = q;
+        }
+    }
+    // Entry storage: per leaf, entry_counts[leaf] entries of (pixel, key).
+    std::vector<std::size_t> entry_start(k + 1, 0);
+    for (std::size_t l = 0; l < k; ++l) entry_start[l + 1] = entry_start[l] + entry_counts[l];
+    const std::size_t entry_size = ch + key_len;
+    std::vector<uint8_t> entries(total_entries * entry_size);
+    std::size_t pos = 0;
+    for (std::size_t kpos = 0; kpos < key_len; ++kpos)
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint32_t leaf = order[i];
+            const uint8_t base = quantised[leaf * dim + key_offsets[kpos]];
+            for (std::size_t e = 0; e < entry_counts[leaf]; ++e) {
+                const uint8_t q = uint8_t((base + entry_bytes[pos++]) & mask);
+                entries[(entry_start[leaf] + e) * entry_size + ch + kpos] = dequantise(q, precision);
+            }
+        }
+    const PredictorTaps taps = predictor_taps(layout);
+    std::vector<uint8_t> source(dim);
+    for (std::size_t c = 0; c < ch; ++c)
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint32_t leaf = order[i];
+            for (std::size_t e = 0; e < entry_counts[leaf]; ++e) {
+                uint8_t* entry = entries.data() + (entry_start[leaf] + e) * entry_size;
+                std::memcpy(source.data(), codewords.data() + leaf * dim, dim);
+                for (std::size_t kpos = 0; kpos < key_len; ++kpos) source[key_offsets[kpos]] = entry[ch + kpos];
+                const uint8_t predicted = quantise(predict_pixel(source.data(), taps, int(c)), pixel_precision);
+                entry[c] = dequantise(uint8_t((predicted + entry_bytes[pos++]) & pixel_mask), pixel_precision);
+            }
+        }
+
+    Codebook book(dim, layout.stride(), layout.channels(), key_offsets);
+    book.add_root();
+    for (std::size_t n = 0; n < nodes; ++n)
+        if (first_child[n] >= 0) book.split(n);  // appends children in breadth-first order
+    std::size_t leaf = 0;
+    for (std::size_t n = 0; n < nodes; ++n) {
+        if (first_child[n] >= 0) continue;
+        // Ties between equal distances go to the lower leaf index.
+        book.set_leaf(n, codewords.data() + leaf * dim, weights[leaf], uint32_t(leaf),
+                      entries.data() + entry_start[leaf] * entry_size, entry_counts[leaf]);
+        ++leaf;
+    }
+    book.finalize();
+    return std::make_shared<const Codebook>(std::move(book));
+}
+
+std::vector<uint8_t> encode_histogram(const LevelHistogram& h) {
+    ByteWriter w;
+    for (int c = 0; c < h.channels; ++c)
+        for (int v = 0; v < 256; ++v) w.varint(h.channel(c)[v]);
+    return std::move(w.data());
+}
+
+}  // namespace
+
+std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& s) {
+    if (s.precision < 1 || s.precision > 8 || s.pixel_precision < 1 || s.pixel_precision > 8)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision must be 1 to 8 bits");
+    FileHeader h;
+    h.exemplar_width = model.exemplar_width;
+    h.exemplar_height = model.exemplar_height;
+    h.channels = uint8_t(model.channels);
+    h.levels = uint8_t(model.levels.size());
+    h.init = s.init == LevelInit::Noise ? 1 : 0;
+    h.backtrack = s.backtrack;
+    h.seed = s.seed;
+    for (const auto& lv : model.levels)
+        if (lv.closing) h.flags |= kFlagSeamClosing;
+    ContainerWriter writer(h, s.zstd_level);
+    const int levels = int(model.levels.size());
+    for (int l = 0; l < levels; ++l) {
+        const CodecModel::Level& lv = model.levels[std::size_t(l)];
+        if (!lv.causal) fail(VQTEX_ERROR_INVALID_ARGUMENT, "level " + std::to_string(l) + " has no codebook");
+        ByteWriter lw;
+        lw.u8(uint8_t(lv.shape.rows));
+        lw.u8(uint8_t(lv.shape.cols));
+        lw.u8(uint8_t(lv.shape.levels));
+        lw.u8(uint8_t(s.precision));
+        lw.u8(uint8_t(s.pixel_precision));
+        lw.u8(lv.closing ? 1 : 0);
+        writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
+        const bool needs_histogram = s.init == LevelInit::Noise || l == levels - 1;
+        if (needs_histogram) writer.add(kTagHistogram, uint8_t(l), 0, encode_histogram(lv.histogram));
+        for (int kind = 0; kind < 2; ++kind) {
+            const Codebook* book = kind == 0 ? lv.causal.get() : lv.closing.get();
+            if (!book) continue;
+            Shape shape = lv.shape;
+            shape.causal = kind == 0;
+            const NeighborhoodLayout layout(shape, model.channels, l, levels);
+            TreeSections t = encode_tree(*book, layout, s);
+            writer.add(kTagTopology, uint8_t(l), uint8_t(kind), std::move(t.topology));
+            writer.add(kTagCodewords, uint8_t(l), uint8_t(kind), std::move(t.codewords));
+            writer.add(kTagEntries, uint8_t(l), uint8_t(kind), std::move(t.entries));
+        }
+    }
+    return writer.write();
+}
+
+DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
+    DecodedFile f;
+    const Container c = read_container(data, size, memory_limit);
+    f.header = c.header;
+    f.sections = c.sections;
+    const int levels = c.header.levels, ch = c.header.channels;
+    f.init = c.header.init == 1 ? LevelInit::Noise : LevelInit::Parent;
+    f.model.channels = ch;
+    f.model.exemplar_width = c.header.exemplar_width;
+    f.model.exemplar_height = c.header.exemplar_height;
+    f.model.levels.resize(std::size_t(levels));
+    f.texture.channels = ch;
+    f.texture.levels.resize(std::size_t(levels));
+
+    auto find = [&](const char tag[4], int level, int kind) -> const Section* {
+        const Section* found = nullptr;
+        for (const Section& s : c.sections) {
+            if (!tag_is(s, tag) || s.level != level || s.kind != kind) continue;
+            if (found) fail(VQTEX_ERROR_CORRUPT, "section " + s.name() + " appears twice");
+            found = &s;
+        }
+        return found;
+    };
+    auto require = [&](const char tag[4], int level, int kind) -> const Section& {
+        const Section* s = find(tag, level, kind);
+        if (!s)
+            fail(VQTEX_ERROR_CORRUPT, "missing section " + std::string(tag, 4) + "[level " + std::to_string(level) +
+                                          (kind ? ", closing]" : "]"));
+        return *s;
+    };
+    // Every section must be one the decoder uses: anything else is damage.
+    std::size_t expected_sections = 0;
+
+    for (int l = 0; l < levels; ++l) {
+        const std::vector<uint8_t> level_bytes = section_bytes(data, require(kTagLevel, l, 0));
+        ++expected_sections;
+        ByteReader lr(level_bytes.data(), level_bytes.size(), "level " + std::to_string(l) + " parameters");
+        Shape shape;
+        shape.rows = lr.u8("window rows");
+        shape.cols = lr.u8("window columns");
+        shape.levels = lr.u8("window levels");
+        const int precision = lr.u8("precision"), pixel_precision = lr.u8("pixel precision");
+        const int has_closing = lr.u8("closing flag");
+        lr.expect_end();
+        if (shape.rows % 2 == 0 || shape.cols % 2 == 0 || shape.rows > 63 || shape.cols > 63 ||
+            shape.levels < 1 || shape.levels > levels - l)
+            fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has an invalid neighbourhood " +
+                                          shape_to_string(shape));
+        if (precision < 1 || precision > 8 || pixel_precision < 1 || pixel_precision > 8 || has_closing > 1)
+            fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has invalid precision or flags");
+        if (has_closing && !(c.header.flags & kFlagSeamClosing))
+            fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has a closing tree the header does not announce");
+        if (l == 0) f.precision = precision, f.pixel_precision = pixel_precision;
+
+        CodecModel::Level& lv = f.model.levels[std::size_t(l)];
+        LevelModel& tm = f.texture.levels[std::size_t(l)];
+        lv.shape = shape;
+        tm.shape = shape;
+        const bool needs_histogram = f.init == LevelInit::Noise || l == levels - 1;
+        if (needs_histogram) {
+            const std::vector<uint8_t> hb = section_bytes(data, require(kTagHistogram, l, 0));
+            ++expected_sections;
+            ByteReader hr(hb.data(), hb.size(), "histogram of level " + std::to_string(l));
+            LevelHistogram h;
+            h.channels = ch;
+            h.counts.resize(std::size_t(ch) * 256);
+            uint64_t total = 0;
+            for (auto& n : h.counts) {
+                n = uint32_t(hr.varint_in("histogram count", 0, UINT32_MAX));
+                total += n;
+            }
+            hr.expect_end();
+            for (int cc = 0; cc < ch; ++cc) {
+                uint64_t t = 0;
+                for (int v = 0; v < 256; ++v) t += h.channel(cc)[v];
+                if (t == 0) fail(VQTEX_ERROR_CORRUPT, "histogram of level " + std::to_string(l) + " is empty");
+            }
+            lv.histogram = h;
+            tm.histogram = h;
+        }
+        for (int kind = 0; kind < 1 + has_closing; ++kind) {
+            Shape s = shape;
+            s.causal = kind == 0;
+            const NeighborhoodLayout layout(s, ch, l, levels);
+            const std::string where = std::string(kind ? "closing" : "causal") + " tree of level " + std::to_string(l);
+            const auto topo = section_bytes(data, require(kTagTopology, l, kind));
+            const auto code = section_bytes(data, require(kTagCodewords, l, kind));
+            const auto entr = section_bytes(data, require(kTagEntries, l, kind));
+            expected_sections += 3;
+            auto book = decode_tree(topo, code, entr, layout, precision, pixel_precision, where);
+            auto matcher = std::make_shared<TsvqMatcher>(book, c.header.backtrack);
+            if (kind == 0) {
+                lv.causal = book;
+                tm.matcher = matcher;
+            } else {
+                lv.closing = book;
+                tm.closing = matcher;
+                tm.closing_shape = s;
+            }
+        }
+    }
+    if (expected_sections != c.sections.size())
+        fail(VQTEX_ERROR_CORRUPT, "file has " + std::to_string(c.sections.size() - expected_sections) +
+                                      " sections this decoder does not know");
+    return f;
+}
+
+}  // namespace vqtex

@@ -1,0 +1,68 @@
+// model_codec.hpp - turning a trained texture model into the sections of a
+// vqtex file and back (docs/FORMAT.md; paper section 6, "only the codebook
+// would be transmitted"). The file holds, per pyramid level, the
+// neighbourhood shape and the TSVQ codebooks (tree topology, leaf weights,
+// quantised leaf codewords, leaf entries), plus the histograms that seed the
+// noise. Never the example's pixels as an image.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "container.hpp"
+#include "synthesis.hpp"
+#include "tsvq_tree.hpp"
+
+namespace vqtex {
+
+struct EncodeSettings {
+    int precision = 5;        // bits per codeword and key sample, 1..8
+    int pixel_precision = 8;  // bits per entry pixel, 1..8
+    uint8_t backtrack = 1;
+    LevelInit init = LevelInit::Parent;
+    uint64_t seed = 1;
+    int zstd_level = 19;
+};
+
+// A model as the codec sees it: per level, shape, histogram and codebooks.
+struct CodecModel {
+    int channels = 0;
+    uint32_t exemplar_width = 0, exemplar_height = 0;
+    struct Level {
+        Shape shape;
+        LevelHistogram histogram;  // empty when the file does not need it
+        std::shared_ptr<const Codebook> causal;
+        std::shared_ptr<const Codebook> closing;  // may be null
+    };
+    std::vector<Level> levels;  // [0] = finest
+};
+
+std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& settings);
+
+struct DecodedFile {
+    FileHeader header;
+    std::vector<Section> sections;
+    CodecModel model;
+    int precision = 0, pixel_precision = 0;  // of level 0
+    // Ready to synthesise: matchers built over the decoded codebooks.
+    TextureModel texture;
+    LevelInit init = LevelInit::Parent;
+};
+
+// Parses, verifies and rebuilds everything; throws a specific error for any
+// damage. Nothing larger than `memory_limit` bytes is allocated.
+DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memory_limit);
+
+// Quantisation to `bits` and back, exactly invertible at 8 bits.
+inline uint8_t quantise(uint8_t v, int bits) {
+    const unsigned m = (1u << bits) - 1;
+    return uint8_t((v * m + 127) / 255);
+}
+inline uint8_t dequantise(uint8_t q, int bits) {
+    const unsigned m = (1u << bits) - 1;
+    return uint8_t((q * 255u + m / 2) / m);
+}
+
+}  // namespace vqtex

@@ -1,0 +1,198 @@
+// test_codec.cpp - the codec end to end: round trips, bit-exact and
+// deterministic decoding, rate control, file inspection, and a golden file
+// that pins the format and the decoder.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "codec_support.hpp"
+#include "test_support.hpp"
+
+using namespace vqtex_test;
+
+namespace {
+
+const std::vector<uint8_t>& cellular_file() {
+    static const std::vector<uint8_t> bytes = encode(load_corpus("cellular_128.png"), fast_encode_params());
+    return bytes;
+}
+
+std::vector<uint8_t> read_file(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    return std::vector<uint8_t>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST(Codec, RoundTripGivesATextureOfTheRequestedSize) {
+    const auto& bytes = cellular_file();
+    EXPECT_GT(bytes.size(), 100u);
+    for (auto [w, h] : {std::pair{16u, 16u}, {100u, 37u}, {256u, 256u}}) {
+        const vqtex::Image img = decode(bytes, decode_params(w, h));
+        EXPECT_EQ(img.width, int(w));
+        EXPECT_EQ(img.height, int(h));
+        EXPECT_EQ(img.channels, 3);
+    }
+    // Size 0x0 means the exemplar's size.
+    const vqtex::Image same = decode(bytes, decode_params(0, 0));
+    EXPECT_EQ(same.width, 128);
+    EXPECT_EQ(same.height, 128);
+}
+
+TEST(Codec, DecodingIsBitExactAcrossThreadCountsAndRuns) {
+    const auto& bytes = cellular_file();
+    const vqtex::Image one = decode(bytes, decode_params(150, 120, 7, 1));
+    for (uint32_t t : {1u, 2u, 3u, 8u}) EXPECT_EQ(decode(bytes, decode_params(150, 120, 7, t)), one) << t;
+}
+
+TEST(Codec, SeedChoosesTheSampleAndTheFileSeedIsTheDefault) {
+    const auto& bytes = cellular_file();
+    const vqtex::Image a = decode(bytes, decode_params(96, 96, 1));
+    const vqtex::Image b = decode(bytes, decode_params(96, 96, 2));
+    const vqtex::Image file_seed = decode(bytes, decode_params(96, 96));
+    EXPECT_NE(a, b);
+    EXPECT_EQ(file_seed, a);  // fast_encode_params stores seed 1
+}
+
+TEST(Codec, EncodingIsDeterministicForAnyThreadCount) {
+    const vqtex::Image ex = load_corpus("weave_128.png");
+    vqtex_encode_params p = fast_encode_params();
+    const auto one = encode(ex, p);
+    p.threads = 2;
+    EXPECT_EQ(encode(ex, p), one);
+    p.threads = 5;
+    EXPECT_EQ(encode(ex, p), one);
+}
+
+TEST(Codec, DecodedTextureTilesSeamlessly) {
+    const auto& bytes = cellular_file();
+    double rank_y = 0, rank_x = 0;
+    for (uint64_t seed = 1; seed <= 6; ++seed) {
+        const auto s = seam_stats(decode(bytes, decode_params(128, 112, seed)));
+        rank_x += s.rank_x / 6;
+        rank_y += s.rank_y / 6;
+    }
+    EXPECT_LT(rank_x, 0.8);
+    EXPECT_LT(rank_y, 0.8);
+}
+
+TEST(Codec, HigherQualityMeansMoreBytesAndMoreCodewords) {
+    const vqtex::Image ex = load_corpus("cellular_128.png");
+    std::size_t previous = 0;
+    uint32_t previous_k = 0;
+    for (int q : {0, 30, 60}) {
+        vqtex_encode_params p = fast_encode_params();
+        vqtex_encode_params_preset(&p, q);
+        vqtex_encode_stats st{};
+        const auto bytes = encode(ex, p, &st);
+        EXPECT_GT(bytes.size(), previous) << q;
+        EXPECT_GE(st.codewords[0], previous_k) << q;
+        previous = bytes.size();
+        previous_k = st.codewords[0];
+    }
+}
+
+TEST(Codec, TargetSizeIsRespectedAndUsesTheBudget) {
+    const vqtex::Image ex = load_corpus("cellular_128.png");
+    vqtex_encode_params p = fast_encode_params();
+    vqtex_encode_params_preset(&p, 0);
+    const std::size_t smallest = encode(ex, p).size();
+    p.target_size = smallest * 3;
+    vqtex_encode_stats st{};
+    const auto bytes = encode(ex, p, &st);
+    EXPECT_LE(bytes.size(), p.target_size);
+    EXPECT_GT(bytes.size(), smallest);  // it picked a better preset than the smallest
+    EXPECT_GT(st.attempts, 1u);
+    // A budget below the smallest preset is a clear error.
+    p.target_size = 50;
+    vqtex_image in{128, 128, 3, const_cast<uint8_t*>(ex.pixels.data())};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_encode(&p, &in, &data, &size, nullptr, &err), VQTEX_ERROR_LIMIT_EXCEEDED);
+    EXPECT_EQ(data, nullptr);
+    EXPECT_NE(std::string(err.detail).find("target-size"), std::string::npos) << err.detail;
+}
+
+TEST(Codec, InspectDescribesTheFile) {
+    const auto& bytes = cellular_file();
+    vqtex_file_info info{};
+    vqtex_error err{};
+    ASSERT_EQ(vqtex_inspect(bytes.data(), bytes.size(), 0, &info, &err), VQTEX_OK) << err.detail;
+    EXPECT_EQ(info.format_version, 1u);
+    EXPECT_EQ(info.file_bytes, bytes.size());
+    EXPECT_EQ(info.exemplar_width, 128u);
+    EXPECT_EQ(info.channels, 3u);
+    EXPECT_EQ(info.levels, 4u);
+    uint64_t sections = 0;
+    for (uint32_t i = 0; i < info.section_count; ++i) sections += info.sections[i].stored_bytes;
+    // Header (40) + checksum (4) + sections make up the whole file.
+    EXPECT_EQ(sections + 44, bytes.size());
+    EXPECT_GT(info.codewords[0], 0u);
+}
+
+TEST(Codec, EveryChannelCountRoundTrips) {
+    for (const char* name : {"grey_noise_64.png", "leaves_rgba_64.png"}) {
+        const vqtex::Image ex = load_corpus(name);
+        const vqtex::Image out = decode(encode(ex, fast_encode_params()), decode_params(50, 40));
+        EXPECT_EQ(out.channels, ex.channels) << name;
+    }
+    // Two channels (grey + alpha), made from the RGBA example.
+    const vqtex::Image rgba = load_corpus("leaves_rgba_64.png");
+    vqtex::Image ga(rgba.width, rgba.height, 2);
+    for (std::size_t i = 0; i < rgba.pixel_count(); ++i) {
+        ga.pixels[i * 2] = rgba.pixels[i * 4 + 1];
+        ga.pixels[i * 2 + 1] = rgba.pixels[i * 4 + 3];
+    }
+    EXPECT_EQ(decode(encode(ga, fast_encode_params()), decode_params(40, 40)).channels, 2);
+}
+
+TEST(Codec, MipChainGoesDownToOnePixel) {
+    const auto& bytes = cellular_file();
+    vqtex_decode_params p = decode_params(100, 60);
+    vqtex_image levels[16];
+    uint32_t count = 0;
+    vqtex_error err{};
+    ASSERT_EQ(vqtex_decode_mips(&p, bytes.data(), bytes.size(), levels, 16, &count, &err), VQTEX_OK) << err.detail;
+    ASSERT_EQ(count, 8u);  // 100x60, 50x30, 25x15, 13x8, 7x4, 4x2, 2x1, 1x1
+    EXPECT_EQ(levels[0].width, 100u);
+    EXPECT_EQ(levels[3].width, 13u);
+    EXPECT_EQ(levels[3].height, 8u);
+    EXPECT_EQ(levels[7].width, 1u);
+    EXPECT_EQ(levels[7].height, 1u);
+    // Level 0 is exactly what vqtex_decode gives.
+    const vqtex::Image direct = decode(bytes, p);
+    EXPECT_EQ(0, std::memcmp(direct.pixels.data(), levels[0].pixels, direct.byte_count()));
+    for (uint32_t i = 0; i < count; ++i) vqtex_image_free(&levels[i]);
+    // Too little room is an error, with nothing allocated.
+    EXPECT_EQ(vqtex_decode_mips(&p, bytes.data(), bytes.size(), levels, 3, &count, &err),
+              VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(count, 0u);
+}
+
+TEST(Codec, LargeDecode8192) {
+    // A tiny model keeps this quick; nothing in the decoder limits the size.
+    const vqtex::Image ex = load_corpus("checks_p16_64.png");
+    vqtex_encode_params p = fast_encode_params();
+    p.model.levels = 1;
+    p.model.shapes[0] = vqtex_shape{3, 3, 1};
+    p.model.codewords[0] = 16;
+    p.model.entries_per_leaf = 1;
+    p.model.seam_closing = 0;
+    p.backtrack = 1;
+    const auto bytes = encode(ex, p);
+    const vqtex::Image out = decode(bytes, decode_params(8192, 8192, 3, 2));
+    EXPECT_EQ(out.width, 8192);
+    EXPECT_EQ(out.height, 8192);
+}
+
+// The golden file pins format version 1 and the decoder: any change to the
+// bytes a given file decodes to is caught here. Regenerate only for a
+// deliberate decoder change (tests/golden/README.md).
+TEST(Codec, GoldenFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes = read_file(std::string(VQTEX_GOLDEN_DIR) + "/cellular_v1.vqt");
+    ASSERT_FALSE(bytes.empty()) << "missing tests/golden/cellular_v1.vqt";
+    const vqtex::Image img = decode(bytes, decode_params(96, 80, 5));
+    const uint64_t hash = fnv1a(img.pixels.data(), img.pixels.size());
+    EXPECT_EQ(hash, 0xb96dcf5006b465fcull) << std::hex << "decoded hash 0x" << hash;
+}
