@@ -122,7 +122,8 @@ Container read_container(const uint8_t* data, std::size_t size, std::size_t memo
         if (s.offset + s.stored_size + kTrailerSize > size)
             fail(VQTEX_ERROR_TRUNCATED, "file ends inside section " + std::to_string(i) + " (" + s.name() +
                                             "): " + std::to_string(s.offset + s.stored_size + kTrailerSize) +
-                                            " bytes needed, " + std::to_string(size) + " present");
+                                            " bytes needed, " + std::to_string(size) +
+                                            " present: the file is truncated (or its section table damaged)");
         if (coding > uint8_t(SectionCoding::Zstd) || data[pos + 7] != 0)
             fail(VQTEX_ERROR_CORRUPT, "section " + s.name() + " has unknown coding " + std::to_string(coding));
         s.coding = SectionCoding(coding);

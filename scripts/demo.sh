@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The main job: set up, build, then synthesise a large tileable texture from
-# a small one in corpus/, printing sizes, times and where the output went.
+# The main job: set up and build, then encode a bundled 128x128 texture into
+# a .vqt codebook file and decode a larger tileable texture from it,
+# printing sizes, times and where the outputs went.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${VQTEX_BUILD_DIR:-$root/build}"
@@ -8,7 +9,11 @@ build="${VQTEX_BUILD_DIR:-$root/build}"
 "$root/scripts/build.sh" >/dev/null
 mkdir -p "$root/out"
 input="$root/corpus/cellular_128.png"
+file="$root/out/cellular.vqt"
 output="$root/out/cellular_512.png"
-"$build/vqtex-synth" "$input" "$output" --size 512x512 --seed 7
-echo "input     $(stat -c %s "$input") bytes"
-echo "output    $(stat -c %s "$output") bytes -> $output (tiles seamlessly)"
+"$build/vqtex-encode" "$input" "$file"
+"$build/vqtex-decode" "$file" "$output" --size 512x512
+"$build/vqtex-info" "$file" | sed -n '1,14p'
+echo "example   $input: $(stat -c %s "$input") bytes as PNG"
+echo "codebooks $file: $(stat -c %s "$file") bytes"
+echo "texture   $output: 512x512, tiles seamlessly ($(stat -c %s "$output") bytes as PNG)"

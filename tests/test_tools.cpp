@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <algorithm>
 #include <fstream>
 #include <string>
 
@@ -19,8 +20,8 @@ struct ToolRun {
     std::string output;
 };
 
-ToolRun run_tool(const std::string& args) {
-    const std::string cmd = std::string(VQTEX_SYNTH_EXE) + " " + args + " 2>&1";
+ToolRun run_program(const std::string& exe, const std::string& args) {
+    const std::string cmd = exe + " " + args + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     std::string out;
     char buf[512];
@@ -28,6 +29,11 @@ ToolRun run_tool(const std::string& args) {
     const int st = p ? pclose(p) : -1;
     return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
 }
+
+ToolRun run_tool(const std::string& args) { return run_program(VQTEX_SYNTH_EXE, args); }
+ToolRun encode_tool(const std::string& args) { return run_program(VQTEX_ENCODE_EXE, args); }
+ToolRun decode_tool(const std::string& args) { return run_program(VQTEX_DECODE_EXE, args); }
+ToolRun info_tool(const std::string& args) { return run_program(VQTEX_INFO_EXE, args); }
 
 fs::path scratch_dir() {
     fs::path d = fs::temp_directory_path() / ("vqtex_tools_" + std::to_string(::getpid()));
@@ -100,4 +106,79 @@ TEST(Tools, HelpWorks) {
     const ToolRun r = run_tool("--help");
     EXPECT_EQ(r.status, 0);
     EXPECT_NE(r.output.find("--size"), std::string::npos);
+}
+
+TEST(Tools, EncodeDecodeInfoRoundTrip) {
+    const fs::path dir = scratch_dir();
+    const std::string vqt = (dir / "c.vqt").string(), png = (dir / "c.png").string();
+    ToolRun r = encode_tool(corpus + "/cellular_128.png " + vqt + " -q 10 --json");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("\"bytes\":"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("\"bpp\":"), std::string::npos) << r.output;
+    r = decode_tool(vqt + " " + png + " --size 200x120 --seed 3 --json");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("\"decode_seconds\":"), std::string::npos) << r.output;
+    const vqtex::Image img = vqtex_test::load_file(png);
+    EXPECT_EQ(img.width, 200);
+    EXPECT_EQ(img.height, 120);
+    r = info_tool(vqt);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("checksum OK"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("CODE"), std::string::npos) << r.output;
+    // Same file, size and seed: the same pixels, on any thread count.
+    const std::string png2 = (dir / "c2.png").string();
+    ASSERT_EQ(decode_tool(vqt + " " + png2 + " --size 200x120 --seed 3 -j 1 --quiet").status, 0);
+    EXPECT_EQ(vqtex_test::load_file(png2), img);
+}
+
+TEST(Tools, DecodeWritesAMipChain) {
+    const fs::path dir = scratch_dir();
+    const std::string vqt = (dir / "m.vqt").string();
+    ASSERT_EQ(encode_tool(corpus + "/weave_128.png " + vqt + " -q 0 --quiet").status, 0);
+    // One file per level for PNG.
+    ToolRun r = decode_tool(vqt + " " + (dir / "m.png").string() + " --size 64x32 --mips --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "m_mip1.png"));
+    EXPECT_TRUE(fs::exists(dir / "m_mip6.png"));  // 64x32 ... 1x1 is 7 levels
+    EXPECT_FALSE(fs::exists(dir / "m_mip7.png"));
+    // One MIP-mapped file for TIFF.
+    r = decode_tool(vqt + " " + (dir / "m.tif").string() + " --size 64x32 --mips --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "m.tif"));
+}
+
+TEST(Tools, CorruptFileFailsWithoutOutput) {
+    const fs::path dir = scratch_dir();
+    const std::string vqt = (dir / "bad.vqt").string(), out = (dir / "never.png").string();
+    ASSERT_EQ(encode_tool(corpus + "/weave_128.png " + vqt + " -q 0 --quiet").status, 0);
+    {
+        // A byte inside the last section's payload.
+        std::fstream f(vqt, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(-20, std::ios::end);
+        f.put('\x7f');
+    }
+    ToolRun r = decode_tool(vqt + " " + out);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("checksum"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+    r = info_tool(vqt);
+    EXPECT_NE(r.status, 0);
+    r = decode_tool(corpus + "/weave_128.png " + out);  // not a vqtex file at all
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("not a vqtex file"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Tools, EncodeRejectsBadArgumentsWithoutOutput) {
+    const fs::path dir = scratch_dir();
+    const std::string out = (dir / "never.vqt").string();
+    for (const char* args : {" -q 101", " --precision 9", " --target-size 10", " --entries 0", " --codewords 0.5"}) {
+        const ToolRun r = encode_tool(corpus + "/weave_128.png " + out + args);
+        EXPECT_NE(r.status, 0) << args;
+        EXPECT_FALSE(fs::exists(out)) << args;
+    }
+    const ToolRun r = encode_tool("/nonexistent.png " + out);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("no such file"), std::string::npos) << r.output;
 }

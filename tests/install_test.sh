@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs the built project into a temporary prefix, then builds and runs
+# examples/asset_packer.c against it twice: through find_package(vqtex) and
+# through pkg-config. Usage: install_test.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build="$1"
+src="$2"
+prefix="$(mktemp -d)"
+trap 'rm -rf "$prefix"' EXIT
+cmake --install "$build" --prefix "$prefix" >/dev/null
+
+cmake -S "$src/examples" -B "$prefix/examples-build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$prefix/examples-build" >/dev/null
+"$prefix/examples-build/asset_packer"
+
+export PKG_CONFIG_PATH="$prefix/lib/pkgconfig:$prefix/lib/x86_64-linux-gnu/pkgconfig:${PKG_CONFIG_PATH:-}"
+# shellcheck disable=SC2046
+cc -std=c99 -Wall -Werror "$src/examples/asset_packer.c" -o "$prefix/asset_packer_pc" $(pkg-config --cflags --libs --static vqtex)
+"$prefix/asset_packer_pc" >/dev/null
+echo "install test: find_package and pkg-config builds both ran"
