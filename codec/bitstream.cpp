@@ -61,6 +61,10 @@ uint64_t ByteReader::varint(const char* field) {
     uint64_t v = 0;
     for (int shift = 0; shift < 64; shift += 7) {
         const uint8_t b = u8(field);
+        // Only the minimal encoding is valid: no bits beyond 64, no
+        // trailing zero groups.
+        if (shift == 63 && b > 1) corrupt(std::string(field) + " overflows 64 bits");
+        if (shift > 0 && b == 0) corrupt(std::string(field) + " is not minimally encoded");
         v |= uint64_t(b & 0x7F) << shift;
         if (!(b & 0x80)) return v;
     }

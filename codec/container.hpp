@@ -18,7 +18,7 @@ inline constexpr std::size_t kSectionHeaderSize = 16;
 inline constexpr std::size_t kTrailerSize = 4;
 
 enum HeaderFlags : uint16_t {
-    kFlagSeamClosing = 1u << 0,  // every level has a closing tree
+    kFlagSeamClosing = 1u << 0,  // at least one level has a closing tree
     kKnownFlags = kFlagSeamClosing,
 };
 

@@ -20,7 +20,11 @@ std::vector<uint8_t> zstd_decompress(const uint8_t* data, std::size_t size, std:
     const unsigned long long declared = ZSTD_getFrameContentSize(data, size);
     if (declared == ZSTD_CONTENTSIZE_ERROR)
         fail(VQTEX_ERROR_CORRUPT, what + ": not a zstd frame");
-    if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != raw_size)
+    if (declared == ZSTD_CONTENTSIZE_UNKNOWN)
+        fail(VQTEX_ERROR_CORRUPT, what + ": zstd frame does not declare its size");
+    if (ZSTD_findFrameCompressedSize(data, size) != size)
+        fail(VQTEX_ERROR_CORRUPT, what + ": must be exactly one zstd frame");
+    if (declared != raw_size)
         fail(VQTEX_ERROR_CORRUPT, what + ": zstd frame holds " + std::to_string(declared) +
                                       " bytes, the section table says " + std::to_string(raw_size));
     std::vector<uint8_t> out(raw_size);

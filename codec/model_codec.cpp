@@ -106,6 +106,7 @@ TreeSections encode_tree(const Codebook& b, const NeighborhoodLayout& layout, co
     ByteWriter topo;
     topo.varint(k);
     topo.varint(max_entries);
+    topo.u8(key_len ? 1 : 0);  // whether entries carry keys
     // Breadth-first node order: one bit per node, 1 = internal.
     std::vector<uint8_t> bits((b.node_count() + 7) / 8, 0);
     for (std::size_t n = 0; n < b.node_count(); ++n)
@@ -166,13 +167,24 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
                                             const std::vector<uint8_t>& codeword_bytes,
                                             const std::vector<uint8_t>& entry_bytes,
                                             const NeighborhoodLayout& layout, int precision,
-                                            int pixel_precision, const std::string& where) {
+                                            int pixel_precision, const std::string& where,
+                                            std::size_t memory_limit) {
     ByteReader topo(topology_bytes.data(), topology_bytes.size(), "topology of " + where);
     // Each leaf costs at least two topology bits and one weight byte, so a
     // leaf count above the section size is a lie; check before allocating.
     const uint64_t k = topo.varint_in("leaf count", 1, std::min<uint64_t>(kMaxLeaves, topology_bytes.size()));
     const uint64_t max_entries = topo.varint_in("entries per leaf", 1, TsvqMatcher::kMaxEntries);
+    const uint8_t has_keys = topo.u8("key flag");
+    if (has_keys > 1) topo.corrupt("key flag must be 0 or 1");
     const std::size_t nodes = std::size_t(2 * k - 1);
+    // What the rebuilt tree will hold, checked before anything is allocated.
+    {
+        const std::size_t entry_size = std::size_t(layout.channels()) + (has_keys ? layout.entry_key_offsets().size() : 0);
+        const uint64_t tree_bytes = uint64_t(nodes) * (layout.stride() + 64) + k * max_entries * entry_size;
+        if (tree_bytes > memory_limit)
+            fail(VQTEX_ERROR_LIMIT_EXCEEDED, where + " would need " + std::to_string(tree_bytes) +
+                                                 " bytes, above the memory limit of " + std::to_string(memory_limit));
+    }
     const uint8_t* bits = topo.bytes((nodes + 7) / 8, "topology bits");
     std::vector<int32_t> first_child(nodes, -1);
     std::size_t next = 1, leaves = 0;
@@ -199,7 +211,7 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
     topo.expect_end();
 
     const std::size_t dim = layout.dimension(), ch = std::size_t(layout.channels());
-    const std::vector<uint16_t> key_offsets = max_entries > 1 ? layout.entry_key_offsets() : std::vector<uint16_t>{};
+    const std::vector<uint16_t> key_offsets = has_keys ? layout.entry_key_offsets() : std::vector<uint16_t>{};
     const std::size_t key_len = key_offsets.size();
     if (codeword_bytes.size() != k * dim)
         fail(VQTEX_ERROR_CORRUPT, "codewords of " + where + ": " + std::to_string(codeword_bytes.size()) +
@@ -365,7 +377,7 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
         const int has_closing = lr.u8("closing flag");
         lr.expect_end();
         if (shape.rows % 2 == 0 || shape.cols % 2 == 0 || shape.rows > 63 || shape.cols > 63 ||
-            shape.levels < 1 || shape.levels > levels - l)
+            shape.levels < 1 || shape.levels > levels - l || shape_taps(shape).empty())
             fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has an invalid neighbourhood " +
                                           shape_to_string(shape));
         if (precision < 1 || precision > 8 || pixel_precision < 1 || pixel_precision > 8 || has_closing > 1)
@@ -409,7 +421,7 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
             const auto code = section_bytes(data, require(kTagCodewords, l, kind));
             const auto entr = section_bytes(data, require(kTagEntries, l, kind));
             expected_sections += 3;
-            auto book = decode_tree(topo, code, entr, layout, precision, pixel_precision, where);
+            auto book = decode_tree(topo, code, entr, layout, precision, pixel_precision, where, memory_limit);
             auto matcher = std::make_shared<TsvqMatcher>(book, c.header.backtrack);
             if (kind == 0) {
                 lv.causal = book;
@@ -421,6 +433,10 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
             }
         }
     }
+    bool any_closing = false;
+    for (const auto& lv : f.model.levels) any_closing = any_closing || lv.closing != nullptr;
+    if (any_closing != bool(c.header.flags & kFlagSeamClosing))
+        fail(VQTEX_ERROR_CORRUPT, "the header's seam-closing flag disagrees with the closing trees present");
     if (expected_sections != c.sections.size())
         fail(VQTEX_ERROR_CORRUPT, "file has " + std::to_string(c.sections.size() - expected_sections) +
                                       " sections this decoder does not know");

@@ -74,8 +74,8 @@ public:
     const std::vector<Tap>& taps() const { return taps_; }
 
     // Byte offsets of the short key a codebook entry carries: the taps of
-    // the current level adjacent to the pixel (4 for a causal shape: left,
-    // upper left, above, upper right; 8 for a symmetric one).
+    // the current level adjacent to the pixel, in tap order (4 for a causal
+    // shape: upper left, above, upper right, left; 8 for a symmetric one).
     std::vector<uint16_t> entry_key_offsets() const;
 
     // Gather the neighbourhood of (x, y) at this level from `pyramid`

@@ -32,6 +32,9 @@ ModelPlan plan_model(const vqtex_model_params& params, int width, int height) {
     for (int l = 0; l < plan.levels; ++l) {
         Shape& s = plan.shapes[std::size_t(l)];
         s.levels = std::min(s.levels, plan.levels - l);
+        if (shape_taps(s).empty())
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "neighbourhood " + shape_to_string(s) + " at level " +
+                                                   std::to_string(l) + " reads no pixel: use at least 1x3 or k >= 2");
     }
     return plan;
 }

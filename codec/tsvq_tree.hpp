@@ -8,7 +8,7 @@
 //   - a tie key (the raster index of the example neighbourhood they came
 //     from), which breaks equal distances the way exhaustive search does,
 //   - one or more entries: an output pixel plus a short key (the pixels of
-//     the nearest taps of the neighbourhood). Entry 0 is the leaf's own
+//     the adjacent current-level taps, in tap order). Entry 0 is the leaf's own
 //     representative. With several entries, search picks the leaf by its
 //     codeword, then the entry whose short key best fits the query; this
 //     keeps a leaf's rarer continuations alive (see tsvq_search.cpp).

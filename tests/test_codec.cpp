@@ -196,3 +196,22 @@ TEST(Codec, GoldenFileDecodesToKnownPixels) {
     const uint64_t hash = fnv1a(img.pixels.data(), img.pixels.size());
     EXPECT_EQ(hash, 0xb96dcf5006b465fcull) << std::hex << "decoded hash 0x" << hash;
 }
+
+TEST(Codec, EntriesAllowedButEveryLeafHasOneStillRoundTrips) {
+    // Regression: with several entries allowed, a tree whose leaves all hold
+    // a single member wrote entry keys the decoder did not expect.
+    const vqtex::Image full = load_corpus("cellular_128.png");
+    vqtex::Image small(48, 40, 3);
+    for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 48; ++x) std::copy(full.at(x, y), full.at(x, y) + 3, small.at(x, y));
+    vqtex_encode_params p = fast_encode_params();
+    vqtex_encode_params_preset(&p, 60);
+    p.model.levels = 3;
+    p.model.entries_per_leaf = 8;
+    for (auto& k : p.model.codewords) k = 100000;  // one leaf per vector
+    const auto bytes = encode(small, p);
+    vqtex_status st;
+    vqtex_error err{};
+    decode(bytes, decode_params(40, 40), &st, &err);
+    EXPECT_EQ(st, VQTEX_OK) << err.detail;
+}

@@ -251,7 +251,7 @@ typedef struct vqtex_section_info {
     uint32_t level;
     uint32_t kind;           /* 0 causal tree (or none), 1 closing tree */
     uint64_t raw_bytes;
-    uint64_t stored_bytes;
+    uint64_t stored_bytes;   /* in the file, including the 16-byte section header */
 } vqtex_section_info;
 
 typedef struct vqtex_file_info {
