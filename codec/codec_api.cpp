@@ -30,6 +30,8 @@ void check_encode_params(const vqtex_encode_params* p) {
              "vqtex_encode_params not initialised with vqtex_encode_params_init()");
     if (p->precision < 1 || p->precision > 8 || p->pixel_precision < 1 || p->pixel_precision > 8)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision and pixel precision must be 1 to 8 bits");
+    if (p->smoothing < 1 || p->smoothing > 8)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "smoothing must be 1 to 8");
     if (p->backtrack < 1 || p->backtrack > 255)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "backtrack must be 1 to 255 leaves for an encoded file");
     if (p->init != VQTEX_INIT_PARENT && p->init != VQTEX_INIT_NOISE)
@@ -60,6 +62,7 @@ EncodeResult encode_once(const vqtex_encode_params& p, const Image& example, int
     EncodeSettings s;
     s.precision = int(p.precision);
     s.pixel_precision = int(p.pixel_precision);
+    s.smoothing = int(p.smoothing);
     s.backtrack = uint8_t(p.backtrack);
     s.init = p.init == VQTEX_INIT_NOISE ? LevelInit::Noise : LevelInit::Parent;
     s.seed = p.seed;
@@ -150,6 +153,7 @@ vqtex_status vqtex_encode_params_preset(vqtex_encode_params* p, int quality) {
     p->precision = uint32_t(4 + quality / 34);
     p->pixel_precision = quality < 20 ? 7 : 8;
     p->model.seam_closing = 1;
+    p->smoothing = 1;
     return VQTEX_OK;
 }
 

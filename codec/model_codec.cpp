@@ -15,6 +15,8 @@
 #include "model_codec.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <tuple>
 #include <cstring>
 
 #include "bitstream.hpp"
@@ -62,34 +64,48 @@ std::vector<int32_t> topology_of(const Codebook& b) {
     return fc;
 }
 
-uint8_t med_predict(int a, int b, int c) {
-    const int lo = std::min(a, b), hi = std::max(a, b);
-    if (c >= hi) return uint8_t(lo);
-    if (c <= lo) return uint8_t(hi);
-    return uint8_t(a + b - c);
-}
-
-// Offsets (first channel) of the left, above and upper-left taps of a
-// layout, used to predict entry pixels.
-struct PredictorTaps {
-    int left = -1, up = -1, up_left = -1;
-};
-PredictorTaps predictor_taps(const NeighborhoodLayout& layout) {
-    PredictorTaps p;
+// Encoder-side simplification of the codewords, invisible to the format:
+// away from the pixel (beyond the ring of adjacent taps), taps are averaged
+// in blocks of `smoothing` x `smoothing` per channel. Search then matches on
+// the coarse structure there (fine detail nearby still counts, and entries
+// carry the exact adjacent pixels), and the repeated values cost almost
+// nothing after the planar layout and zstd.
+std::vector<uint8_t> smoothed_codewords(const Codebook& b, const NeighborhoodLayout& layout, int smoothing) {
+    const std::size_t k = b.leaf_count(), dim = b.dimension(), ch = std::size_t(layout.channels());
+    std::vector<uint8_t> out(k * dim);
+    for (std::size_t l = 0; l < k; ++l) std::memcpy(out.data() + l * dim, b.leaf_codeword(l), dim);
+    if (smoothing <= 1) return out;
     const auto& taps = layout.taps();
+    auto floor_div = [](int a, int g) { return a >= 0 ? a / g : -((-a + g - 1) / g); };
+    std::vector<int> group(taps.size());
+    std::vector<std::vector<std::size_t>> members;
+    std::vector<std::tuple<int, int, int>> keys;
     for (std::size_t t = 0; t < taps.size(); ++t) {
-        if (taps[t].depth != 0) continue;
-        const int o = int(t) * layout.channels();
-        if (taps[t].dx == -1 && taps[t].dy == 0) p.left = o;
-        if (taps[t].dx == 0 && taps[t].dy == -1) p.up = o;
-        if (taps[t].dx == -1 && taps[t].dy == -1) p.up_left = o;
+        const Tap& tap = taps[t];
+        std::tuple<int, int, int> key;
+        if (tap.depth == 0 && std::abs(tap.dx) <= 1 && std::abs(tap.dy) <= 1)
+            key = {-1 - int(t), 0, 0};  // its own group
+        else
+            key = {tap.depth, floor_div(tap.dy, smoothing), floor_div(tap.dx, smoothing)};
+        auto it = std::find(keys.begin(), keys.end(), key);
+        if (it == keys.end()) {
+            keys.push_back(key);
+            members.emplace_back();
+            it = keys.end() - 1;
+        }
+        members[std::size_t(it - keys.begin())].push_back(t);
     }
-    return p;
-}
-
-uint8_t predict_pixel(const uint8_t* source, const PredictorTaps& p, int channel) {
-    if (p.left < 0 || p.up < 0 || p.up_left < 0) return 128;
-    return med_predict(source[p.left + channel], source[p.up + channel], source[p.up_left + channel]);
+    for (std::size_t l = 0; l < k; ++l) {
+        uint8_t* cw = out.data() + l * dim;
+        for (const auto& m : members)
+            for (std::size_t c = 0; c < ch; ++c) {
+                unsigned sum = 0;
+                for (std::size_t t : m) sum += cw[t * ch + c];
+                const uint8_t mean = uint8_t((sum + m.size() / 2) / m.size());
+                for (std::size_t t : m) cw[t * ch + c] = mean;
+            }
+    }
+    return out;
 }
 
 struct TreeSections {
@@ -120,20 +136,21 @@ TreeSections encode_tree(const Codebook& b, const NeighborhoodLayout& layout, co
     const std::vector<uint32_t> order = depth_first_leaves(topology_of(b));
     const int p = s.precision, pp = s.pixel_precision;
     const uint8_t mask = uint8_t((1u << p) - 1), pixel_mask = uint8_t((1u << pp) - 1);
+    const std::vector<uint8_t> leaf_codewords = smoothed_codewords(b, layout, s.smoothing);
     // Codewords: planar, delta to the previous leaf depth-first.
     out.codewords.resize(k * dim);
     std::vector<uint8_t> dequantised(k * dim);
     for (std::size_t d = 0; d < dim; ++d) {
         uint8_t previous = 0;
         for (std::size_t i = 0; i < k; ++i) {
-            const uint8_t q = quantise(b.leaf_codeword(order[i])[d], p);
+            const uint8_t q = quantise(leaf_codewords[order[i] * dim + d], p);
             out.codewords[d * k + i] = uint8_t((q - previous) & mask);
             previous = q;
             dequantised[order[i] * dim + d] = dequantise(q, p);
         }
     }
     // Entries: keys (planar per key position), then pixels (planar per channel).
-    const PredictorTaps taps = predictor_taps(layout);
+    const PixelPredictor taps = layout.pixel_predictor();
     const auto& key_offsets = b.key_offsets();
     std::vector<uint8_t> keys, pixels;
     for (std::size_t kpos = 0; kpos < key_len; ++kpos)
@@ -153,7 +170,7 @@ TreeSections encode_tree(const Codebook& b, const NeighborhoodLayout& layout, co
                 std::memcpy(source.data(), dequantised.data() + leaf * dim, dim);
                 for (std::size_t kpos = 0; kpos < key_len; ++kpos)
                     source[key_offsets[kpos]] = dequantise(quantise(b.entry(leaf, e)[ch + kpos], p), p);
-                const uint8_t predicted = quantise(predict_pixel(source.data(), taps, int(c)), pp);
+                const uint8_t predicted = quantise(taps.predict(source.data(), int(c)), pp);
                 const uint8_t actual = quantise(b.entry(leaf, e)[c], pp);
                 pixels.push_back(uint8_t((actual - predicted) & pixel_mask));
             }
@@ -250,7 +267,7 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
                 entries[(entry_start[leaf] + e) * entry_size + ch + kpos] = dequantise(q, precision);
             }
         }
-    const PredictorTaps taps = predictor_taps(layout);
+    const PixelPredictor taps = layout.pixel_predictor();
     std::vector<uint8_t> source(dim);
     for (std::size_t c = 0; c < ch; ++c)
         for (std::size_t i = 0; i < k; ++i) {
@@ -259,7 +276,7 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
                 uint8_t* entry = entries.data() + (entry_start[leaf] + e) * entry_size;
                 std::memcpy(source.data(), codewords.data() + leaf * dim, dim);
                 for (std::size_t kpos = 0; kpos < key_len; ++kpos) source[key_offsets[kpos]] = entry[ch + kpos];
-                const uint8_t predicted = quantise(predict_pixel(source.data(), taps, int(c)), pixel_precision);
+                const uint8_t predicted = quantise(taps.predict(source.data(), int(c)), pixel_precision);
                 entry[c] = dequantise(uint8_t((predicted + entry_bytes[pos++]) & pixel_mask), pixel_precision);
             }
         }

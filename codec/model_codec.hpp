@@ -20,6 +20,7 @@ namespace vqtex {
 struct EncodeSettings {
     int precision = 5;        // bits per codeword and key sample, 1..8
     int pixel_precision = 8;  // bits per entry pixel, 1..8
+    int smoothing = 1;        // codeword taps averaged in blocks of this size (encoder only)
     uint8_t backtrack = 1;
     LevelInit init = LevelInit::Parent;
     uint64_t seed = 1;

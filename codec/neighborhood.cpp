@@ -89,6 +89,18 @@ std::vector<uint16_t> NeighborhoodLayout::entry_key_offsets() const {
     return offsets;
 }
 
+PixelPredictor NeighborhoodLayout::pixel_predictor() const {
+    PixelPredictor p;
+    for (std::size_t t = 0; t < taps_.size(); ++t) {
+        if (taps_[t].depth != 0) continue;
+        const int o = int(t) * channels_;
+        if (taps_[t].dx == -1 && taps_[t].dy == 0) p.left = o;
+        if (taps_[t].dx == 0 && taps_[t].dy == -1) p.up = o;
+        if (taps_[t].dx == -1 && taps_[t].dy == -1) p.up_left = o;
+    }
+    return p;
+}
+
 void NeighborhoodLayout::gather_wrapped(const std::vector<Image>& pyramid, int x, int y,
                                         uint8_t* out) const {
     uint8_t* o = out;

@@ -59,6 +59,22 @@ std::vector<Shape> default_shapes(int levels);
 // least 1 and at most kMaxLevels.
 int automatic_levels(int width, int height);
 
+// Predicts a pixel from the left, above and upper-left taps of a
+// neighbourhood vector with the median edge detector of LOCO-I. Used to code
+// entry pixels compactly.
+struct PixelPredictor {
+    int left = -1, up = -1, up_left = -1;  // byte offsets of each tap's first channel
+    bool valid() const { return left >= 0 && up >= 0 && up_left >= 0; }
+    uint8_t predict(const uint8_t* vector, int channel) const {
+        if (!valid()) return 128;
+        const int a = vector[left + channel], b = vector[up + channel], c = vector[up_left + channel];
+        const int lo = a < b ? a : b, hi = a < b ? b : a;
+        if (c >= hi) return uint8_t(lo);
+        if (c <= lo) return uint8_t(hi);
+        return uint8_t(a + b - c);
+    }
+};
+
 // The gather plan for one pyramid level: where each tap reads, for a pyramid
 // whose level sizes are known.
 class NeighborhoodLayout {
@@ -77,6 +93,7 @@ public:
     // the current level adjacent to the pixel, in tap order (4 for a causal
     // shape: upper left, above, upper right, left; 8 for a symmetric one).
     std::vector<uint16_t> entry_key_offsets() const;
+    PixelPredictor pixel_predictor() const;
 
     // Gather the neighbourhood of (x, y) at this level from `pyramid`
     // (toroidal), into `out` (stride() bytes, padding zeroed).

@@ -60,9 +60,9 @@ struct BuiltMatcher {
     std::size_t bytes = 0;
 };
 
-BuiltMatcher build_matcher(ExampleSet& set, const std::vector<uint16_t>& key_offsets,
+BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout& layout,
                            const vqtex_model_params& params, vqtex_search search, uint32_t backtrack,
-                           int threads, int level) {
+                           int threads, int level, uint32_t leaf_divisor) {
     BuiltMatcher built;
     if (search == VQTEX_SEARCH_EXHAUSTIVE) {
         built.bytes = set.vectors.size() + set.pixels.size();
@@ -77,13 +77,14 @@ BuiltMatcher build_matcher(ExampleSet& set, const std::vector<uint16_t>& key_off
     const std::vector<uint32_t> subset =
         choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level));
     TrainParams tp;
-    tp.max_leaves = codewords_for_level(params, level, subset.size());
+    tp.max_leaves = std::max<uint32_t>(1, codewords_for_level(params, level, subset.size()) /
+                                              std::max<uint32_t>(1, leaf_divisor));
     tp.distortion_threshold = params.distortion_threshold;
     tp.representative = params.leaf == VQTEX_LEAF_CENTROID ? LeafRepresentative::Centroid
                                                            : LeafRepresentative::Medoid;
     tp.threads = threads;
     tp.entries_per_leaf = params.entries_per_leaf ? params.entries_per_leaf : 1;
-    tp.key_offsets = key_offsets;
+    if (!params.no_entry_keys) tp.key_offsets = layout.entry_key_offsets();
     built.codebook = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
     built.bytes = built.codebook->memory_bytes();
     built.matcher = std::make_shared<TsvqMatcher>(built.codebook, backtrack);
@@ -126,8 +127,8 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
         LevelModel& lm = result.model.levels[std::size_t(l)];
         lm.shape = layout.shape();
         lm.histogram = histogram_of(pyramid[std::size_t(l)]);
-        BuiltMatcher causal = build_matcher(set, layout.entry_key_offsets(), params, search, backtrack,
-                                            threads, l);
+        BuiltMatcher causal = build_matcher(set, layout, params, search, backtrack,
+                                            threads, l, 1);
         lm.matcher = causal.matcher;
         result.codebooks[std::size_t(l)] = causal.codebook;
         result.model_bytes += causal.bytes;
@@ -138,8 +139,8 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
             ExampleSet closing_set = collect_examples(closing_layout, pyramid, tileable);
             // A level too small for the symmetric window simply keeps its seam.
             if (closing_set.count() > 0) {
-                BuiltMatcher closing = build_matcher(closing_set, closing_layout.entry_key_offsets(), params,
-                                                     search, backtrack, threads, l);
+                BuiltMatcher closing = build_matcher(closing_set, closing_layout, params,
+                                                     search, backtrack, threads, l, params.closing_divisor);
                 lm.closing_shape = closing_shape;
                 lm.closing = closing.matcher;
                 result.closing_codebooks[std::size_t(l)] = closing.codebook;

@@ -112,6 +112,11 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, ui
     // so exact local copies do not always win) the one the pixel's salt ranks
     // first. The leaf's other continuations then appear about as often as
     // they do in the example, instead of its commonest one everywhere.
+    // Entries without keys all qualify: the salt alone chooses, so each
+    // appears about as often as its member did in the example. (Choosing the
+    // entry nearest the pixel the query's neighbours predict was tried: it
+    // favours smooth continuations and the texture collapses into flat
+    // blocks.)
     const auto& offsets = b.key_offsets();
     const int ch = b.channels();
     uint32_t distance[kMaxEntries];

@@ -252,6 +252,7 @@ Codebook train_codebook(const ExampleSet& examples, const std::vector<uint32_t>&
     Trainer trainer(examples, params);
     Codebook book(examples.dimension, examples.stride, examples.channels,
                   params.entries_per_leaf > 1 ? params.key_offsets : std::vector<uint16_t>{});
+    // Without keys several entries are still useful: chosen at random.
     book.add_root();
 
     // Per node: its cluster and its tentative split, while it is a leaf.

@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
     std::string input, output, codewords, shapes;
     int quality = VQTEX_QUALITY_DEFAULT;
     uint32_t precision = 0, pixel_precision = 0, entries = 0, levels = 0, backtrack = 0, threads = 0;
+    uint32_t smoothing = 0, closing_divisor = 0;
+    bool no_entry_keys = false;
     uint64_t target_size = 0, seed = 1;
     bool json = false, quiet = false, no_closing = false, tileable = false;
     app.add_option("input", input, "example image (any format OpenImageIO reads)")->required();
@@ -31,6 +33,11 @@ int main(int argc, char** argv) {
     app.add_option("-p,--precision", precision, "bits per codeword sample, 1 to 8")->check(CLI::Range(1, 8));
     app.add_option("--pixel-precision", pixel_precision, "bits per output pixel sample, 1 to 8")
         ->check(CLI::Range(1, 8));
+    app.add_option("--smoothing", smoothing, "average codeword taps away from the pixel in NxN blocks (1 = off)")
+        ->check(CLI::Range(1, 8));
+    app.add_flag("--no-entry-keys", no_entry_keys, "entries without keys, chosen at random (smaller)");
+    app.add_option("--closing-divisor", closing_divisor, "seam-closing trees get 1/N of the leaves")
+        ->check(CLI::Range(1, 1024));
     app.add_option("--levels", levels, "pyramid levels (default: automatic)");
     app.add_option("--shapes", shapes, "neighbourhood per level, finest first, RxC:k");
     app.add_option("-L,--backtrack", backtrack, "TSVQ leaves the decoder visits per pixel (1 to 255)")
@@ -57,6 +64,9 @@ int main(int argc, char** argv) {
         if (precision) p.precision = precision;
         if (pixel_precision) p.pixel_precision = pixel_precision;
         if (levels) p.model.levels = levels;
+        if (smoothing) p.smoothing = smoothing;
+        if (no_entry_keys) p.model.no_entry_keys = 1;
+        if (closing_divisor) p.model.closing_divisor = closing_divisor;
         if (backtrack) p.backtrack = backtrack;
         if (no_closing) p.model.seam_closing = 0;
         p.model.example_tileable = tileable ? 1 : 0;

@@ -130,6 +130,9 @@ typedef struct vqtex_model_params {
     float distortion_threshold;               /* stop splitting at this mean SSD per vector (0 = off) */
     uint64_t training_seed;                   /* seeds the training subset */
     uint32_t entries_per_leaf;                /* outputs per TSVQ leaf, 1 to 64 (0 = default) [--entries] */
+    uint32_t no_entry_keys;                   /* 1: entries carry no key and are chosen at random
+                                                 (smaller file); 0: chosen by their adjacent pixels */
+    uint32_t closing_divisor;                 /* seam-closing trees get 1/this of the leaves (0 = 1) */
     uint32_t seam_closing;                    /* 1: also build symmetric matchers that re-match
                                                  the rows around the top/bottom wrap (default) [--no-seam-closing] */
 } vqtex_model_params;
@@ -184,6 +187,8 @@ typedef struct vqtex_encode_params {
     vqtex_model_params model;   /* filled by the quality preset; tweak after */
     uint32_t precision;         /* bits per codeword and key sample, 1 to 8 [--precision] */
     uint32_t pixel_precision;   /* bits per output pixel sample, 1 to 8 */
+    uint32_t smoothing;         /* 1 = exact codewords; 2..4 = taps away from the pixel averaged in
+                                   blocks of that size (smaller file, coarser matching) [--smoothing] */
     uint32_t backtrack;         /* TSVQ leaves the decoder visits per search [--backtrack] */
     vqtex_init init;            /* how decoding starts each level */
     uint64_t seed;              /* default decoding seed stored in the file [--seed] */

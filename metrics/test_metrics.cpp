@@ -1,0 +1,608 @@
+// Tests of vqtex_metrics on synthetic images with known answers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "internal.hpp"
+#include "metrics.hpp"
+
+namespace vm = vqtex_metrics;
+using vm::Image;
+
+namespace {
+
+// ---------------------------------------------------------------------------
+// Synthetic images.
+
+Image blank(int w, int h, int c = 3) {
+  Image im;
+  im.width = w;
+  im.height = h;
+  im.channels = c;
+  im.pixels.assign(static_cast<size_t>(w) * h * c, 0);
+  return im;
+}
+
+uint8_t clamp8(double v) { return static_cast<uint8_t>(std::clamp(std::lround(v), 0L, 255L)); }
+
+// Tileable multi-octave value noise: `cells` lattice cells across the image
+// at the coarsest octave, each octave doubling the cells and halving the
+// amplitude. w and h must be multiples of cells << (octaves-1). Colours stay
+// inside [40, 215] so that colour shifts do not clip.
+Image value_noise(int w, int h, int cells, int octaves, uint64_t seed) {
+  std::vector<double> acc(static_cast<size_t>(w) * h * 3, 0.0);
+  vm::detail::SplitMix64 rng(seed);
+  double amp = 1.0, total = 0.0;
+  for (int o = 0; o < octaves; ++o, amp *= 0.5) {
+    const int cx = cells << o, cy = cells * h / w << o;
+    const double px = static_cast<double>(w) / cx, py = static_cast<double>(h) / cy;
+    std::vector<double> lat(static_cast<size_t>(cx) * cy * 3);
+    for (double& v : lat) v = rng.uniform() * 2.0 - 1.0;
+    auto at = [&](int i, int j, int c) {
+      i = ((i % cx) + cx) % cx;
+      j = ((j % cy) + cy) % cy;
+      return lat[(static_cast<size_t>(j) * cx + i) * 3 + c];
+    };
+    auto smooth = [](double t) { return t * t * (3.0 - 2.0 * t); };
+    for (int y = 0; y < h; ++y) {
+      const double fy = y / py;
+      const int j = static_cast<int>(std::floor(fy));
+      const double ty = smooth(fy - j);
+      for (int x = 0; x < w; ++x) {
+        const double fx = x / px;
+        const int i = static_cast<int>(std::floor(fx));
+        const double tx = smooth(fx - i);
+        for (int c = 0; c < 3; ++c) {
+          const double top = at(i, j, c) * (1 - tx) + at(i + 1, j, c) * tx;
+          const double bot = at(i, j + 1, c) * (1 - tx) + at(i + 1, j + 1, c) * tx;
+          acc[(static_cast<size_t>(y) * w + x) * 3 + c] += amp * (top * (1 - ty) + bot * ty);
+        }
+      }
+    }
+    total += amp;
+  }
+  Image im = blank(w, h);
+  for (size_t p = 0; p < static_cast<size_t>(w) * h; ++p) {
+    // Correlated colour: a shared luminance part plus some chroma.
+    const double l = acc[p * 3 + 0] / total, u = acc[p * 3 + 1] / total, v = acc[p * 3 + 2] / total;
+    im.pixels[p * 3 + 0] = clamp8(128 + 80 * l + 20 * u);
+    im.pixels[p * 3 + 1] = clamp8(120 + 80 * l - 10 * u + 10 * v);
+    im.pixels[p * 3 + 2] = clamp8(110 + 70 * l - 20 * v);
+  }
+  return im;
+}
+
+// A 256x256 sample of the standard test process.
+Image texture(uint64_t seed, int size = 256) { return value_noise(size, size, 8 * size / 256, 5, seed); }
+
+Image crop(const Image& im, int x0, int y0, int w, int h) {
+  Image out = blank(w, h, im.channels);
+  for (int y = 0; y < h; ++y)
+    std::memcpy(&out.pixels[static_cast<size_t>(y) * w * im.channels],
+                &im.pixels[(static_cast<size_t>(y0 + y) * im.width + x0) * im.channels],
+                static_cast<size_t>(w) * im.channels);
+  return out;
+}
+
+Image toroidal_shift(const Image& im, int dx, int dy) {
+  Image out = blank(im.width, im.height, im.channels);
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x)
+      for (int c = 0; c < im.channels; ++c)
+        out.pixels[(static_cast<size_t>((y + dy) % im.height) * im.width + (x + dx) % im.width) * im.channels + c] =
+            im.pixels[(static_cast<size_t>(y) * im.width + x) * im.channels + c];
+  return out;
+}
+
+// Separable Gaussian blur with wrap-around (keeps tileability).
+Image blur(const Image& im, double sigma) {
+  const int r = static_cast<int>(std::ceil(3 * sigma));
+  std::vector<double> k(static_cast<size_t>(2 * r + 1));
+  double ks = 0;
+  for (int i = -r; i <= r; ++i) ks += k[static_cast<size_t>(i + r)] = std::exp(-i * i / (2 * sigma * sigma));
+  for (double& v : k) v /= ks;
+  const int w = im.width, h = im.height, ch = im.channels;
+  std::vector<double> tmp(im.pixels.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < ch; ++c) {
+        double s = 0;
+        for (int i = -r; i <= r; ++i)
+          s += k[static_cast<size_t>(i + r)] * im.pixels[(static_cast<size_t>(y) * w + ((x + i) % w + w) % w) * ch + c];
+        tmp[(static_cast<size_t>(y) * w + x) * ch + c] = s;
+      }
+  Image out = blank(w, h, ch);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < ch; ++c) {
+        double s = 0;
+        for (int i = -r; i <= r; ++i)
+          s += k[static_cast<size_t>(i + r)] * tmp[(static_cast<size_t>(((y + i) % h + h) % h) * w + x) * ch + c];
+        out.pixels[(static_cast<size_t>(y) * w + x) * ch + c] = clamp8(s);
+      }
+  return out;
+}
+
+// Adds approximately Gaussian noise (sum of 4 uniforms) of the given sigma.
+Image add_noise(const Image& im, double sigma, uint64_t seed) {
+  vm::detail::SplitMix64 rng(seed);
+  Image out = im;
+  const double scale = sigma * std::sqrt(3.0);  // 4 uniforms in [-1,1]: var 4/3
+  for (uint8_t& v : out.pixels) {
+    double n = 0;
+    for (int i = 0; i < 4; ++i) n += rng.uniform() * 2 - 1;
+    v = clamp8(v + scale * n);
+  }
+  return out;
+}
+
+Image colour_shift(const Image& im, int dr, int dg, int db) {
+  Image out = im;
+  const int d[3] = {dr, dg, db};
+  for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = clamp8(out.pixels[i] + d[i % 3]);
+  return out;
+}
+
+Image tile(const Image& im, int nx, int ny) {
+  Image out = blank(im.width * nx, im.height * ny, im.channels);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < im.channels; ++c)
+        out.pixels[(static_cast<size_t>(y) * out.width + x) * im.channels + c] =
+            im.pixels[(static_cast<size_t>(y % im.height) * im.width + x % im.width) * im.channels + c];
+  return out;
+}
+
+// The image cut into b x b blocks, shuffled (seeded Fisher-Yates).
+Image shuffle_blocks(const Image& im, int b, uint64_t seed) {
+  const int bx = im.width / b, by = im.height / b;
+  std::vector<int> perm(static_cast<size_t>(bx) * by);
+  for (size_t i = 0; i < perm.size(); ++i) perm[i] = static_cast<int>(i);
+  vm::detail::SplitMix64 rng(seed);
+  for (size_t i = perm.size() - 1; i > 0; --i) std::swap(perm[i], perm[rng.below(i + 1)]);
+  Image out = im;
+  for (int t = 0; t < bx * by; ++t) {
+    const int s = perm[static_cast<size_t>(t)];
+    for (int y = 0; y < b; ++y)
+      std::memcpy(&out.pixels[((static_cast<size_t>(t / bx) * b + y) * im.width + (t % bx) * b) * 3],
+                  &im.pixels[((static_cast<size_t>(s / bx) * b + y) * im.width + (s % bx) * b) * 3],
+                  static_cast<size_t>(b) * 3);
+  }
+  return out;
+}
+
+// JPEG-like blocking: each 8x8 block replaced by its mean plus a coarsely
+// quantised copy of its deviation.
+Image block_quantise(const Image& im, int b, int q) {
+  Image out = im;
+  for (int by = 0; by + b <= im.height; by += b)
+    for (int bx = 0; bx + b <= im.width; bx += b)
+      for (int c = 0; c < 3; ++c) {
+        double m = 0;
+        for (int y = 0; y < b; ++y)
+          for (int x = 0; x < b; ++x) m += im.pixels[((static_cast<size_t>(by + y)) * im.width + bx + x) * 3 + c];
+        m /= b * b;
+        for (int y = 0; y < b; ++y)
+          for (int x = 0; x < b; ++x) {
+            uint8_t& v = out.pixels[((static_cast<size_t>(by + y)) * im.width + bx + x) * 3 + c];
+            v = clamp8(m + q * std::round((v - m) / q));
+          }
+      }
+  return out;
+}
+
+Image grey_of(const Image& rgb, int channels) {
+  Image g = blank(rgb.width, rgb.height, channels);
+  for (size_t p = 0; p < static_cast<size_t>(rgb.width) * rgb.height; ++p) {
+    g.pixels[p * channels] = rgb.pixels[p * 3];
+    if (channels == 2) g.pixels[p * 2 + 1] = static_cast<uint8_t>(p * 37);
+  }
+  return g;
+}
+
+Image replicate_grey(const Image& rgb) {
+  Image g = rgb;
+  for (size_t p = 0; p < static_cast<size_t>(rgb.width) * rgb.height; ++p)
+    g.pixels[p * 3 + 1] = g.pixels[p * 3 + 2] = g.pixels[p * 3];
+  return g;
+}
+
+Image with_alpha(const Image& rgb) {
+  Image o = blank(rgb.width, rgb.height, 4);
+  for (size_t p = 0; p < static_cast<size_t>(rgb.width) * rgb.height; ++p) {
+    std::memcpy(&o.pixels[p * 4], &rgb.pixels[p * 3], 3);
+    o.pixels[p * 4 + 3] = static_cast<uint8_t>(p * 13 + 7);
+  }
+  return o;
+}
+
+// Shared fixtures (generated once).
+const Image& A() {
+  static const Image im = texture(11);
+  return im;
+}
+const Image& B() {
+  static const Image im = texture(22);
+  return im;
+}
+const Image& C() {
+  static const Image im = texture(33);
+  return im;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Lab conversion
+
+TEST(Colour, LabKnownValues) {
+  double lab[3];
+  vm::srgb_to_lab(255, 255, 255, lab);
+  EXPECT_NEAR(lab[0], 100.0, 0.01);
+  EXPECT_NEAR(lab[1], 0.0, 0.01);
+  EXPECT_NEAR(lab[2], 0.0, 0.01);
+  vm::srgb_to_lab(0, 0, 0, lab);
+  EXPECT_NEAR(lab[0], 0.0, 1e-9);
+  vm::srgb_to_lab(255, 0, 0, lab);  // reference: L 53.24, a 80.09, b 67.20
+  EXPECT_NEAR(lab[0], 53.24, 0.05);
+  EXPECT_NEAR(lab[1], 80.09, 0.1);
+  EXPECT_NEAR(lab[2], 67.20, 0.1);
+  vm::srgb_to_lab(0, 0, 255, lab);  // reference: L 32.30, a 79.19, b -107.86
+  EXPECT_NEAR(lab[0], 32.30, 0.05);
+  EXPECT_NEAR(lab[1], 79.19, 0.1);
+  EXPECT_NEAR(lab[2], -107.86, 0.1);
+  vm::srgb_to_lab(119, 119, 119, lab);  // mid grey, L about 50
+  EXPECT_NEAR(lab[0], 50.0, 0.5);
+  vm::srgb_to_lab(1, 1, 1, lab);  // linear segment of f
+  EXPECT_GT(lab[0], 0.0);
+  EXPECT_LT(lab[0], 0.5);
+}
+
+// ---------------------------------------------------------------------------
+// Identical images give 0
+
+TEST(Identical, AllDistancesZero) {
+  const vm::SwdResult s = vm::sliced_wasserstein(A(), A());
+  ASSERT_EQ(s.per_level.size(), 4u);
+  for (double v : s.per_level) EXPECT_EQ(v, 0.0);
+  EXPECT_EQ(s.mean, 0.0);
+  const vm::ColourDistance c = vm::colour_distance(A(), A());
+  EXPECT_EQ(c.mean_delta_e, 0.0);
+  EXPECT_EQ(c.distribution, 0.0);
+  EXPECT_EQ(vm::coherence(A(), A()), 0.0);
+  EXPECT_EQ(vm::completeness(A(), A()), 0.0);
+  EXPECT_EQ(vm::variety(A(), A()), 0.0);
+}
+
+// ---------------------------------------------------------------------------
+// Sliced Wasserstein
+
+TEST(Swd, GrowsWithBlurStrength) {
+  // Against an independent sample of the same process, as in the benchmark.
+  const double sharp = vm::sliced_wasserstein(A(), B()).mean;
+  const double b1 = vm::sliced_wasserstein(blur(A(), 1.0), B()).mean;
+  const double b2 = vm::sliced_wasserstein(blur(A(), 2.0), B()).mean;
+  const double b4 = vm::sliced_wasserstein(blur(A(), 4.0), B()).mean;
+  std::printf("swd vs independent sample: sharp %.3f blur1 %.3f blur2 %.3f blur4 %.3f\n", sharp, b1, b2, b4);
+  EXPECT_GT(b1, 1.3 * sharp);
+  EXPECT_GT(b2, 1.2 * b1);
+  EXPECT_GT(b4, 1.2 * b2);
+  // The finest level reacts most.
+  const vm::SwdResult r = vm::sliced_wasserstein(blur(A(), 2.0), A());
+  EXPECT_GT(r.per_level[0], r.per_level[3]);
+}
+
+TEST(Swd, ToroidalShiftIsNearZeroButNotPixelEqual) {
+  const Image shifted = toroidal_shift(A(), 77, 41);
+  const double shift = vm::sliced_wasserstein(shifted, A()).mean;
+  const double indep = vm::sliced_wasserstein(B(), A()).mean;
+  const double blurred = vm::sliced_wasserstein(blur(A(), 1.0), A()).mean;
+  std::printf("swd: shifted %.3f independent %.3f blur1 %.3f\n", shift, indep, blurred);
+  EXPECT_LT(shift, 0.35 * blurred);
+  EXPECT_LT(shift, 0.5 * indep);
+  EXPECT_LT(vm::colour_distance(shifted, A()).mean_delta_e, 0.05);
+  EXPECT_LT(vm::colour_distance(shifted, A()).distribution, 0.1);
+  EXPECT_GT(vm::variety(shifted, A()), 0.05);  // really a different image
+}
+
+TEST(Swd, NoiseIncreasesDistance) {
+  const double clean = vm::sliced_wasserstein(A(), B()).mean;
+  const double noisy = vm::sliced_wasserstein(add_noise(A(), 8.0, 5), B()).mean;
+  const double noisier = vm::sliced_wasserstein(add_noise(A(), 16.0, 5), B()).mean;
+  std::printf("swd: clean %.3f noisy(8) %.3f noisy(16) %.3f\n", clean, noisy, noisier);
+  EXPECT_GT(noisy, 2.0 * clean);
+  EXPECT_GT(noisier, 1.5 * noisy);
+}
+
+TEST(Swd, ColourShiftBarelyMatters) {
+  const double shifted = vm::sliced_wasserstein(colour_shift(A(), 25, -15, 20), A()).mean;
+  const double blurred = vm::sliced_wasserstein(blur(A(), 1.0), A()).mean;
+  std::printf("swd: colour-shifted %.3f blur1 %.3f\n", shifted, blurred);
+  EXPECT_LT(shifted, 0.1);  // mean removal: only rounding/clipping remain
+  EXPECT_LT(shifted, 0.1 * blurred);
+}
+
+TEST(Swd, DifferentSizesUseQuantiles) {
+  const Image part = crop(A(), 30, 20, 200, 180);
+  const double sub = vm::sliced_wasserstein(part, A()).mean;
+  const double blurred = vm::sliced_wasserstein(blur(part, 1.5), A()).mean;
+  std::printf("swd: crop %.3f blurred crop %.3f\n", sub, blurred);
+  EXPECT_LT(sub, 0.4 * blurred);
+  // Small images: fewer levels are used.
+  const vm::SwdResult small = vm::sliced_wasserstein(crop(A(), 0, 0, 30, 30), crop(B(), 0, 0, 30, 30));
+  EXPECT_EQ(small.per_level.size(), 3u);  // 30, 15, 8 (>= 7), then 4 < 7
+}
+
+TEST(Swd, SeedChangesOnlySlightly) {
+  const double s1 = vm::sliced_wasserstein(A(), B(), 4, 7, 64, 1).mean;
+  const double s2 = vm::sliced_wasserstein(A(), B(), 4, 7, 64, 2).mean;
+  EXPECT_NE(s1, s2);
+  EXPECT_NEAR(s1, s2, 0.25 * s1);
+}
+
+// ---------------------------------------------------------------------------
+// Colour
+
+TEST(Colour, MeanDifferenceMatchesShift) {
+  const Image shifted = colour_shift(A(), 25, -15, 20);
+  const vm::ColourDistance c = vm::colour_distance(shifted, A());
+  // Expected: Delta E between the mean colour and the shifted mean colour.
+  double m[3] = {0, 0, 0};
+  for (size_t i = 0; i < A().pixels.size(); ++i) m[i % 3] += A().pixels[i];
+  for (double& v : m) v /= A().width * A().height;
+  double l0[3], l1[3];
+  vm::srgb_to_lab(clamp8(m[0]), clamp8(m[1]), clamp8(m[2]), l0);
+  vm::srgb_to_lab(clamp8(m[0] + 25), clamp8(m[1] - 15), clamp8(m[2] + 20), l1);
+  const double expected = std::sqrt((l0[0] - l1[0]) * (l0[0] - l1[0]) + (l0[1] - l1[1]) * (l0[1] - l1[1]) +
+                                    (l0[2] - l1[2]) * (l0[2] - l1[2]));
+  std::printf("colour: mean dE %.3f (expected about %.3f), distribution %.3f\n", c.mean_delta_e, expected,
+              c.distribution);
+  EXPECT_NEAR(c.mean_delta_e, expected, 0.2 * expected);
+  // A pure shift moves the whole distribution: the sliced distance is of the
+  // same order as the mean difference, never more than it plus the spread.
+  EXPECT_GT(c.distribution, 0.3 * c.mean_delta_e);
+  EXPECT_LT(c.distribution, 1.2 * c.mean_delta_e);
+}
+
+TEST(Colour, IndependentSampleCloseContrastChangeSeen) {
+  const vm::ColourDistance same = vm::colour_distance(B(), A());
+  const vm::ColourDistance shifted = vm::colour_distance(colour_shift(B(), 25, -15, 20), A());
+  // Contrast halved around the mean: same mean, different distribution.
+  Image flat = A();
+  double m[3] = {0, 0, 0};
+  for (size_t i = 0; i < flat.pixels.size(); ++i) m[i % 3] += flat.pixels[i];
+  for (double& v : m) v /= flat.width * flat.height;
+  for (size_t i = 0; i < flat.pixels.size(); ++i) flat.pixels[i] = clamp8(m[i % 3] + 0.5 * (flat.pixels[i] - m[i % 3]));
+  const vm::ColourDistance low = vm::colour_distance(flat, A());
+  std::printf("colour: independent %.3f/%.3f shifted %.3f/%.3f low-contrast %.3f/%.3f\n", same.mean_delta_e,
+              same.distribution, shifted.mean_delta_e, shifted.distribution, low.mean_delta_e, low.distribution);
+  EXPECT_GT(shifted.mean_delta_e, 3.0 * same.mean_delta_e);
+  EXPECT_GT(shifted.distribution, 2.0 * same.distribution);
+  EXPECT_LT(low.mean_delta_e, 2.0);
+  EXPECT_GT(low.distribution, 2.0 * low.mean_delta_e);
+  EXPECT_GT(low.distribution, 2.0 * same.distribution);
+}
+
+// ---------------------------------------------------------------------------
+// Coherence / completeness
+
+TEST(Patches, NearestNeighbourIsExact) {
+  // Whole-image queries on small images, compared with brute force.
+  const Image out = crop(add_noise(B(), 6.0, 3), 10, 10, 30, 28);
+  const Image ex = crop(A(), 5, 7, 40, 36);
+  const int p = 7, dims = p * p * 3;
+  double brute = 0.0;
+  int n = 0;
+  for (int qy = 0; qy + p <= out.height; ++qy)
+    for (int qx = 0; qx + p <= out.width; ++qx, ++n) {
+      long long best = std::numeric_limits<long long>::max();
+      for (int y = 0; y + p <= ex.height; ++y)
+        for (int x = 0; x + p <= ex.width; ++x) {
+          long long s = 0;
+          for (int dy = 0; dy < p; ++dy)
+            for (int j = 0; j < 3 * p; ++j) {
+              const int d = out.pixels[(static_cast<size_t>(qy + dy) * out.width + qx) * 3 + j] -
+                            ex.pixels[(static_cast<size_t>(y + dy) * ex.width + x) * 3 + j];
+              s += d * d;
+            }
+          best = std::min(best, s);
+        }
+      brute += std::sqrt(static_cast<double>(best) / dims);
+    }
+  brute /= n;
+  const double fast = vm::coherence(out, ex, p, 100000);
+  EXPECT_NEAR(fast, brute, 1e-9 * brute);
+}
+
+TEST(Patches, BlurMakesCompletenessWorse) {
+  // Reference A; outputs: an independent sample B, and B blurred.
+  const double sharp = vm::completeness(A(), B());
+  const double b1 = vm::completeness(A(), blur(B(), 1.0));
+  const double b2 = vm::completeness(A(), blur(B(), 2.0));
+  const double coh_sharp = vm::coherence(B(), A());
+  const double coh_b2 = vm::coherence(blur(B(), 2.0), A());
+  std::printf("completeness: sharp %.3f blur1 %.3f blur2 %.3f; coherence sharp %.3f blur2 %.3f\n", sharp, b1, b2,
+              coh_sharp, coh_b2);
+  EXPECT_GT(b1, 1.1 * sharp);
+  EXPECT_GT(b2, 1.1 * b1);
+}
+
+TEST(Patches, CopyingFoolsCoherenceOnly) {
+  // A verbatim copy has coherence 0 (the documented blind spot) ...
+  EXPECT_EQ(vm::coherence(toroidal_shift(A(), 50, 60), A()), 0.0);
+  // ... a fresh sample does not.
+  EXPECT_GT(vm::coherence(B(), A()), 1.0);
+  // Completeness of a half-size crop as output misses what the crop lacks.
+  const double part = vm::completeness(A(), crop(A(), 0, 0, 96, 96));
+  const double whole = vm::completeness(A(), toroidal_shift(A(), 10, 10));
+  EXPECT_GT(part, whole + 1.0);
+}
+
+TEST(Patches, NoiseMakesBothWorse) {
+  const Image noisy = add_noise(B(), 10.0, 9);
+  EXPECT_GT(vm::coherence(noisy, A()), 1.5 * vm::coherence(B(), A()));
+  EXPECT_GT(vm::completeness(A(), noisy), 1.2 * vm::completeness(A(), B()));
+}
+
+// ---------------------------------------------------------------------------
+// Copy statistics
+
+TEST(Copy, TiledOutputIsDetected) {
+  const vm::CopyStats tiled = vm::copy_stats(tile(A(), 2, 2), A());
+  const vm::CopyStats fresh = vm::copy_stats(texture(44, 512), A());
+  const vm::CopyStats same_size = vm::copy_stats(B(), A());
+  std::printf("copy: tiled exact %.3f coh %.3f rms %.2f (%d patches, %d pairs); fresh exact %.3f coh %.3f rms %.2f; "
+              "256 fresh exact %.3f coh %.3f\n",
+              tiled.exact_share, tiled.neighbour_coherence, tiled.mean_rms, tiled.patches, tiled.pairs,
+              fresh.exact_share, fresh.neighbour_coherence, fresh.mean_rms, same_size.exact_share,
+              same_size.neighbour_coherence);
+  EXPECT_GT(tiled.exact_share, 0.95);
+  EXPECT_GT(tiled.neighbour_coherence, 0.9);
+  EXPECT_LT(tiled.mean_rms, 0.1);
+  EXPECT_LT(fresh.exact_share, 0.05);
+  EXPECT_LT(fresh.neighbour_coherence, 0.1);
+  EXPECT_GT(fresh.mean_rms, 1.0);
+  EXPECT_LT(same_size.exact_share, 0.05);
+  EXPECT_LT(same_size.neighbour_coherence, 0.1);
+  EXPECT_GT(same_size.pairs, 1000);  // full 32x32 grid on 256x256
+}
+
+TEST(Copy, ShuffledLargeBlocksAreLocallyCoherent) {
+  // A patchwork of 64x64 pieces of the exemplar: every piece is a copy, so
+  // most sampled patches are exact and most pairs inside a piece coherent.
+  const vm::CopyStats st = vm::copy_stats(shuffle_blocks(A(), 64, 3), A());
+  std::printf("copy: 64px patchwork exact %.3f coh %.3f\n", st.exact_share, st.neighbour_coherence);
+  EXPECT_GT(st.exact_share, 0.7);
+  EXPECT_GT(st.neighbour_coherence, 0.6);
+  // A noisy copy is no longer exact but still coherent.
+  const vm::CopyStats noisy = vm::copy_stats(add_noise(A(), 3.0, 1), A());
+  std::printf("copy: noisy copy exact %.3f coh %.3f\n", noisy.exact_share, noisy.neighbour_coherence);
+  EXPECT_LT(noisy.exact_share, 0.05);
+  EXPECT_GT(noisy.neighbour_coherence, 0.8);
+}
+
+TEST(Variety, RangeAndBehaviour) {
+  EXPECT_EQ(vm::variety(A(), A()), 0.0);
+  const double v = vm::variety(A(), B());
+  EXPECT_GT(v, 0.05);
+  EXPECT_LT(v, 0.5);
+  Image black = blank(8, 8), white = blank(8, 8);
+  std::fill(white.pixels.begin(), white.pixels.end(), 255);
+  EXPECT_DOUBLE_EQ(vm::variety(black, white), 1.0);
+  EXPECT_THROW(vm::variety(A(), crop(A(), 0, 0, 10, 10)), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------
+// Seams
+
+TEST(Seams, TileableVersusCrop) {
+  const double tileable = vm::seam_ratio(A());
+  const Image big = texture(55, 512);
+  const double cropped = vm::seam_ratio(crop(big, 37, 53, 256, 256));
+  std::printf("seam_ratio: tileable %.3f crop %.3f\n", tileable, cropped);
+  EXPECT_GT(tileable, 0.7);
+  EXPECT_LT(tileable, 1.3);
+  EXPECT_GT(cropped, 3.0);
+  // A flat image is seamless.
+  Image flat = blank(16, 16);
+  std::fill(flat.pixels.begin(), flat.pixels.end(), 100);
+  EXPECT_EQ(vm::seam_ratio(flat), 1.0);
+}
+
+TEST(Seams, StraightSeamDetector) {
+  const double natural = vm::straight_seam_score(A());
+  const double natural_noisy = vm::straight_seam_score(add_noise(A(), 5.0, 2));
+  const Image shuffled = shuffle_blocks(A(), 8, 7);
+  const double blocky = vm::straight_seam_score(shuffled);
+  const double jpeg = vm::straight_seam_score(block_quantise(A(), 8, 24));
+  // One straight seam: left half of A, right half of B.
+  Image half = A();
+  for (int y = 0; y < 256; ++y)
+    std::memcpy(&half.pixels[(static_cast<size_t>(y) * 256 + 128) * 3], &B().pixels[(static_cast<size_t>(y) * 256 + 128) * 3],
+                128 * 3);
+  const vm::SeamLine line = vm::strongest_straight_seam(half);
+  // A non-tileable crop has its seam at the wrap boundary only.
+  const Image cropped = crop(texture(55, 512), 37, 53, 256, 256);
+  const double crop_wrap = vm::straight_seam_score(cropped, true);
+  const double crop_inside = vm::straight_seam_score(cropped, false);
+  std::printf("straight seam: natural %.3f noisy %.3f shuffled8 %.3f jpeg %.3f half %.3f at %c%d; crop %.3f/%.3f\n",
+              natural, natural_noisy, blocky, jpeg, line.ratio, line.vertical ? 'x' : 'y', line.position, crop_wrap,
+              crop_inside);
+  EXPECT_LT(natural, 1.5);
+  EXPECT_LT(natural_noisy, 1.5);
+  EXPECT_GT(blocky, 3.0);
+  EXPECT_GT(jpeg, 2.0);
+  EXPECT_GT(line.ratio, 3.0);
+  EXPECT_TRUE(line.vertical);
+  EXPECT_EQ(line.position, 127);
+  EXPECT_GT(crop_wrap, 3.0);
+  EXPECT_LT(crop_inside, 1.5);
+}
+
+// ---------------------------------------------------------------------------
+// Channels, validation, determinism, speed
+
+TEST(Channels, GreyAndAlphaHandling) {
+  const Image grey3 = replicate_grey(A());
+  const Image grey1 = grey_of(A(), 1);
+  const Image grey2 = grey_of(A(), 2);
+  const Image rgba = with_alpha(A());
+  EXPECT_EQ(vm::sliced_wasserstein(grey1, B()).mean, vm::sliced_wasserstein(grey3, B()).mean);
+  EXPECT_EQ(vm::sliced_wasserstein(grey2, B()).mean, vm::sliced_wasserstein(grey3, B()).mean);
+  EXPECT_EQ(vm::colour_distance(grey1, B()).distribution, vm::colour_distance(grey3, B()).distribution);
+  EXPECT_EQ(vm::coherence(grey2, A()), vm::coherence(grey3, A()));
+  EXPECT_EQ(vm::sliced_wasserstein(rgba, B()).mean, vm::sliced_wasserstein(A(), B()).mean);
+  EXPECT_EQ(vm::completeness(B(), rgba), vm::completeness(B(), A()));
+  EXPECT_EQ(vm::seam_ratio(rgba), vm::seam_ratio(A()));
+  EXPECT_EQ(vm::variety(rgba, A()), 0.0);
+}
+
+TEST(Validation, BadImagesThrow) {
+  Image bad = blank(4, 4);
+  bad.pixels.pop_back();
+  EXPECT_THROW(vm::seam_ratio(bad), std::invalid_argument);
+  Image five = blank(4, 4, 5);
+  EXPECT_THROW(vm::colour_distance(five, five), std::invalid_argument);
+  Image empty;
+  EXPECT_THROW(vm::sliced_wasserstein(empty, A()), std::invalid_argument);
+  EXPECT_THROW(vm::coherence(blank(5, 5), A()), std::invalid_argument);  // smaller than the patch
+  EXPECT_THROW(vm::copy_stats(A(), A(), 7, 0), std::invalid_argument);
+}
+
+TEST(ScoreAll, DeterministicAndFast) {
+  const Image out = C();
+  const auto t0 = std::chrono::steady_clock::now();
+  const vm::Scores s1 = vm::score_all(out, B(), A(), 99);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const vm::Scores s2 = vm::score_all(out, B(), A(), 99);
+  const vm::Scores fl = vm::floor_scores(B(), A(), 99);
+  std::printf("score_all 256x256: %.3f s\n", secs);
+  std::printf("  output: swd %.3f colour %.3f/%.3f coherence %.3f completeness %.3f copy %.3f/%.3f seam %.3f straight %.3f\n",
+              s1.swd.mean, s1.colour.mean_delta_e, s1.colour.distribution, s1.coherence, s1.completeness,
+              s1.copy.exact_share, s1.copy.neighbour_coherence, s1.seam_ratio, s1.straight_seam);
+  std::printf("  floor:  swd %.3f colour %.3f/%.3f coherence %.3f completeness %.3f copy %.3f/%.3f seam %.3f straight %.3f\n",
+              fl.swd.mean, fl.colour.mean_delta_e, fl.colour.distribution, fl.coherence, fl.completeness,
+              fl.copy.exact_share, fl.copy.neighbour_coherence, fl.seam_ratio, fl.straight_seam);
+  EXPECT_EQ(s1.swd.per_level, s2.swd.per_level);
+  EXPECT_EQ(s1.colour.distribution, s2.colour.distribution);
+  EXPECT_EQ(s1.coherence, s2.coherence);
+  EXPECT_EQ(s1.completeness, s2.completeness);
+  EXPECT_EQ(s1.copy.neighbour_coherence, s2.copy.neighbour_coherence);
+  EXPECT_EQ(s1.straight_seam, s2.straight_seam);
+  // Matches the individual functions' behaviour: a fresh sample scores like
+  // the floor (within a generous factor), not like a copy.
+  EXPECT_LT(s1.copy.exact_share, 0.05);
+  EXPECT_LT(s1.swd.mean, 3.0 * fl.swd.mean + 0.5);
+  EXPECT_GT(s1.coherence, 0.3 * fl.coherence);
+  EXPECT_NEAR(s1.seam_ratio, 1.0, 0.3);
+  // Loose bound that only catches pathological slowness (Release: well
+  // under a second; Debug builds are several times slower).
+  EXPECT_LT(secs, 20.0);
+}
