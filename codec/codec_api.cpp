@@ -142,18 +142,29 @@ void vqtex_encode_params_init(vqtex_encode_params* p) {
 vqtex_status vqtex_encode_params_preset(vqtex_encode_params* p, int quality) {
     if (!p) return VQTEX_ERROR_INVALID_ARGUMENT;
     if (quality < 0 || quality > 100) return VQTEX_ERROR_INVALID_ARGUMENT;
-    // Finest-level codewords from 64 (quality 0) to 2048 (quality 100),
-    // doubling every 20 points; each coarser level half as many (it has a
-    // quarter of the vectors). Entries and precision grow with quality.
-    const double finest = 64.0 * std::pow(2.0, quality / 20.0);
+    // Measured on the shared corpus (docs/RATE.md, bench/): file size is
+    // dominated by the finest level's codewords and entries. Codewords grow
+    // from 48 (quality 0) to 2048 (quality 100), doubling every 18 points;
+    // each coarser level gets half, at least 32 (coarse levels are cheap and
+    // set the large-scale layout). Below quality 90 entries carry no key
+    // (half the entry bytes, and the random choice keeps more variety than
+    // keys at the same size); codewords are smoothed and coarsely quantised
+    // at low quality; the finest window grows from 7x7 to the paper's 9x9.
+    const double q = quality;
+    const double finest = 48.0 * std::pow(2.0, q / 18.5);
     for (int l = 0; l < VQTEX_MAX_LEVELS; ++l)
-        p->model.codewords[l] = uint32_t(std::max(16.0, std::round(finest / double(1 << l))));
+        p->model.codewords[l] = uint32_t(std::max(32.0, std::round(finest / double(1 << l))));
     p->model.codeword_fraction = 1.0f;
-    p->model.entries_per_leaf = uint32_t(8 + quality / 12);
-    p->precision = uint32_t(4 + quality / 34);
-    p->pixel_precision = quality < 20 ? 7 : 8;
+    p->model.levels = 0;
+    for (auto& s : p->model.shapes) s = vqtex_shape{0, 0, 0};
+    if (quality < 60) p->model.shapes[0] = vqtex_shape{7, 7, 2};
+    p->model.entries_per_leaf = quality < 90 ? 8u : 12u;
+    p->model.no_entry_keys = quality < 90 ? 1u : 0u;
     p->model.seam_closing = 1;
-    p->smoothing = 1;
+    p->model.closing_divisor = 4;
+    p->smoothing = quality < 30 ? 3u : quality < 70 ? 2u : 1u;
+    p->precision = quality < 30 ? 3u : quality < 60 ? 4u : quality < 90 ? 5u : 6u;
+    p->pixel_precision = quality < 20 ? 6u : quality < 50 ? 7u : 8u;
     return VQTEX_OK;
 }
 
