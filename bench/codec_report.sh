@@ -13,6 +13,7 @@ qualities=(${VQTEX_QUALITIES:-25 50 75})
 have() { command -v "$1" >/dev/null 2>&1; }
 have cwebp || echo "note: cwebp missing (apt-get install webp): WebP column empty" >&2
 have cjpeg || echo "note: cjpeg missing (apt-get install libjpeg-turbo-progs): JPEG column empty" >&2
+have oiiotool || echo "note: oiiotool missing (apt-get install openimageio-tools): JPEG column empty" >&2
 
 header="| texture | size |"
 rule="|---|---|"
@@ -42,7 +43,10 @@ PY
   done
   webp=""; jpeg=""
   if have cwebp; then cwebp -quiet -q 75 "$f" -o "$tmp/x.webp" && webp="$(stat -c %s "$tmp/x.webp")"; fi
-  if have cjpeg; then cjpeg -quality 75 "$f" > "$tmp/x.jpg" 2>/dev/null && jpeg="$(stat -c %s "$tmp/x.jpg")"; fi
+  # cjpeg 2.1 does not read PNG: go through PPM (grey images through PGM).
+  if have cjpeg && have oiiotool; then
+    oiiotool "$f" -o "$tmp/x.ppm" && cjpeg -quality 75 "$tmp/x.ppm" > "$tmp/x.jpg" && jpeg="$(stat -c %s "$tmp/x.jpg")"
+  fi
   row+=" $webp | $jpeg | $(stat -c %s "$f") |"
   echo "$row"
 done

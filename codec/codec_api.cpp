@@ -57,6 +57,7 @@ EncodeResult encode_once(const vqtex_encode_params& p, const Image& example, int
         lv.histogram = r.analysis.model.levels[l].histogram;
         lv.causal = r.analysis.codebooks[l];
         lv.closing = r.analysis.closing_codebooks[l];
+        lv.closing_shape = r.analysis.model.levels[l].closing_shape;
         model.levels.push_back(lv);
     }
     EncodeSettings s;
@@ -164,7 +165,7 @@ vqtex_status vqtex_encode_params_preset(vqtex_encode_params* p, int quality) {
     p->model.closing_divisor = 4;
     p->smoothing = quality < 30 ? 3u : quality < 70 ? 2u : 1u;
     p->precision = quality < 30 ? 3u : quality < 60 ? 4u : quality < 90 ? 5u : 6u;
-    p->pixel_precision = quality < 20 ? 6u : quality < 50 ? 7u : 8u;
+    p->pixel_precision = quality < 20 ? 5u : quality < 40 ? 6u : quality < 60 ? 7u : 8u;
     return VQTEX_OK;
 }
 

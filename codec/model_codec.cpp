@@ -11,7 +11,9 @@
 //     taps next to the centre), so each is coded as its difference from the
 //     leaf codeword at that tap; entry 0's key usually is the codeword's.
 //   - Entry pixels are predicted from their own key (or the codeword) with
-//     the median edge detector of LOCO-I: left, above and upper-left.
+//     the median edge detector of LOCO-I: left, above and upper-left; the
+//     entries of a keyless leaf are stored in ascending order, and each
+//     after the first is predicted by the previous one.
 #include "model_codec.hpp"
 
 #include <algorithm>
@@ -170,7 +172,11 @@ TreeSections encode_tree(const Codebook& b, const NeighborhoodLayout& layout, co
                 std::memcpy(source.data(), dequantised.data() + leaf * dim, dim);
                 for (std::size_t kpos = 0; kpos < key_len; ++kpos)
                     source[key_offsets[kpos]] = dequantise(quantise(b.entry(leaf, e)[ch + kpos], p), p);
-                const uint8_t predicted = quantise(taps.predict(source.data(), int(c)), pp);
+                // Keyless entries are stored sorted (see tsvq_train.cpp), so
+                // each is best predicted by the one before it.
+                const uint8_t predicted = (key_len == 0 && e > 0)
+                                              ? quantise(b.entry(leaf, e - 1)[c], pp)
+                                              : quantise(taps.predict(source.data(), int(c)), pp);
                 const uint8_t actual = quantise(b.entry(leaf, e)[c], pp);
                 pixels.push_back(uint8_t((actual - predicted) & pixel_mask));
             }
@@ -276,7 +282,9 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
                 uint8_t* entry = entries.data() + (entry_start[leaf] + e) * entry_size;
                 std::memcpy(source.data(), codewords.data() + leaf * dim, dim);
                 for (std::size_t kpos = 0; kpos < key_len; ++kpos) source[key_offsets[kpos]] = entry[ch + kpos];
-                const uint8_t predicted = quantise(taps.predict(source.data(), int(c)), pixel_precision);
+                const uint8_t predicted = (key_len == 0 && e > 0)
+                                              ? quantise(entry[c - entry_size], pixel_precision)
+                                              : quantise(taps.predict(source.data(), int(c)), pixel_precision);
                 entry[c] = dequantise(uint8_t((predicted + entry_bytes[pos++]) & pixel_mask), pixel_precision);
             }
         }
@@ -331,13 +339,17 @@ std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings&
         lw.u8(uint8_t(s.precision));
         lw.u8(uint8_t(s.pixel_precision));
         lw.u8(lv.closing ? 1 : 0);
+        if (lv.closing) {
+            lw.u8(uint8_t(lv.closing_shape.rows));
+            lw.u8(uint8_t(lv.closing_shape.cols));
+        }
         writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
         const bool needs_histogram = s.init == LevelInit::Noise || l == levels - 1;
         if (needs_histogram) writer.add(kTagHistogram, uint8_t(l), 0, encode_histogram(lv.histogram));
         for (int kind = 0; kind < 2; ++kind) {
             const Codebook* book = kind == 0 ? lv.causal.get() : lv.closing.get();
             if (!book) continue;
-            Shape shape = lv.shape;
+            Shape shape = kind == 0 ? lv.shape : lv.closing_shape;
             shape.causal = kind == 0;
             const NeighborhoodLayout layout(shape, model.channels, l, levels);
             TreeSections t = encode_tree(*book, layout, s);
@@ -392,6 +404,15 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
         shape.levels = lr.u8("window levels");
         const int precision = lr.u8("precision"), pixel_precision = lr.u8("pixel precision");
         const int has_closing = lr.u8("closing flag");
+        Shape closing_shape = shape;
+        closing_shape.causal = false;
+        if (has_closing == 1) {
+            closing_shape.rows = lr.u8("closing window rows");
+            closing_shape.cols = lr.u8("closing window columns");
+            if (closing_shape.rows % 2 == 0 || closing_shape.cols % 2 == 0 || closing_shape.rows > 63 ||
+                closing_shape.cols > 63 || closing_shape.rows < 3 || closing_shape.cols < 3)
+                fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has an invalid closing window");
+        }
         lr.expect_end();
         if (shape.rows % 2 == 0 || shape.cols % 2 == 0 || shape.rows > 63 || shape.cols > 63 ||
             shape.levels < 1 || shape.levels > levels - l || shape_taps(shape).empty())
@@ -430,7 +451,7 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
             tm.histogram = h;
         }
         for (int kind = 0; kind < 1 + has_closing; ++kind) {
-            Shape s = shape;
+            Shape s = kind == 0 ? shape : closing_shape;
             s.causal = kind == 0;
             const NeighborhoodLayout layout(s, ch, l, levels);
             const std::string where = std::string(kind ? "closing" : "causal") + " tree of level " + std::to_string(l);
@@ -445,6 +466,7 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
                 tm.matcher = matcher;
             } else {
                 lv.closing = book;
+                lv.closing_shape = s;
                 tm.closing = matcher;
                 tm.closing_shape = s;
             }

@@ -36,6 +36,7 @@ struct CodecModel {
         LevelHistogram histogram;  // empty when the file does not need it
         std::shared_ptr<const Codebook> causal;
         std::shared_ptr<const Codebook> closing;  // may be null
+        Shape closing_shape;                      // symmetric; meaningful with `closing`
     };
     std::vector<Level> levels;  // [0] = finest
 };

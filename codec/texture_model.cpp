@@ -62,7 +62,7 @@ struct BuiltMatcher {
 
 BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout& layout,
                            const vqtex_model_params& params, vqtex_search search, uint32_t backtrack,
-                           int threads, int level, uint32_t leaf_divisor) {
+                           int threads, int level, bool closing) {
     BuiltMatcher built;
     if (search == VQTEX_SEARCH_EXHAUSTIVE) {
         built.bytes = set.vectors.size() + set.pixels.size();
@@ -77,13 +77,18 @@ BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout& layout,
     const std::vector<uint32_t> subset =
         choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level));
     TrainParams tp;
-    tp.max_leaves = std::max<uint32_t>(1, codewords_for_level(params, level, subset.size()) /
-                                              std::max<uint32_t>(1, leaf_divisor));
+    const uint32_t divisor = closing ? std::max<uint32_t>(1, params.closing_divisor) : 1;
+    tp.max_leaves = std::max<uint32_t>(1, codewords_for_level(params, level, subset.size()) / divisor);
     tp.distortion_threshold = params.distortion_threshold;
     tp.representative = params.leaf == VQTEX_LEAF_CENTROID ? LeafRepresentative::Centroid
                                                            : LeafRepresentative::Medoid;
     tp.threads = threads;
+    // Seam-closing trees keep at most 4 entries: one entry per leaf (the
+    // single best match) makes the band visibly smoother than the texture
+    // around it; a few keep its grain (measured with the seam rank of
+    // tests/test_codec.cpp on the corpus).
     tp.entries_per_leaf = params.entries_per_leaf ? params.entries_per_leaf : 1;
+    if (closing) tp.entries_per_leaf = std::min<uint32_t>(tp.entries_per_leaf, 4);
     if (!params.no_entry_keys) tp.key_offsets = layout.entry_key_offsets();
     built.codebook = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
     built.bytes = built.codebook->memory_bytes();
@@ -128,19 +133,23 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
         lm.shape = layout.shape();
         lm.histogram = histogram_of(pyramid[std::size_t(l)]);
         BuiltMatcher causal = build_matcher(set, layout, params, search, backtrack,
-                                            threads, l, 1);
+                                            threads, l, false);
         lm.matcher = causal.matcher;
         result.codebooks[std::size_t(l)] = causal.codebook;
         result.model_bytes += causal.bytes;
         if (params.seam_closing) {
             Shape closing_shape = layout.shape();
+            if (params.closing_window) {
+                closing_shape.rows = std::min<int>(closing_shape.rows, int(params.closing_window));
+                closing_shape.cols = std::min<int>(closing_shape.cols, int(params.closing_window));
+            }
             closing_shape.causal = false;
             const NeighborhoodLayout closing_layout(closing_shape, example.channels, l, plan.levels);
             ExampleSet closing_set = collect_examples(closing_layout, pyramid, tileable);
             // A level too small for the symmetric window simply keeps its seam.
             if (closing_set.count() > 0) {
                 BuiltMatcher closing = build_matcher(closing_set, closing_layout, params,
-                                                     search, backtrack, threads, l, params.closing_divisor);
+                                                     search, backtrack, threads, l, true);
                 lm.closing_shape = closing_shape;
                 lm.closing = closing.matcher;
                 result.closing_codebooks[std::size_t(l)] = closing.codebook;

@@ -229,6 +229,21 @@ public:
             const std::size_t extra = std::min<std::size_t>(others.size(), p_.entries_per_leaf - 1);
             for (std::size_t i = 0; i < extra; ++i) add_entry(others[i], ex_.pixel(others[i]));
         }
+        if (book.key_length() == 0 && entries.size() > entry_size) {
+            // Keyless entries are interchangeable (the salt picks one at
+            // random), so keep them sorted: the file codes each as a small
+            // difference from the previous one.
+            std::vector<std::vector<uint8_t>> sorted;
+            for (std::size_t i = 0; i < entries.size(); i += entry_size)
+                sorted.emplace_back(entries.begin() + std::ptrdiff_t(i), entries.begin() + std::ptrdiff_t(i + entry_size));
+            std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
+                int sa = 0, sb = 0;
+                for (std::size_t k = 0; k < a.size(); ++k) sa += a[k], sb += b[k];
+                return sa != sb ? sa < sb : a < b;
+            });
+            entries.clear();
+            for (const auto& e : sorted) entries.insert(entries.end(), e.begin(), e.end());
+        }
         const uint8_t* cw = p_.representative == LeafRepresentative::Medoid ? ex_.vector(representative)
                                                                             : c.centroid.data();
         book.set_leaf(node, cw, uint32_t(c.members.size()), representative, entries.data(),

@@ -65,15 +65,21 @@ TEST(Codec, EncodingIsDeterministicForAnyThreadCount) {
 }
 
 TEST(Codec, DecodedTextureTilesSeamlessly) {
-    const auto& bytes = cellular_file();
+    // At the default quality.
+    vqtex_encode_params p = fast_encode_params();
+    vqtex_encode_params_preset(&p, VQTEX_QUALITY_DEFAULT);
+    const auto bytes = encode(load_corpus("cellular_128.png"), p);
     double rank_y = 0, rank_x = 0;
     for (uint64_t seed = 1; seed <= 6; ++seed) {
         const auto s = seam_stats(decode(bytes, decode_params(128, 112, seed)));
         rank_x += s.rank_x / 6;
         rank_y += s.rank_y / 6;
     }
+    // A seam ranks at the top; a band smoothed flat by seam closing at the
+    // bottom. Both are visible; a seamless texture is in between.
     EXPECT_LT(rank_x, 0.8);
     EXPECT_LT(rank_y, 0.8);
+    EXPECT_GT(rank_y, 0.15);
 }
 
 TEST(Codec, HigherQualityMeansMoreBytesAndMoreCodewords) {
@@ -194,7 +200,7 @@ TEST(Codec, GoldenFileDecodesToKnownPixels) {
     ASSERT_FALSE(bytes.empty()) << "missing tests/golden/cellular_v1.vqt";
     const vqtex::Image img = decode(bytes, decode_params(96, 80, 5));
     const uint64_t hash = fnv1a(img.pixels.data(), img.pixels.size());
-    EXPECT_EQ(hash, 0xb96dcf5006b465fcull) << std::hex << "decoded hash 0x" << hash;
+    EXPECT_EQ(hash, 0x4942dee7f2f05514ull) << std::hex << "decoded hash 0x" << hash;
 }
 
 TEST(Codec, EntriesAllowedButEveryLeafHasOneStillRoundTrips) {

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
     std::string input, output, codewords, shapes;
     int quality = VQTEX_QUALITY_DEFAULT;
     uint32_t precision = 0, pixel_precision = 0, entries = 0, levels = 0, backtrack = 0, threads = 0;
-    uint32_t smoothing = 0, closing_divisor = 0;
+    uint32_t smoothing = 0, closing_divisor = 0, closing_window = 0;
     bool no_entry_keys = false;
     uint64_t target_size = 0, seed = 1;
     bool json = false, quiet = false, no_closing = false, tileable = false;
@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
     app.add_flag("--no-entry-keys", no_entry_keys, "entries without keys, chosen at random (smaller)");
     app.add_option("--closing-divisor", closing_divisor, "seam-closing trees get 1/N of the leaves")
         ->check(CLI::Range(1, 1024));
+    app.add_option("--closing-window", closing_window, "seam-closing window size (odd, 3 to 63)")
+        ->check(CLI::Range(3, 63));
     app.add_option("--levels", levels, "pyramid levels (default: automatic)");
     app.add_option("--shapes", shapes, "neighbourhood per level, finest first, RxC:k");
     app.add_option("-L,--backtrack", backtrack, "TSVQ leaves the decoder visits per pixel (1 to 255)")
@@ -67,6 +69,10 @@ int main(int argc, char** argv) {
         if (smoothing) p.smoothing = smoothing;
         if (no_entry_keys) p.model.no_entry_keys = 1;
         if (closing_divisor) p.model.closing_divisor = closing_divisor;
+        if (closing_window) {
+            if (closing_window % 2 == 0) throw std::invalid_argument("--closing-window must be odd");
+            p.model.closing_window = closing_window;
+        }
         if (backtrack) p.backtrack = backtrack;
         if (no_closing) p.model.seam_closing = 0;
         p.model.example_tileable = tileable ? 1 : 0;

@@ -133,6 +133,7 @@ typedef struct vqtex_model_params {
     uint32_t no_entry_keys;                   /* 1: entries carry no key and are chosen at random
                                                  (smaller file); 0: chosen by their adjacent pixels */
     uint32_t closing_divisor;                 /* seam-closing trees get 1/this of the leaves (0 = 1) */
+    uint32_t closing_window;                  /* seam-closing window size, odd (0 = the causal window's) */
     uint32_t seam_closing;                    /* 1: also build symmetric matchers that re-match
                                                  the rows around the top/bottom wrap (default) [--no-seam-closing] */
 } vqtex_model_params;
