@@ -3,6 +3,7 @@
 #include "neighborhood.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 #include "dsp/dsp.hpp"
@@ -77,6 +78,27 @@ NeighborhoodLayout::NeighborhoodLayout(const Shape& shape, int channels, int lev
     taps_ = shape_taps(shape_);
     dimension_ = taps_.size() * std::size_t(channels);
     stride_ = dsp::padded_length(dimension_);
+    for (const Tap& t : taps_)
+        reach_[t.depth] = std::max({reach_[t.depth], int(std::abs(t.dx)), int(std::abs(t.dy))});
+}
+
+void NeighborhoodLayout::gather(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const {
+    for (int d = 0; d < shape_.levels; ++d) {
+        const Image& img = pyramid[std::size_t(level_ + d)];
+        const int px = x >> d, py = y >> d, r = reach_[d];
+        if (px < r || py < r || px + r >= img.width || py + r >= img.height) {
+            gather_wrapped(pyramid, x, y, out);
+            return;
+        }
+    }
+    uint8_t* o = out;
+    const std::size_t ch = std::size_t(channels_);
+    for (const Tap& t : taps_) {
+        const Image& img = pyramid[std::size_t(level_ + t.depth)];
+        const uint8_t* p = img.at((x >> t.depth) + t.dx, (y >> t.depth) + t.dy);
+        for (std::size_t c = 0; c < ch; ++c) *o++ = p[c];
+    }
+    std::memset(o, 0, stride_ - dimension_);
 }
 
 std::vector<uint16_t> NeighborhoodLayout::entry_key_offsets() const {

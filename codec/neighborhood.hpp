@@ -98,6 +98,9 @@ public:
     // Gather the neighbourhood of (x, y) at this level from `pyramid`
     // (toroidal), into `out` (stride() bytes, padding zeroed).
     void gather_wrapped(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const;
+    // The same bytes as gather_wrapped, without per-tap wrapping when the
+    // whole window lies inside every level (most pixels).
+    void gather(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const;
     // True when every tap of (x, y) lies inside its level (no wrap needed).
     bool fits_inside(const std::vector<Image>& pyramid, int x, int y) const;
     void gather_inside(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const;
@@ -109,6 +112,7 @@ private:
     std::size_t dimension_;
     std::size_t stride_;
     std::vector<Tap> taps_;
+    int reach_[kMaxLevels] = {};  // largest |dx| or |dy| of the taps at each depth
 };
 
 // The training set / exhaustive candidates of one example level: every

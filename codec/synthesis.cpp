@@ -75,7 +75,7 @@ void run_row(const LevelRun& r, int y, bool parallel, std::vector<uint8_t>& quer
                      *r.stop);
         if (r.stop->load(std::memory_order_relaxed)) return;
         const int x = start + i < w ? start + i : start + i - w;
-        r.layout->gather_wrapped(*r.pyramid, x, y, query.data());
+        r.layout->gather(*r.pyramid, x, y, query.data());
         const MatchContext context{pixel_salt(r.seed, r.level, 0, x, y), r.tolerance};
         const uint8_t* pixel = r.matcher->match(query.data(), context, scratch);
         std::copy(pixel, pixel + out.channels, out.at(x, y));
@@ -106,7 +106,7 @@ void close_seam(const LevelModel& lm, std::vector<Image>& pyramid, int level, in
         for (int k = 0; k < 2 * band; ++k) {
             const int y = Image::wrap(img.height - band + k, img.height);
             for (int x = 0; x < img.width; ++x) {
-                layout.gather_wrapped(pyramid, x, y, query.data());
+                layout.gather(pyramid, x, y, query.data());
                 const MatchContext context{pixel_salt(options.seed, level, 1 + sweep, x, y),
                                            options.tolerance};
                 const uint8_t* pixel = lm.closing->match(query.data(), context, scratch.get());
