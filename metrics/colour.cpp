@@ -8,7 +8,7 @@ namespace vqtex_metrics {
 namespace {
 
 constexpr int kMaxColourSamples = 65536;
-constexpr int kRandomDirections = 13;
+constexpr int kRandomDirections = 7;
 
 // sRGB transfer function (IEC 61966-2-1), 8-bit code -> linear [0,1].
 const std::array<double, 256>& linear_table() {

@@ -1,8 +1,10 @@
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <unordered_set>
 
 #include "internal.hpp"
 
@@ -56,14 +58,23 @@ Rgb8 to_rgb8(const Image& img, const char* what) {
 }
 
 std::vector<int> sample_indices(int total, int count, SplitMix64& rng) {
-  std::vector<int> idx(static_cast<size_t>(std::max(total, 0)));
-  for (int i = 0; i < total; ++i) idx[static_cast<size_t>(i)] = i;
-  if (total <= count) return idx;
-  for (int i = 0; i < count; ++i) {
-    const int j = i + static_cast<int>(rng.below(static_cast<uint64_t>(total - i)));
-    std::swap(idx[static_cast<size_t>(i)], idx[static_cast<size_t>(j)]);
+  std::vector<int> idx;
+  if (total <= count) {
+    idx.resize(static_cast<size_t>(std::max(total, 0)));
+    for (int i = 0; i < total; ++i) idx[static_cast<size_t>(i)] = i;
+    return idx;
   }
-  idx.resize(static_cast<size_t>(count));
+  // Floyd's algorithm: `count` distinct values in O(count) memory, whatever
+  // the size of the range.
+  std::unordered_set<int> chosen;
+  chosen.reserve(static_cast<size_t>(count) * 2);
+  idx.reserve(static_cast<size_t>(count));
+  for (int j = total - count; j < total; ++j) {
+    const int t = static_cast<int>(rng.below(static_cast<uint64_t>(j) + 1));
+    const int pick = chosen.insert(t).second ? t : j;
+    if (pick == j) chosen.insert(j);
+    idx.push_back(pick);
+  }
   std::sort(idx.begin(), idx.end());
   return idx;
 }
@@ -82,9 +93,37 @@ inline double quantile_at(const std::vector<float>& s, long long i, long long n)
 }
 }  // namespace
 
+void sort_floats(std::vector<float>& v) {
+  // LSD radix sort, 4 passes of 8 bits, on keys that order like the floats
+  // (negative: all bits flipped; positive: sign bit set). NaN-free input.
+  const size_t n = v.size();
+  if (n < 64) {
+    std::sort(v.begin(), v.end());
+    return;
+  }
+  std::vector<uint32_t> keys(n), tmp(n);
+  for (size_t i = 0; i < n; ++i) {
+    uint32_t u;
+    std::memcpy(&u, &v[i], sizeof u);
+    keys[i] = (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+  }
+  for (int shift = 0; shift < 32; shift += 8) {
+    size_t count[257] = {};
+    for (uint32_t k : keys) ++count[((k >> shift) & 0xFFu) + 1];
+    for (int d = 0; d < 256; ++d) count[d + 1] += count[d];
+    for (uint32_t k : keys) tmp[count[(k >> shift) & 0xFFu]++] = k;
+    keys.swap(tmp);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t k = keys[i];
+    const uint32_t u = (k & 0x80000000u) ? (k & 0x7FFFFFFFu) : ~k;
+    std::memcpy(&v[i], &u, sizeof u);
+  }
+}
+
 double sorted_quantile_sq_diff(std::vector<float>& a, std::vector<float>& b, long long* n_out) {
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
+  sort_floats(a);
+  sort_floats(b);
   const long long n = static_cast<long long>(std::max(a.size(), b.size()));
   *n_out = n;
   if (a.empty() || b.empty()) {

@@ -21,11 +21,9 @@ class SplitMix64 {
   }
   // Uniform in [0, 1) with 53 random bits.
   double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-  // Uniform integer in [0, n) (multiply-shift; bias below 2^-32 for the
-  // sizes used here).
-  uint64_t below(uint64_t n) {
-    return static_cast<uint64_t>((static_cast<unsigned __int128>(next()) * n) >> 64);
-  }
+  // Uniform integer in [0, n) for n < 2^32 (multiply-shift of the top 32
+  // bits; bias below n / 2^32, negligible for the sizes used here).
+  uint64_t below(uint64_t n) { return ((next() >> 32) * (n & 0xFFFFFFFFu)) >> 32; }
   // Standard normal deviate (Box-Muller, one of the pair).
   double gaussian();
 
@@ -47,8 +45,11 @@ struct Rgb8 {
 Rgb8 to_rgb8(const Image& img, const char* what);
 
 // `count` distinct indices from [0, total), ascending; all of them when
-// total <= count. Seeded partial Fisher-Yates.
+// total <= count. Seeded (Floyd's algorithm, O(count) memory).
 std::vector<int> sample_indices(int total, int count, SplitMix64& rng);
+
+// Ascending sort of NaN-free floats (radix sort; same order as std::sort).
+void sort_floats(std::vector<float>& v);
 
 // Sorts a and b, resamples both to n = max(|a|, |b|) points at quantiles
 // (i+0.5)/n (linear interpolation; exact when the size is already n) and
@@ -56,15 +57,22 @@ std::vector<int> sample_indices(int total, int count, SplitMix64& rng);
 double sorted_quantile_sq_diff(std::vector<float>& a, std::vector<float>& b, long long* n_out);
 
 // Exact nearest-neighbour search among all patch x patch windows of an
-// image (RGB, SSD distance). Each window gets 16 coordinates in a fixed
-// orthonormal basis (colour-opponent x separable DCT, low frequencies), which
-// give an exact lower bound of the SSD; windows are sorted by the first
-// coordinate (luminance DC) and scanned outwards from the query's value,
-// stopping when that coordinate alone exceeds the best SSD, skipping windows
-// whose 16-coordinate bound exceeds it, and aborting SSDs row by row.
+// image (RGB, SSD distance). Each window is stored as a contiguous byte
+// vector plus 17 numbers: 16 coordinates in a fixed orthonormal basis
+// (colour-opponent x separable DCT, low frequencies) and the norm of the
+// remainder outside that basis. Together they give an exact lower bound of
+// the SSD (|f_q - f_x|^2 + (|r_q| - |r_x|)^2). The windows are split into
+// k-d leaves of 64 in that 17-D space; a query visits the leaf whose
+// bounding box is closest first, then every leaf whose box bound does not
+// exceed the best SSD so far, computing the window bounds 8 at a time and
+// the full SSD only where the bound allows a better match. The result is
+// the exact nearest window.
 class PatchIndex {
  public:
-  static constexpr int kFeatures = 16;
+  static constexpr int kFeatures = 16;            // basis coordinates
+  static constexpr int kRows = kFeatures + 1;     // + remainder norm
+  static constexpr int kBlock = 8;                // windows per block
+  static constexpr int kLeaf = 64;                // windows per k-d leaf
   static constexpr int kMaxWindows = 262144;
 
   PatchIndex(const Rgb8& img, int patch);
@@ -76,22 +84,27 @@ class PatchIndex {
     long long ssd = -1;
   };
   // Nearest window to the query window at (qx, qy) of `query`. `hint` (may be
-  // out of range, then ignored) is tried first and kept on ties.
+  // out of range, then ignored) is tried first and kept on ties; other ties
+  // are broken deterministically.
   Match nearest(const Rgb8& query, int qx, int qy, int hint_x = -1, int hint_y = -1) const;
 
   int patch() const { return p_; }
-  int dims() const { return p_ * p_ * 3; }
-  const Rgb8& image() const { return img_; }
+  int dims() const { return dims_; }
+  int windows() const { return n_; }
 
  private:
-  void features(const Rgb8& im, int x, int y, float* out) const;
-  long long ssd(const uint8_t* q, int x, int y, long long bound) const;
+  void describe(const Rgb8& im, int x, int y, uint8_t* vec, float* feat) const;
+  long long ssd(const uint8_t* a, const uint8_t* b) const;
 
-  const Rgb8& img_;
-  int p_;
-  std::vector<double> basis_;  // kFeatures x dims
-  std::vector<float> feat_;    // windows x kFeatures, sorted by feature 0
-  std::vector<int> pos_;       // packed y*w + x, same order
+  const Rgb8* img_;  // not owned: must outlive the index
+  int p_ = 0, dims_ = 0, padded_ = 0, n_ = 0, w_ = 0, nblocks_ = 0;
+  std::vector<double> basis_;    // dims x kFeatures
+  // Windows in k-d leaf order, each leaf padded to whole blocks of 8.
+  std::vector<uint8_t> vecs_;    // slots x padded (zero padding)
+  std::vector<float> blocks_;    // blocks x kRows x 8 (padding: +inf)
+  std::vector<int> pos_;         // per slot: packed y*w + x (padding: -1)
+  std::vector<int> leaf_first_;  // first block of each leaf, plus the end
+  std::vector<float> leaf_lo_, leaf_hi_;  // leaves x kRows bounding boxes
 };
 
 // Shared by the public functions and score_all (which reuses indexes).

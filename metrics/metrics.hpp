@@ -39,11 +39,14 @@ inline constexpr uint64_t kDefaultSeed = 0x5eedC0de2024ULL;
 // Each image is converted to RGB floats (0..255) and reduced into a Gaussian
 // pyramid (separable binomial [1 4 6 4 1]/16, mirrored borders, keep every
 // second pixel), `levels` levels including the full-resolution one; a level
-// is only used while both images are at least `patch` pixels on each side.
+// is only used while both images are at least `patch` pixels on each side
+// (throws std::invalid_argument if the full-resolution images are not).
 // At each level, all patch x patch windows that fit inside the image are
-// taken, or a seeded random subset of 4096 of them without replacement when
-// there are more. The mean of each channel over the patch is subtracted
-// (so a global colour shift barely matters while blur and noise do). The
+// taken, or a seeded random subset of `max_patches` of them without
+// replacement when there are more (the same positions for two images of the
+// same size, so identical images give exactly 0). The mean of each channel
+// over the patch is subtracted (so a global colour shift barely matters
+// while blur and noise do). The
 // patch vectors (patch*patch*3 values) are projected onto `projections`
 // random unit directions (the same for both images), each set of projections
 // is sorted, and when the two sets have different sizes both are resampled by
@@ -53,12 +56,17 @@ inline constexpr uint64_t kDefaultSeed = 0x5eedC0de2024ULL;
 //
 // Units: grey levels (roughly a per-pixel RMS difference of the two patch
 // distributions). Range [0, ~255). LOWER IS BETTER; 0 for identical images.
+// Sampling floor: two different images with the same patch statistics (a
+// toroidal shift, a second sample of a stationary texture) still differ by
+// the estimator noise of max_patches samples, roughly 2*sigma/sqrt(n) for
+// projections of spread sigma (about 1 grey level for n = 4096 and a
+// contrasty texture); it halves when max_patches is multiplied by 4.
 struct SwdResult {
   std::vector<double> per_level;  // finest level first
   double mean = 0.0;              // mean of per_level
 };
 SwdResult sliced_wasserstein(const Image& a, const Image& b, int levels = 4, int patch = 7,
-                             int projections = 64, uint64_t seed = kDefaultSeed);
+                             int projections = 64, uint64_t seed = kDefaultSeed, int max_patches = 4096);
 
 // ---------------------------------------------------------------------------
 // 2. Colour statistics in CIE L*a*b* (sRGB input, D65 white).
@@ -68,12 +76,13 @@ SwdResult sliced_wasserstein(const Image& a, const Image& b, int levels = 4, int
 //    two images (CIE76 Delta E of the means). LOWER IS BETTER, 0 = same mean.
 //  distribution: sliced 2-Wasserstein distance between the two sets of Lab
 //    pixels: the pixels (all, or a seeded random 65536 without replacement
-//    if there are more) are projected onto the L, a and b axes and 13 seeded
-//    random unit directions of Lab space; each projection set is sorted,
-//    resampled by quantiles to a common length, and the result is
-//    sqrt(mean squared difference) over all 16 directions. It includes the
-//    mean difference and also sees contrast and palette differences.
-//    Units Delta E; LOWER IS BETTER, 0 for identical colour histograms.
+//    if there are more; the same positions for two images of equal size)
+//    are projected onto the L, a and b axes and 7 seeded random unit
+//    directions of Lab space; each projection set is sorted, resampled by
+//    quantiles to a common length, and the result is sqrt(mean squared
+//    difference) over all 10 directions. It includes the mean difference and
+//    also sees contrast and palette differences. Units Delta E; LOWER IS
+//    BETTER, 0 for identical colour histograms.
 struct ColourDistance {
   double mean_delta_e = 0.0;
   double distribution = 0.0;
@@ -90,9 +99,12 @@ void srgb_to_lab(uint8_t r, uint8_t g, uint8_t b, double lab[3]);
 // values, in grey levels. Query patches: every window that fits, or a seeded
 // random subset of `max_queries` without replacement. Candidate patches:
 // every window of the other image that fits (stride 1; when there are more
-// than 262144 windows the stride grows so that at most that many are used).
-// The nearest neighbour is found exactly (brute force, pruned by exact lower
-// bounds).
+// than 262144 windows, e.g. a candidate image above about 512x512, the
+// stride grows until at most that many are used). The nearest neighbour is
+// exact: a k-d partition on 17 lower-bound coordinates prunes candidates
+// without ever discarding the true nearest one (see internal.hpp). Cost is
+// about 0.1-1 ms per query for a 256x256 candidate image, more for
+// noise-like textures, whose nearest neighbours are far away.
 //
 // coherence(output, exemplar): mean distance from output patches to their
 //   nearest exemplar patch. "Is everything in the output something the
@@ -104,9 +116,9 @@ void srgb_to_lab(uint8_t r, uint8_t g, uint8_t b, double lab[3]);
 //   found in the output?" LOWER IS BETTER. Range [0, 255]. Penalises blur,
 //   missing features and lost variety.
 double coherence(const Image& output, const Image& exemplar, int patch = 7,
-                 int max_queries = 1024, uint64_t seed = kDefaultSeed);
+                 int max_queries = 256, uint64_t seed = kDefaultSeed);
 double completeness(const Image& reference, const Image& output, int patch = 7,
-                    int max_queries = 1024, uint64_t seed = kDefaultSeed);
+                    int max_queries = 256, uint64_t seed = kDefaultSeed);
 
 // ---------------------------------------------------------------------------
 // 4. Verbatim copying and variety.
@@ -115,8 +127,9 @@ double completeness(const Image& reference, const Image& output, int patch = 7,
 // a grid with spacing `step` (origin 0,0). When the grid has more than
 // `max_queries` points, a seeded random set of max_queries/3 anchor points is
 // used instead, each with its right and lower grid neighbour. Each sampled
-// patch gets its exact nearest exemplar patch (all exemplar windows, stride
-// 1; ties keep the candidate predicted from the left/upper neighbour).
+// patch gets its exact nearest exemplar patch (candidates as for coherence;
+// the left/upper neighbour's match moved by one step is tried first and
+// kept on ties).
 //   exact_share: share of sampled output patches whose nearest exemplar patch
 //     is at RMS < 0.5 grey levels (a verbatim copy). Range [0,1].
 //   neighbour_coherence: over pairs of horizontally/vertically adjacent grid
@@ -136,7 +149,7 @@ struct CopyStats {
   int pairs = 0;    // adjacent pairs examined
 };
 CopyStats copy_stats(const Image& output, const Image& exemplar, int patch = 7, int step = 8,
-                     int max_queries = 1024, uint64_t seed = kDefaultSeed);
+                     int max_queries = 384, uint64_t seed = kDefaultSeed);
 
 // variety(a, b): mean absolute difference of the RGB values of two images of
 // the same size (e.g. two decodes with different seeds), divided by 255.
@@ -148,12 +161,14 @@ double variety(const Image& a, const Image& b);
 // ---------------------------------------------------------------------------
 // 5. Tileability and straight discontinuities.
 //
-// seam_ratio(image): mean absolute RGB difference across the wrap-around
-// seams (last column vs first column, last row vs first row) divided by the
-// mean absolute RGB difference between all adjacent column pairs and row
-// pairs inside the image (both directions pooled). 1.0 = seamless; larger =
-// visible seam. LOWER IS BETTER (ideal about 1; values below 1 are noise).
-// Flat image: 1. Needs width and height >= 2.
+// seam_ratio(image): S / I, where S = mean of (mean |last column - first
+// column|, mean |last row - first row|) over RGB, and I = mean of (mean
+// |column x - column x+1| over the w-1 inner column pairs, mean |row y - row
+// y+1| over the h-1 inner row pairs). Each direction weighs one half, so an
+// anisotropic seamless texture also gives about 1. 1.0 = seamless; larger =
+// visible seam. LOWER IS BETTER (ideal about 1; values below 1 mean the wrap
+// is smoother than the average inner step). Flat image: 1 (+infinity if
+// only the seams differ). Needs width and height >= 2.
 double seam_ratio(const Image& image);
 
 // straight_seam_score(image): detector of straight horizontal or vertical

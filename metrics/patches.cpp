@@ -1,6 +1,7 @@
 // Nearest-neighbour patch metrics: coherence, completeness, copy_stats.
 #include <algorithm>
 #include <climits>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -29,10 +30,12 @@ void require_fits(const Rgb8& im, int p, const char* what) {
 
 }  // namespace
 
-PatchIndex::PatchIndex(const Rgb8& img, int patch) : img_(img), p_(patch) {
-  if (patch < 1) throw std::invalid_argument("vqtex_metrics: patch must be >= 1");
+PatchIndex::PatchIndex(const Rgb8& img, int patch) : img_(&img), p_(patch) {
+  if (patch < 1 || patch > 64) throw std::invalid_argument("vqtex_metrics: patch must be in 1..64");
   require_fits(img, patch, "image");
-  const int dims = p_ * p_ * 3;
+  dims_ = p_ * p_ * 3;
+  padded_ = (dims_ + 15) / 16 * 16;
+  w_ = img.w;
 
   // Orthonormal colour-opponent transform (rows) x 1-D orthonormal DCT-II.
   const double inv3 = 1.0 / std::sqrt(3.0), inv2 = 1.0 / std::sqrt(2.0), inv6 = 1.0 / std::sqrt(6.0);
@@ -41,16 +44,15 @@ PatchIndex::PatchIndex(const Rgb8& img, int patch) : img_(img), p_(patch) {
     const double alpha = u == 0 ? std::sqrt(1.0 / p_) : std::sqrt(2.0 / p_);
     return alpha * std::cos(std::numbers::pi * (2.0 * x + 1.0) * u / (2.0 * p_));
   };
-  // Feature 0 is the luminance DC (the sort key). Frequencies that do not
-  // exist for tiny patches leave a zero basis vector, which only weakens the
-  // bound.
+  // Frequencies that do not exist for tiny patches leave a zero basis
+  // vector, which only weakens the bound.
   struct Term {
     int colour, u, v;
   };
   static constexpr Term kTerms[kFeatures] = {
       {0, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 1, 1}, {0, 0, 2},
       {1, 1, 0}, {1, 0, 1}, {2, 1, 0}, {2, 0, 1}, {0, 3, 0}, {0, 2, 1}, {0, 1, 2}, {0, 0, 3}};
-  basis_.assign(static_cast<size_t>(dims) * kFeatures, 0.0);  // dims x features
+  basis_.assign(static_cast<size_t>(dims_) * kFeatures, 0.0);
   for (int k = 0; k < kFeatures; ++k) {
     const Term t = kTerms[k];
     if (t.u >= p_ || t.v >= p_) continue;
@@ -68,134 +70,200 @@ PatchIndex::PatchIndex(const Rgb8& img, int patch) : img_(img), p_(patch) {
     return static_cast<long long>((nx0 + s - 1) / s) * static_cast<long long>((ny0 + s - 1) / s);
   };
   while (count(stride) > kMaxWindows) ++stride;
-  const int n = static_cast<int>(count(stride));
+  n_ = static_cast<int>(count(stride));
 
-  std::vector<float> feat(static_cast<size_t>(n) * kFeatures);
-  std::vector<int> pos(static_cast<size_t>(n));
-  int i = 0;
-  for (int y = 0; y < ny0; y += stride)
-    for (int x = 0; x < nx0; x += stride, ++i) {
-      features(img, x, y, &feat[static_cast<size_t>(i) * kFeatures]);
-      pos[static_cast<size_t>(i)] = y * img.w + x;
-    }
-
-  std::vector<int> order(static_cast<size_t>(n));
-  for (int j = 0; j < n; ++j) order[static_cast<size_t>(j)] = j;
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const float fa = feat[static_cast<size_t>(a) * kFeatures], fb = feat[static_cast<size_t>(b) * kFeatures];
-    return fa < fb || (fa == fb && a < b);
-  });
-  feat_.resize(feat.size());
-  pos_.resize(pos.size());
-  for (int j = 0; j < n; ++j) {
-    const int src = order[static_cast<size_t>(j)];
-    std::copy_n(&feat[static_cast<size_t>(src) * kFeatures], kFeatures, &feat_[static_cast<size_t>(j) * kFeatures]);
-    pos_[static_cast<size_t>(j)] = pos[static_cast<size_t>(src)];
+  std::vector<uint8_t> vecs(static_cast<size_t>(n_) * padded_);
+  std::vector<float> feats(static_cast<size_t>(n_) * kRows);
+  std::vector<int> pos(static_cast<size_t>(n_));
+  {
+    int i = 0;
+    for (int y = 0; y < ny0; y += stride)
+      for (int x = 0; x < nx0; x += stride, ++i) {
+        describe(img, x, y, &vecs[static_cast<size_t>(i) * padded_], &feats[static_cast<size_t>(i) * kRows]);
+        pos[static_cast<size_t>(i)] = y * w_ + x;
+      }
   }
+
+  // k-d partition of the windows in feature space: split at a multiple of
+  // kLeaf near the median of the widest coordinate until leaves hold at
+  // most kLeaf windows.
+  std::vector<int> order(static_cast<size_t>(n_));
+  for (int i = 0; i < n_; ++i) order[static_cast<size_t>(i)] = i;
+  std::vector<std::pair<int, int>> leaves;
+  std::vector<std::pair<int, int>> todo = {{0, n_}};
+  while (!todo.empty()) {
+    const auto [lo, hi] = todo.back();
+    todo.pop_back();
+    if (hi - lo <= kLeaf) {
+      leaves.emplace_back(lo, hi);
+      continue;
+    }
+    float mn[kRows], mx[kRows];
+    std::fill_n(mn, kRows, std::numeric_limits<float>::infinity());
+    std::fill_n(mx, kRows, -std::numeric_limits<float>::infinity());
+    for (int i = lo; i < hi; ++i) {
+      const float* f = &feats[static_cast<size_t>(order[static_cast<size_t>(i)]) * kRows];
+      for (int r = 0; r < kRows; ++r) {
+        mn[r] = std::min(mn[r], f[r]);
+        mx[r] = std::max(mx[r], f[r]);
+      }
+    }
+    int dim = 0;
+    for (int r = 1; r < kRows; ++r)
+      if (mx[r] - mn[r] > mx[dim] - mn[dim]) dim = r;
+    int mid = lo + ((hi - lo) / 2 + kLeaf / 2) / kLeaf * kLeaf;
+    mid = std::clamp(mid, lo + kLeaf, hi - 1);
+    std::nth_element(order.begin() + lo, order.begin() + mid, order.begin() + hi, [&](int a, int b) {
+      const float fa = feats[static_cast<size_t>(a) * kRows + dim], fb = feats[static_cast<size_t>(b) * kRows + dim];
+      return fa < fb || (fa == fb && a < b);
+    });
+    // Keep leaves in a stable left-to-right order.
+    todo.emplace_back(mid, hi);
+    todo.emplace_back(lo, mid);
+  }
+
+  // Lay the windows out leaf by leaf, each leaf padded to whole blocks.
+  nblocks_ = 0;
+  for (const auto& [lo, hi] : leaves) nblocks_ += (hi - lo + kBlock - 1) / kBlock;
+  vecs_.assign(static_cast<size_t>(nblocks_) * kBlock * padded_, 0);
+  blocks_.assign(static_cast<size_t>(nblocks_) * kRows * kBlock, std::numeric_limits<float>::infinity());
+  pos_.assign(static_cast<size_t>(nblocks_) * kBlock, -1);
+  leaf_first_.clear();
+  leaf_lo_.assign(leaves.size() * kRows, 0.f);
+  leaf_hi_.assign(leaves.size() * kRows, 0.f);
+  int slot = 0;
+  for (size_t l = 0; l < leaves.size(); ++l) {
+    const auto [lo, hi] = leaves[l];
+    leaf_first_.push_back(slot / kBlock);
+    for (int r = 0; r < kRows; ++r) {
+      leaf_lo_[l * kRows + r] = std::numeric_limits<float>::infinity();
+      leaf_hi_[l * kRows + r] = -std::numeric_limits<float>::infinity();
+    }
+    for (int i = lo; i < hi; ++i, ++slot) {
+      const int src = order[static_cast<size_t>(i)];
+      std::copy_n(&vecs[static_cast<size_t>(src) * padded_], padded_, &vecs_[static_cast<size_t>(slot) * padded_]);
+      pos_[static_cast<size_t>(slot)] = pos[static_cast<size_t>(src)];
+      float* blk = &blocks_[static_cast<size_t>(slot / kBlock) * kRows * kBlock];
+      for (int r = 0; r < kRows; ++r) {
+        const float v = feats[static_cast<size_t>(src) * kRows + r];
+        blk[r * kBlock + slot % kBlock] = v;
+        leaf_lo_[l * kRows + r] = std::min(leaf_lo_[l * kRows + r], v);
+        leaf_hi_[l * kRows + r] = std::max(leaf_hi_[l * kRows + r], v);
+      }
+    }
+    slot = (slot + kBlock - 1) / kBlock * kBlock;
+  }
+  leaf_first_.push_back(nblocks_);
 }
 
 // Not inlined so that queries and windows go through identical code: the
-// same bytes always give bit-identical coordinates.
-__attribute__((noinline)) void PatchIndex::features(const Rgb8& im, int x0, int y0, float* out) const {
-  double acc[kFeatures] = {};
+// same bytes always give bit-identical numbers.
+__attribute__((noinline)) void PatchIndex::describe(const Rgb8& im, int x0, int y0, uint8_t* vec,
+                                                    float* feat) const {
   const int row_len = 3 * p_;
-  for (int y = 0; y < p_; ++y) {
-    const uint8_t* row = &im.v[(static_cast<size_t>(y0 + y) * im.w + x0) * 3];
-    const double* b = &basis_[static_cast<size_t>(y * row_len) * kFeatures];
-    for (int j = 0; j < row_len; ++j) {
-      const double v = row[j];
-      const double* bj = b + static_cast<size_t>(j) * kFeatures;
-      for (int k = 0; k < kFeatures; ++k) acc[k] += v * bj[k];
-    }
+  for (int y = 0; y < p_; ++y)
+    std::copy_n(&im.v[(static_cast<size_t>(y0 + y) * im.w + x0) * 3], row_len, vec + y * row_len);
+  std::fill(vec + dims_, vec + padded_, uint8_t{0});
+  double acc[kFeatures] = {};
+  long long energy = 0;
+  for (int j = 0; j < dims_; ++j) {
+    const int v = vec[j];
+    energy += v * v;
+    const double dv = v;
+    const double* b = &basis_[static_cast<size_t>(j) * kFeatures];
+    for (int k = 0; k < kFeatures; ++k) acc[k] += dv * b[k];
   }
-  for (int k = 0; k < kFeatures; ++k) out[k] = static_cast<float>(acc[k]);
+  double inside = 0.0;
+  for (int k = 0; k < kFeatures; ++k) {
+    feat[k] = static_cast<float>(acc[k]);
+    inside += acc[k] * acc[k];
+  }
+  feat[kFeatures] = static_cast<float>(std::sqrt(std::max(0.0, static_cast<double>(energy) - inside)));
 }
 
-long long PatchIndex::ssd(const uint8_t* q, int x0, int y0, long long bound) const {
-  const int row_len = 3 * p_;
-  long long total = 0;
-  for (int y = 0; y < p_; ++y) {
-    const uint8_t* row = &img_.v[(static_cast<size_t>(y0 + y) * img_.w + x0) * 3];
-    const uint8_t* qr = q + y * row_len;
-    int s = 0;
-    for (int j = 0; j < row_len; ++j) {
-      const int d = static_cast<int>(qr[j]) - static_cast<int>(row[j]);
-      s += d * d;
-    }
-    total += s;
-    if (total >= bound) return total;
+long long PatchIndex::ssd(const uint8_t* a, const uint8_t* b) const {
+  int s = 0;  // at most 64*64*3*255^2 < 2^31
+  for (int j = 0; j < padded_; ++j) {
+    const int d = static_cast<int>(a[j]) - static_cast<int>(b[j]);
+    s += d * d;
   }
-  return total;
+  return s;
 }
 
 PatchIndex::Match PatchIndex::nearest(const Rgb8& query, int qx, int qy, int hint_x, int hint_y) const {
-  const int row_len = 3 * p_;
-  uint8_t qbuf[3 * 64 * 64];
-  std::vector<uint8_t> big;
-  uint8_t* q = qbuf;
-  if (p_ > 64) {
-    big.resize(static_cast<size_t>(row_len) * p_);
-    q = big.data();
-  }
-  for (int y = 0; y < p_; ++y)
-    std::copy_n(&query.v[(static_cast<size_t>(qy + y) * query.w + qx) * 3], row_len, q + y * row_len);
-  float qf[kFeatures];
-  features(query, qx, qy, qf);
+  std::vector<uint8_t> q(static_cast<size_t>(padded_) * 2);
+  uint8_t* qv = q.data();
+  uint8_t* hv = q.data() + padded_;
+  float qf[kRows];
+  describe(query, qx, qy, qv, qf);
 
   Match best;
   long long best_ssd = LLONG_MAX;
-  if (hint_x >= 0 && hint_y >= 0 && hint_x <= img_.w - p_ && hint_y <= img_.h - p_) {
-    best_ssd = ssd(q, hint_x, hint_y, LLONG_MAX);
+  if (hint_x >= 0 && hint_y >= 0 && hint_x <= img_->w - p_ && hint_y <= img_->h - p_) {
+    // Any window of the image may be a hint, on the stored grid or not.
+    const int row_len = 3 * p_;
+    for (int y = 0; y < p_; ++y)
+      std::copy_n(&img_->v[(static_cast<size_t>(hint_y + y) * img_->w + hint_x) * 3], row_len, hv + y * row_len);
+    std::fill(hv + dims_, hv + padded_, uint8_t{0});
+    best_ssd = ssd(qv, hv);
     best.x = hint_x;
     best.y = hint_y;
   }
 
-  const int n = static_cast<int>(pos_.size());
-  // First window whose key is >= the query's.
-  int lo = 0, hi = n;
-  while (lo < hi) {
-    const int mid = (lo + hi) / 2;
-    if (feat_[static_cast<size_t>(mid) * kFeatures] < qf[0]) lo = mid + 1;
-    else hi = mid;
+  // Leaves in order of their box bound, skipping those that cannot hold a
+  // better window. The closest leaf goes first, then the others in layout
+  // order (neighbouring leaves are close in feature space).
+  const int nleaves = static_cast<int>(leaf_first_.size()) - 1;
+  std::vector<float> leaf_lb(static_cast<size_t>(nleaves));
+  int first_leaf = 0;
+  for (int l = 0; l < nleaves; ++l) {
+    const float* lo = &leaf_lo_[static_cast<size_t>(l) * kRows];
+    const float* hi = &leaf_hi_[static_cast<size_t>(l) * kRows];
+    float sum = 0.f;
+    for (int r = 0; r < kRows; ++r) {
+      const float d = std::max({lo[r] - qf[r], qf[r] - hi[r], 0.f});
+      sum += d * d;
+    }
+    leaf_lb[static_cast<size_t>(l)] = sum;
+    if (sum < leaf_lb[static_cast<size_t>(first_leaf)]) first_leaf = l;
   }
-  int right = lo, left = lo - 1;
+
+  using v4 = float __attribute__((vector_size(16)));
+  static_assert(kBlock == 8);
+  v4 qb[kRows];
+  for (int r = 0; r < kRows; ++r) qb[r] = v4{qf[r], qf[r], qf[r], qf[r]};
   double limit = prune_limit(best_ssd);
-  const double inf = std::numeric_limits<double>::infinity();
-  while (right < n || left >= 0) {
-    const double dr = right < n ? static_cast<double>(feat_[static_cast<size_t>(right) * kFeatures]) - qf[0] : inf;
-    const double dl = left >= 0 ? qf[0] - static_cast<double>(feat_[static_cast<size_t>(left) * kFeatures]) : inf;
-    int i;
-    double d;
-    if (dr <= dl) {
-      i = right++;
-      d = dr;
-    } else {
-      i = left--;
-      d = dl;
+  auto visit = [&](int leaf) {
+    for (int b = leaf_first_[static_cast<size_t>(leaf)]; b < leaf_first_[static_cast<size_t>(leaf) + 1]; ++b) {
+      const float* blk = &blocks_[static_cast<size_t>(b) * kRows * kBlock];
+      v4 a0 = {0, 0, 0, 0}, a1 = {0, 0, 0, 0};
+      for (int r = 0; r < kRows; ++r) {
+        v4 x0, x1;
+        std::memcpy(&x0, blk + r * kBlock, sizeof x0);
+        std::memcpy(&x1, blk + r * kBlock + 4, sizeof x1);
+        const v4 d0 = x0 - qb[r], d1 = x1 - qb[r];
+        a0 += d0 * d0;
+        a1 += d1 * d1;
+      }
+      float lb[kBlock];
+      std::memcpy(lb, &a0, sizeof a0);
+      std::memcpy(lb + 4, &a1, sizeof a1);
+      for (int lane = 0; lane < kBlock; ++lane) {
+        if (static_cast<double>(lb[lane]) > limit) continue;  // also padding (infinite)
+        const size_t slot = static_cast<size_t>(b) * kBlock + static_cast<size_t>(lane);
+        const long long s = ssd(qv, &vecs_[slot * padded_]);
+        if (s < best_ssd) {
+          best_ssd = s;
+          best.x = pos_[slot] % w_;
+          best.y = pos_[slot] / w_;
+          limit = prune_limit(best_ssd);
+        }
+      }
     }
-    // Keys are sorted and we always take the closer side: once the closer
-    // key alone exceeds the limit, every remaining window does too.
-    if (d * d > limit) break;
-    const float* f = &feat_[static_cast<size_t>(i) * kFeatures];
-    float s0 = 0.f, s1 = 0.f, s2 = 0.f, s3 = 0.f;
-    for (int k = 0; k < kFeatures; k += 4) {
-      const float e0 = f[k] - qf[k], e1 = f[k + 1] - qf[k + 1], e2 = f[k + 2] - qf[k + 2], e3 = f[k + 3] - qf[k + 3];
-      s0 += e0 * e0;
-      s1 += e1 * e1;
-      s2 += e2 * e2;
-      s3 += e3 * e3;
-    }
-    if (static_cast<double>((s0 + s1) + (s2 + s3)) > limit) continue;
-    const int pidx = pos_[static_cast<size_t>(i)];
-    const int x = pidx % img_.w, y = pidx / img_.w;
-    const long long s = ssd(q, x, y, best_ssd);
-    if (s < best_ssd) {
-      best_ssd = s;
-      best.x = x;
-      best.y = y;
-      limit = prune_limit(best_ssd);
-    }
-  }
+  };
+  visit(first_leaf);
+  for (int l = 0; l < nleaves; ++l)
+    if (l != first_leaf && static_cast<double>(leaf_lb[static_cast<size_t>(l)]) <= limit) visit(l);
   best.ssd = best_ssd;
   return best;
 }

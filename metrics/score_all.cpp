@@ -20,12 +20,12 @@ Scores score_all(const Image& output, const Image& reference_heldout, const Imag
   {
     // One exemplar index serves coherence and copy_stats.
     const detail::PatchIndex ex_index(ex, 7);
-    s.coherence = detail::mean_nn_rms(out, ex_index, 1024, detail::derive_seed(seed, kTagCoherence));
-    s.copy = detail::copy_stats_indexed(out, ex_index, 8, 1024, detail::derive_seed(seed, kTagCopy));
+    s.coherence = detail::mean_nn_rms(out, ex_index, 256, detail::derive_seed(seed, kTagCoherence));
+    s.copy = detail::copy_stats_indexed(out, ex_index, 8, 384, detail::derive_seed(seed, kTagCopy));
   }
   {
     const detail::PatchIndex out_index(out, 7);
-    s.completeness = detail::mean_nn_rms(ref, out_index, 1024, detail::derive_seed(seed, kTagCompleteness));
+    s.completeness = detail::mean_nn_rms(ref, out_index, 256, detail::derive_seed(seed, kTagCompleteness));
   }
   s.seam_ratio = seam_ratio(output);
   s.straight_seam = straight_seam_score(output, true);
@@ -41,10 +41,10 @@ Scores floor_scores(const Image& reference_heldout, const Image& exemplar, uint6
   const detail::Rgb8 ex = detail::to_rgb8(exemplar, "exemplar");
   {
     const detail::PatchIndex ex_index(ex, 7);
-    s.completeness = detail::mean_nn_rms(ref, ex_index, 1024, detail::derive_seed(seed, kTagCompleteness));
+    s.completeness = detail::mean_nn_rms(ref, ex_index, 256, detail::derive_seed(seed, kTagCompleteness));
     // Output := reference for the metrics against the exemplar.
-    s.coherence = detail::mean_nn_rms(ref, ex_index, 1024, detail::derive_seed(seed, kTagCoherence));
-    s.copy = detail::copy_stats_indexed(ref, ex_index, 8, 1024, detail::derive_seed(seed, kTagCopy));
+    s.coherence = detail::mean_nn_rms(ref, ex_index, 256, detail::derive_seed(seed, kTagCoherence));
+    s.copy = detail::copy_stats_indexed(ref, ex_index, 8, 384, detail::derive_seed(seed, kTagCopy));
   }
   s.seam_ratio = 1.0;
   s.straight_seam = straight_seam_score(exemplar, false);

@@ -92,14 +92,13 @@ double variety(const Image& a, const Image& b) {
 double seam_ratio(const Image& image) {
   const detail::Rgb8 im = detail::to_rgb8(image, "image");
   if (im.w < 2 || im.h < 2) throw std::invalid_argument("vqtex_metrics: seam_ratio needs at least 2x2 pixels");
-  // Seams: (last column, first column) and (last row, first row), pooled
-  // per sample (h*3 + w*3 differences).
-  const double seam_sum = column_step(im, im.w - 1, 0) * 3.0 * im.h + row_step(im, im.h - 1, 0) * 3.0 * im.w;
-  const double seam = seam_sum / (3.0 * (im.w + im.h));
-  double inner_sum = 0.0;
-  for (int x = 0; x + 1 < im.w; ++x) inner_sum += column_step(im, x, x + 1) * 3.0 * im.h;
-  for (int y = 0; y + 1 < im.h; ++y) inner_sum += row_step(im, y, y + 1) * 3.0 * im.w;
-  const double inner = inner_sum / (3.0 * ((im.w - 1.0) * im.h + (im.h - 1.0) * im.w));
+  // Each direction weighs one half, whatever the aspect ratio, so that a
+  // seamless but anisotropic texture (e.g. vertical planks) gives 1.
+  const double seam = 0.5 * (column_step(im, im.w - 1, 0) + row_step(im, im.h - 1, 0));
+  double cols = 0.0, rows = 0.0;
+  for (int x = 0; x + 1 < im.w; ++x) cols += column_step(im, x, x + 1);
+  for (int y = 0; y + 1 < im.h; ++y) rows += row_step(im, y, y + 1);
+  const double inner = 0.5 * (cols / (im.w - 1) + rows / (im.h - 1));
   if (inner <= 0.0) return seam <= 0.0 ? 1.0 : std::numeric_limits<double>::infinity();
   return seam / inner;
 }

@@ -1,6 +1,7 @@
 // Sliced Wasserstein distance between mean-removed patch distributions.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "internal.hpp"
@@ -10,8 +11,6 @@ namespace {
 
 using detail::Rgb8;
 using detail::SplitMix64;
-
-constexpr int kMaxPatchesPerLevel = 4096;
 
 struct FloatRgb {
   int w = 0, h = 0;
@@ -62,10 +61,10 @@ FloatRgb reduce(const FloatRgb& in) {
 }
 
 // Mean-removed patch vectors (n x dims) at seeded positions.
-std::vector<float> patch_vectors(const FloatRgb& im, int p, uint64_t seed, int* n_out) {
+std::vector<float> patch_vectors(const FloatRgb& im, int p, int max_patches, uint64_t seed, int* n_out) {
   const int nx = im.w - p + 1, ny = im.h - p + 1;
   SplitMix64 rng(seed);
-  const std::vector<int> idx = detail::sample_indices(nx * ny, kMaxPatchesPerLevel, rng);
+  const std::vector<int> idx = detail::sample_indices(nx * ny, max_patches, rng);
   const int dims = p * p * 3;
   std::vector<float> out(idx.size() * static_cast<size_t>(dims));
   for (size_t i = 0; i < idx.size(); ++i) {
@@ -88,34 +87,53 @@ std::vector<float> patch_vectors(const FloatRgb& im, int p, uint64_t seed, int* 
 }
 
 // proj[d * n + i] = <patch i, direction d>. dirs_t is dims x ndirs (the
-// transposed direction matrix) so that the inner loop runs over independent
-// accumulators and vectorises without reassociating sums.
+// transposed direction matrix); directions are processed 16 at a time in
+// four 4-float registers (GCC vector extension), the rest one by one.
 std::vector<float> project(const std::vector<float>& vecs, int n, const std::vector<float>& dirs_t,
                            int ndirs, int dims) {
+  using v4 = float __attribute__((vector_size(16)));
   std::vector<float> proj(static_cast<size_t>(ndirs) * static_cast<size_t>(n));
-  std::vector<float> acc(static_cast<size_t>(ndirs));
-  for (int i = 0; i < n; ++i) {
-    const float* v = &vecs[static_cast<size_t>(i) * dims];
-    std::fill(acc.begin(), acc.end(), 0.f);
-    for (int j = 0; j < dims; ++j) {
-      const float vj = v[j];
-      const float* u = &dirs_t[static_cast<size_t>(j) * ndirs];
-      for (int d = 0; d < ndirs; ++d) acc[static_cast<size_t>(d)] += vj * u[d];
+  int d0 = 0;
+  for (; d0 + 16 <= ndirs; d0 += 16) {
+    for (int i = 0; i < n; ++i) {
+      const float* v = &vecs[static_cast<size_t>(i) * dims];
+      v4 acc[4] = {};
+      for (int j = 0; j < dims; ++j) {
+        const float* u = &dirs_t[static_cast<size_t>(j) * ndirs + d0];
+        const v4 vj = {v[j], v[j], v[j], v[j]};
+        for (int k = 0; k < 4; ++k) {
+          v4 uk;
+          std::memcpy(&uk, u + 4 * k, sizeof uk);
+          acc[k] += vj * uk;
+        }
+      }
+      float out[16];
+      std::memcpy(out, acc, sizeof out);
+      for (int k = 0; k < 16; ++k) proj[static_cast<size_t>(d0 + k) * n + i] = out[k];
     }
-    for (int d = 0; d < ndirs; ++d) proj[static_cast<size_t>(d) * n + i] = acc[static_cast<size_t>(d)];
   }
+  for (; d0 < ndirs; ++d0)
+    for (int i = 0; i < n; ++i) {
+      const float* v = &vecs[static_cast<size_t>(i) * dims];
+      float s = 0.f;
+      for (int j = 0; j < dims; ++j) s += v[j] * dirs_t[static_cast<size_t>(j) * ndirs + d0];
+      proj[static_cast<size_t>(d0) * n + i] = s;
+    }
   return proj;
 }
 
 }  // namespace
 
 SwdResult sliced_wasserstein(const Image& a, const Image& b, int levels, int patch, int projections,
-                             uint64_t seed) {
+                             uint64_t seed, int max_patches) {
+  if (max_patches < 1) throw std::invalid_argument("vqtex_metrics: max_patches must be >= 1");
   if (levels < 1) throw std::invalid_argument("vqtex_metrics: levels must be >= 1");
   if (patch < 1) throw std::invalid_argument("vqtex_metrics: patch must be >= 1");
   if (projections < 1) throw std::invalid_argument("vqtex_metrics: projections must be >= 1");
   FloatRgb fa = to_float(detail::to_rgb8(a, "first image"));
   FloatRgb fb = to_float(detail::to_rgb8(b, "second image"));
+  if (std::min({fa.w, fa.h, fb.w, fb.h}) < patch)
+    throw std::invalid_argument("vqtex_metrics: image smaller than the SWD patch size");
   const int dims = patch * patch * 3;
   SwdResult res;
   for (int level = 0; level < levels; ++level) {
@@ -145,8 +163,8 @@ SwdResult sliced_wasserstein(const Image& a, const Image& b, int levels, int pat
     // The same position seed for both images: identical images give 0.
     const uint64_t pseed = detail::derive_seed(seed, 2000 + static_cast<uint64_t>(level));
     int na = 0, nb = 0;
-    const std::vector<float> va = patch_vectors(fa, patch, pseed, &na);
-    const std::vector<float> vb = patch_vectors(fb, patch, pseed, &nb);
+    const std::vector<float> va = patch_vectors(fa, patch, max_patches, pseed, &na);
+    const std::vector<float> vb = patch_vectors(fb, patch, max_patches, pseed, &nb);
     const std::vector<float> pa = project(va, na, dirs_t, projections, dims);
     const std::vector<float> pb = project(vb, nb, dirs_t, projections, dims);
 
