@@ -16,9 +16,13 @@
 // of many example pixels: the synthesised texture loses contrast and fine
 // detail (the blur the paper warns about, section 4). The medoid is a real
 // example neighbourhood with its real centre pixel, so outputs keep the
-// example's sharpness and colours; measured on the shared corpus (see
-// bench/), medoid leaves give a texture whose patch statistics are closer to
-// the example. Medoid is the default.
+// example's sharpness and colours. Measured on 10 shared-corpus textures
+// (128x128 exemplar crops, outputs scored against held-out crops, see
+// docs/RATE.md): with 1/8 of the vectors as leaves, medoids give a sliced
+// Wasserstein distance of 12.9 against 16.5 for centroids and a mean
+// gradient of 11.1 against 5.2 (held-out: 15.4); with 3%, 14.1 against 15.6
+// and 9.6 against 4.8. (With one leaf per vector the two are the same.)
+// Medoid is the default.
 #include "tsvq_train.hpp"
 
 #include <algorithm>

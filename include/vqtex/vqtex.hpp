@@ -69,4 +69,52 @@ inline Image synthesize(const vqtex_synth_params& params, const vqtex_image& exa
     return out;
 }
 
+// Owns a buffer the library allocated (an encoded file).
+class Buffer {
+public:
+    Buffer() = default;
+    Buffer(uint8_t* data, size_t size) : data_(data), size_(size) {}
+    Buffer(const Buffer&) = delete;
+    Buffer& operator=(const Buffer&) = delete;
+    Buffer(Buffer&& o) noexcept : data_(std::exchange(o.data_, nullptr)), size_(std::exchange(o.size_, 0)) {}
+    Buffer& operator=(Buffer&& o) noexcept {
+        if (this != &o) {
+            vqtex_free(data_);
+            data_ = std::exchange(o.data_, nullptr);
+            size_ = std::exchange(o.size_, 0);
+        }
+        return *this;
+    }
+    ~Buffer() { vqtex_free(data_); }
+    const uint8_t* data() const { return data_; }
+    size_t size() const { return size_; }
+
+private:
+    uint8_t* data_ = nullptr;
+    size_t size_ = 0;
+};
+
+inline Buffer encode(const vqtex_encode_params& params, const vqtex_image& example,
+                     vqtex_encode_stats* stats = nullptr) {
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    check(vqtex_encode(&params, &example, &data, &size, stats, &err), err);
+    return Buffer(data, size);
+}
+
+inline Image decode(const vqtex_decode_params& params, const uint8_t* data, size_t size) {
+    Image out;
+    vqtex_error err{};
+    check(vqtex_decode(&params, data, size, out.out(), &err), err);
+    return out;
+}
+
+inline vqtex_file_info inspect(const uint8_t* data, size_t size, uint64_t memory_limit = 0) {
+    vqtex_file_info info{};
+    vqtex_error err{};
+    check(vqtex_inspect(data, size, memory_limit, &info, &err), err);
+    return info;
+}
+
 }  // namespace vqtex_cpp
