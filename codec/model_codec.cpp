@@ -203,7 +203,8 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
     // What the rebuilt tree will hold, checked before anything is allocated.
     {
         const std::size_t entry_size = std::size_t(layout.channels()) + (has_keys ? layout.entry_key_offsets().size() : 0);
-        const uint64_t tree_bytes = uint64_t(nodes) * (layout.stride() + 64) + k * max_entries * entry_size;
+        // Codewords, plus the planes the search precomputes (2 bytes a sample).
+        const uint64_t tree_bytes = uint64_t(nodes) * (3 * layout.stride() + 64) + k * max_entries * entry_size;
         if (tree_bytes > memory_limit)
             fail(VQTEX_ERROR_LIMIT_EXCEEDED, where + " would need " + std::to_string(tree_bytes) +
                                                  " bytes, above the memory limit of " + std::to_string(memory_limit));

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "matcher.hpp"
 #include "tsvq_tree.hpp"
@@ -34,8 +35,16 @@ public:
     static constexpr std::size_t kMaxEntries = 64;
 
 private:
+    // Single-leaf descent: at each internal node, the side of the plane
+    // between its two children. Exactly the same choice as comparing the two
+    // distances (ties to the first child), for the cost of one dot product.
+    std::size_t descend(const uint8_t* query) const;
+
     std::shared_ptr<const Codebook> book_;
     uint32_t backtrack_;
+    std::vector<int32_t> plane_of_node_;  // index into the planes, internal nodes only
+    std::vector<int16_t> plane_normals_;  // per plane: first child - second child (stride values)
+    std::vector<int64_t> plane_offsets_;  // per plane: |first|^2 - |second|^2
 };
 
 }  // namespace vqtex

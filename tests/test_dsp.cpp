@@ -72,3 +72,24 @@ TEST(Dsp, NearestRespectsTheBound) {
     uint32_t bound = 0;  // nothing can beat distance 0 strictly
     EXPECT_EQ(dsp::kernels().nearest(query.data(), rows.data(), 32, 32, 10, &bound), UINT32_MAX);
 }
+
+TEST(Dsp, EveryKernelSetAgreesWithScalarOnDot) {
+    for (std::size_t n : {16u, 32u, 48u, 208u, 320u}) {
+        for (uint64_t seed = 0; seed < 10; ++seed) {
+            const auto a = random_bytes(n, seed);
+            const auto wb = random_bytes(n, seed + 100);
+            std::vector<int16_t> w(n);
+            for (std::size_t i = 0; i < n; ++i) w[i] = int16_t(int(wb[i]) - int(a[(i * 7) % n]));
+            const int32_t ref = dsp::scalar_kernels().dot(a.data(), w.data(), n);
+            for (int k = 0; k < dsp::available_kernel_count(); ++k)
+                EXPECT_EQ(dsp::available_kernels(k).dot(a.data(), w.data(), n), ref) << dsp::available_kernels(k).name;
+        }
+    }
+    // Extremes: 255 * 255 per sample, both signs.
+    std::vector<uint8_t> full(320, 255);
+    std::vector<int16_t> plus(320, 255), minus(320, -255);
+    for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+        EXPECT_EQ(dsp::available_kernels(k).dot(full.data(), plus.data(), 320), 320 * 255 * 255);
+        EXPECT_EQ(dsp::available_kernels(k).dot(full.data(), minus.data(), 320), -320 * 255 * 255);
+    }
+}

@@ -234,3 +234,25 @@ TEST(Tsvq, EntriesKeepRareContinuationsAlive) {
                                      many.pixels[i * 3 + 2]));
     EXPECT_GT(in_example, 0u);
 }
+
+TEST(Tsvq, PlaneDescentEqualsDistanceDescent) {
+    // Visiting one leaf uses the plane between two children; it must take
+    // exactly the branch the two distances would (ties to the first child).
+    const Fixture f = level0_examples("cellular_128.png", 4);
+    TrainParams p;
+    p.max_leaves = 500;
+    auto book = std::make_shared<const Codebook>(train_codebook(f.set, all_indices(f.set), p));
+    const TsvqMatcher matcher(book, 1);
+    const dsp::Kernels& k = dsp::kernels();
+    for (std::size_t i = 0; i < f.set.count(); i += 5) {
+        const uint8_t* q = f.set.vector(i);
+        std::size_t node = 0;
+        while (book->node(node).first_child >= 0) {
+            const std::size_t a = std::size_t(book->node(node).first_child);
+            node = k.ssd(q, book->codeword(a), book->stride()) <= k.ssd(q, book->codeword(a + 1), book->stride())
+                       ? a
+                       : a + 1;
+        }
+        EXPECT_EQ(matcher.search(q, 1, nullptr), std::size_t(book->node(node).leaf));
+    }
+}

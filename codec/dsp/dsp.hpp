@@ -32,6 +32,11 @@ struct Kernels {
     // UINT32_MAX when no row beats the bound.
     uint32_t (*nearest)(const uint8_t* query, const uint8_t* rows, std::size_t stride,
                         std::size_t n, std::size_t count, uint32_t* best_distance);
+    // Dot product of bytes with signed 16-bit weights (n a multiple of
+    // kVectorAlign, |w| <= 255 so the sum fits easily in 32 bits). The TSVQ
+    // descent uses it to compare a query with two children at once:
+    // |q-a|^2 <= |q-b|^2  <=>  2 q.(a-b) >= |a|^2 - |b|^2.
+    int32_t (*dot)(const uint8_t* a, const int16_t* w, std::size_t n);
 };
 
 // The kernels chosen for this CPU, once. The environment variable

@@ -60,7 +60,17 @@ uint32_t nearest_avx2(const uint8_t* query, const uint8_t* rows, std::size_t str
     return best_index;
 }
 
-const Kernels kAvx2 = {"avx2", ssd_avx2, nearest_avx2};
+int32_t dot_avx2(const uint8_t* a, const int16_t* w, std::size_t n) {
+    __m256i acc = _mm256_setzero_si256();
+    for (std::size_t i = 0; i < n; i += 16) {
+        const __m256i va = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(a + i)));
+        const __m256i vw = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + i));
+        acc = _mm256_add_epi32(acc, _mm256_madd_epi16(va, vw));
+    }
+    return int32_t(hsum(acc));
+}
+
+const Kernels kAvx2 = {"avx2", ssd_avx2, nearest_avx2, dot_avx2};
 
 }  // namespace
 

@@ -65,7 +65,23 @@ uint32_t nearest_avx512(const uint8_t* query, const uint8_t* rows, std::size_t s
     return best_index;
 }
 
-const Kernels kAvx512 = {"avx512", ssd_avx512, nearest_avx512};
+int32_t dot_avx512(const uint8_t* a, const int16_t* w, std::size_t n) {
+    __m512i acc = _mm512_setzero_si512();
+    std::size_t i = 0;
+    for (; i + 32 <= n; i += 32) {
+        const __m512i va = _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(a + i)));
+        const __m512i vw = _mm512_loadu_si512(reinterpret_cast<const void*>(w + i));
+        acc = _mm512_add_epi32(acc, _mm512_madd_epi16(va, vw));
+    }
+    if (i < n) {
+        const __m256i va = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(a + i)));
+        const __m256i vw = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + i));
+        acc = _mm512_add_epi32(acc, _mm512_zextsi256_si512(_mm256_madd_epi16(va, vw)));
+    }
+    return int32_t(_mm512_reduce_add_epi32(acc));
+}
+
+const Kernels kAvx512 = {"avx512", ssd_avx512, nearest_avx512, dot_avx512};
 
 }  // namespace
 

@@ -39,7 +39,13 @@ uint32_t nearest_scalar(const uint8_t* query, const uint8_t* rows, std::size_t s
     return best_index;
 }
 
-const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar};
+int32_t dot_scalar(const uint8_t* a, const int16_t* w, std::size_t n) {
+    int32_t sum = 0;
+    for (std::size_t i = 0; i < n; ++i) sum += int32_t(a[i]) * int32_t(w[i]);
+    return sum;
+}
+
+const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar, dot_scalar};
 
 }  // namespace
 

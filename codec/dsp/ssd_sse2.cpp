@@ -55,7 +55,20 @@ uint32_t nearest_sse2(const uint8_t* query, const uint8_t* rows, std::size_t str
     return best_index;
 }
 
-const Kernels kSse2 = {"sse2", ssd_sse2, nearest_sse2};
+int32_t dot_sse2(const uint8_t* a, const int16_t* w, std::size_t n) {
+    const __m128i zero = _mm_setzero_si128();
+    __m128i acc = _mm_setzero_si128();
+    for (std::size_t i = 0; i < n; i += 16) {
+        const __m128i va = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + i));
+        const __m128i w0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(w + i));
+        const __m128i w1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(w + i + 8));
+        acc = _mm_add_epi32(acc, _mm_madd_epi16(_mm_unpacklo_epi8(va, zero), w0));
+        acc = _mm_add_epi32(acc, _mm_madd_epi16(_mm_unpackhi_epi8(va, zero), w1));
+    }
+    return int32_t(hsum(acc));
+}
+
+const Kernels kSse2 = {"sse2", ssd_sse2, nearest_sse2, dot_sse2};
 
 }  // namespace
 
