@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     app.add_flag("--tsvq", tsvq, "TSVQ codebook search (default)")->excludes(ex);
     app.add_option("-k,--codewords", codewords,
                    "TSVQ leaves: K for every level, K0,K1,.. finest first, or a fraction like 0.125 (default: all)");
-    app.add_option("-L,--backtrack", backtrack, "TSVQ leaves visited per search (default 1)");
+    app.add_option("-L,--backtrack", backtrack, "TSVQ leaves visited per search (default 2)");
     app.add_option("--entries", entries, "outputs per TSVQ leaf (1 to 64): keeps rarer continuations of small codebooks")
         ->check(CLI::Range(1, 64));
     app.add_option("--train-fraction", train_fraction, "train codebooks on this fraction of the vectors")
