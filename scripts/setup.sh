@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config python3
   libopenimageio-dev   # all image reading and writing
   libzstd-dev          # entropy coding of codebooks
   libcli11-dev         # command-line parsing

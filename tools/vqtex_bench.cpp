@@ -1,20 +1,29 @@
 // vqtex-bench - rate-quality benchmark of the codec against a held-out crop
-// (docs/METRICS.md): each photograph is cut into an exemplar crop (what the
-// encoder sees) and a disjoint held-out crop of the same texture; every
-// decoded texture is scored against the held-out crop, beside the floor
-// (the exemplar itself against the held-out crop). Writes a CSV.
+// (docs/METRICS.md). Each photograph is cut into an exemplar crop (what the
+// encoders see) and a disjoint held-out crop of the same texture; every
+// output is scored against the held-out crop, beside the floor (the
+// exemplar itself against the held-out crop).
 //
-// This first version covers vqtex at several quality presets, protocol 1
-// (output as large as the exemplar); peers at equal bytes and the larger
-// output protocol come next (issue 5).
+// For each vqtex rate, every peer (JPEG, WebP, AVIF, JPEG XL) encodes the
+// same exemplar at or under the same byte budget; ASTC rows give its fixed
+// rates. Two protocols:
+//   same:  outputs as large as the exemplar (vqtex decode vs each peer's decode);
+//   large: outputs 2x2 the exemplar's area: vqtex decode, each peer's decode
+//          tiled, and the strongest simple alternative: the peer's decode
+//          synthesised to the output size by vqtex's own engine.
+// Plus the ceiling: vqtex synthesis from the exemplar itself.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "bench_peers.hpp"
 #include "cli_common.hpp"
 #include "image_io.hpp"
 #include "metrics.hpp"
@@ -22,11 +31,12 @@
 
 namespace fs = std::filesystem;
 using namespace vqtex_tools;
+using vqtex_metrics::Image;
 
 namespace {
 
-vqtex_metrics::Image crop(const LoadedImage& img, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h) {
-    vqtex_metrics::Image out{int(w), int(h), int(img.channels), {}};
+Image crop(const LoadedImage& img, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h) {
+    Image out{int(w), int(h), int(img.channels), {}};
     out.pixels.resize(std::size_t(w) * h * img.channels);
     for (uint32_t y = 0; y < h; ++y)
         std::copy_n(img.pixels.data() + ((std::size_t(y0 + y) * img.width + x0) * img.channels),
@@ -34,36 +44,107 @@ vqtex_metrics::Image crop(const LoadedImage& img, uint32_t x0, uint32_t y0, uint
     return out;
 }
 
+Image tiled(const Image& img, int w, int h) {
+    Image out{w, h, img.channels, {}};
+    out.pixels.resize(std::size_t(w) * h * img.channels);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            std::copy_n(img.pixels.data() + (std::size_t(y % img.height) * img.width + x % img.width) * img.channels,
+                        img.channels, out.pixels.data() + (std::size_t(y) * w + x) * img.channels);
+    return out;
+}
+
+Image from_c(vqtex_image& c) {
+    Image out{int(c.width), int(c.height), int(c.channels),
+              std::vector<uint8_t>(c.pixels, c.pixels + std::size_t(c.width) * c.height * c.channels)};
+    vqtex_image_free(&c);
+    return out;
+}
+
+vqtex_image view(Image& img) { return {uint32_t(img.width), uint32_t(img.height), uint32_t(img.channels), img.pixels.data()}; }
+
+// Synthesis from an image with vqtex's engine (full codebooks).
+bool synthesise(Image& example, int w, int h, uint64_t seed, Image& out) {
+    vqtex_synth_params p;
+    vqtex_synth_params_init(&p);
+    p.width = uint32_t(w);
+    p.height = uint32_t(h);
+    p.seed = seed;
+    p.threads = 1;
+    vqtex_image in = view(example), result{};
+    vqtex_error err{};
+    if (vqtex_synthesize(&p, &in, &result, nullptr, &err) != VQTEX_OK) return false;
+    out = from_c(result);
+    return true;
+}
+
+struct Row {
+    std::string texture, protocol, codec, setting;
+    int quality = -1;
+    std::size_t bytes = 0;
+    double bpp_exemplar = 0, bpp_output = 0, encode_s = 0, decode_s = 0;
+    std::string status = "ok";  // ok, missing, no-fit
+    vqtex_metrics::Scores scores{};
+};
+
+class Writer {
+public:
+    explicit Writer(FILE* f) : f_(f) {
+        if (f_)
+            std::fputs("texture,protocol,codec,quality,setting,status,bytes,bpp_exemplar,bpp_output,swd,swd_floor,"
+                       "colour_de,colour_de_floor,colour_dist,completeness,completeness_floor,coherence,"
+                       "coherence_floor,copy_exact,copy_neighbour,seam_ratio,straight_seam,encode_s,decode_s\n",
+                       f_);
+    }
+    void add(const Row& r, const vqtex_metrics::Scores& floor) {
+        rows.push_back(r);
+        if (!f_) return;
+        const auto& s = r.scores;
+        std::fprintf(f_, "%s,%s,%s,%d,%s,%s,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+                     r.texture.c_str(), r.protocol.c_str(), r.codec.c_str(), r.quality, r.setting.c_str(),
+                     r.status.c_str(), r.bytes, r.bpp_exemplar, r.bpp_output, s.swd.mean, floor.swd.mean,
+                     s.colour.mean_delta_e, floor.colour.mean_delta_e, s.colour.distribution, s.completeness,
+                     floor.completeness, s.coherence, floor.coherence, s.copy.exact_share,
+                     s.copy.neighbour_coherence, s.seam_ratio, s.straight_seam, r.encode_s, r.decode_s);
+        std::fflush(f_);
+    }
+    std::vector<Row> rows;
+
+private:
+    FILE* f_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"vqtex-bench: rate-quality of vqtex against held-out crops (docs/METRICS.md)."};
-    std::string folder = "corpus", pattern = "_256.png", csv;
-    std::vector<int> qualities{10, 30, 50, 70};
+    CLI::App app{"vqtex-bench: rate-quality of vqtex and peer codecs against held-out crops (docs/METRICS.md)."};
+    std::string folder = "corpus", pattern = ".png", csv;
+    std::vector<int> qualities{20, 50, 80};
     uint32_t limit = 0;
     uint64_t seed = 1;
-    bool quick = false;
-    app.add_option("folder", folder, "folder of textures (each split into exemplar and held-out crops)")
+    bool quick = false, no_peers = false;
+    app.add_option("folder", folder, "folder of textures (each cut into exemplar and held-out crops)")
         ->capture_default_str();
-    app.add_option("--pattern", pattern, "only files whose name contains this")->capture_default_str();
-    app.add_option("-q,--qualities", qualities, "quality presets to encode at")->capture_default_str();
-    app.add_option("--csv", csv, "write one row per texture and rate here");
+    app.add_option("--pattern", pattern, "only files whose name contains this (e.g. _256.png)")->capture_default_str();
+    app.add_option("-q,--qualities", qualities, "vqtex quality presets (the rate points)")->capture_default_str();
+    app.add_option("--csv", csv, "write every row here");
     app.add_option("--limit", limit, "at most this many textures");
-    app.add_option("--seed", seed, "decoding seed")->capture_default_str();
+    app.add_option("--seed", seed, "decoding and synthesis seed")->capture_default_str();
+    app.add_flag("--no-peers", no_peers, "vqtex only");
     app.add_flag("--quick", quick, "two textures, one rate");
     CLI11_PARSE(app, argc, argv);
     if (quick) {
         limit = 2;
         qualities = {VQTEX_QUALITY_DEFAULT};
     }
-
     std::vector<fs::path> files;
     for (const auto& e : fs::directory_iterator(folder))
-        if (e.path().filename().string().find(pattern) != std::string::npos) files.push_back(e.path());
+        if (e.path().filename().string().find(pattern) != std::string::npos && e.path().extension() == ".png")
+            files.push_back(e.path());
     std::sort(files.begin(), files.end());
     if (limit && files.size() > limit) files.resize(limit);
     if (files.empty()) {
-        std::fprintf(stderr, "vqtex-bench: error: no '%s' files in %s\n", pattern.c_str(), folder.c_str());
+        std::fprintf(stderr, "vqtex-bench: error: no '%s' PNG files in %s\n", pattern.c_str(), folder.c_str());
         return 1;
     }
     FILE* out = nullptr;
@@ -71,94 +152,148 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "vqtex-bench: error: cannot write %s\n", csv.c_str());
         return 1;
     }
-    const char* header =
-        "texture,codec,quality,bytes,bpp_exemplar,bpp_output,swd,swd_floor,colour_de,colour_de_floor,"
-        "completeness,completeness_floor,coherence,coherence_floor,copy_exact,copy_neighbour,seam_ratio,"
-        "straight_seam,encode_s,decode_s\n";
-    if (out) std::fputs(header, out);
-    std::printf("%-26s %4s %8s %7s %7s %7s %7s %7s %6s %6s\n", "texture", "q", "bytes", "bpp", "swd", "floor",
-                "compl", "floor", "copy", "seam");
+    Writer writer(out);
+    const fs::path scratch = fs::temp_directory_path() / ("vqtex_bench_" + std::to_string(::getpid()));
+    fs::create_directories(scratch);
+    if (!no_peers)
+        for (const char* tool : {"cjpeg", "cwebp", "avifenc", "cjxl", "astcenc"})
+            if (!tool_available(tool)) std::fprintf(stderr, "vqtex-bench: note: %s not found: its rows say missing (scripts/setup-bench.sh)\n", tool);
+
     for (const auto& f : files) {
         LoadedImage img = load_image(f.string());
-        const uint32_t half_w = img.width / 2, half_h = img.height / 2;
+        const uint32_t w = img.width / 2, h = img.height / 2;
         // Exemplar: top-left quarter; held-out: bottom-right quarter.
-        vqtex_metrics::Image exemplar = crop(img, 0, 0, half_w, half_h);
-        const vqtex_metrics::Image held_out = crop(img, half_w, half_h, half_w, half_h);
+        Image exemplar = crop(img, 0, 0, w, h);
+        const Image held_out = crop(img, w, h, w, h);
         const vqtex_metrics::Scores floor = vqtex_metrics::floor_scores(held_out, exemplar, seed);
-        {
-            // The ceiling of the approach: synthesis from the exemplar itself
-            // with full codebooks (what a perfect codebook coder would give).
-            vqtex_synth_params sp;
-            vqtex_synth_params_init(&sp);
-            sp.width = half_w;
-            sp.height = half_h;
-            sp.seed = seed;
-            sp.threads = 1;
-            vqtex_image ex{half_w, half_h, img.channels, exemplar.pixels.data()};
-            vqtex_image syn{};
-            vqtex_error err{};
-            if (vqtex_synthesize(&sp, &ex, &syn, nullptr, &err) == VQTEX_OK) {
-                vqtex_metrics::Image synthesised{int(syn.width), int(syn.height), int(syn.channels),
-                                                 std::vector<uint8_t>(syn.pixels, syn.pixels + std::size_t(syn.width) * syn.height * syn.channels)};
-                vqtex_image_free(&syn);
-                const vqtex_metrics::Scores s = vqtex_metrics::score_all(synthesised, held_out, exemplar, seed);
-                std::printf("%-26s %4s %8s %7s %7.2f %7.2f %7.2f %7.2f %6.2f %6.2f\n", f.filename().c_str(), "syn",
-                            "-", "-", s.swd.mean, floor.swd.mean, s.completeness, floor.completeness,
-                            s.copy.exact_share, s.seam_ratio);
-                if (out)
-                    std::fprintf(out, "%s,synth-lossless,0,0,0,0,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,0,0\n",
-                                 f.filename().c_str(), s.swd.mean, floor.swd.mean, s.colour.mean_delta_e,
-                                 floor.colour.mean_delta_e, s.completeness, floor.completeness, s.coherence,
-                                 floor.coherence, s.copy.exact_share, s.copy.neighbour_coherence, s.seam_ratio,
-                                 s.straight_seam);
+        const std::string name = f.filename().string();
+        const double ex_pixels = double(w) * h;
+        auto score = [&](Row r, const Image& output) {
+            r.texture = name;
+            r.bpp_exemplar = 8.0 * double(r.bytes) / ex_pixels;
+            r.bpp_output = 8.0 * double(r.bytes) / (double(output.width) * output.height);
+            r.scores = vqtex_metrics::score_all(output, held_out, exemplar, seed);
+            writer.add(r, floor);
+        };
+        for (const auto& [protocol, scale] : {std::pair{"same", 1}, {"large", 2}}) {
+            Image syn;
+            if (synthesise(exemplar, int(w) * scale, int(h) * scale, seed, syn)) {
+                Row r;
+                r.protocol = protocol;
+                r.codec = "ceiling:synth-from-exemplar";
+                score(r, syn);
             }
         }
-        for (int q : qualities) {
+        for (int quality : qualities) {
             vqtex_encode_params ep;
             vqtex_encode_params_init(&ep);
-            vqtex_encode_params_preset(&ep, q);
+            vqtex_encode_params_preset(&ep, quality);
             ep.threads = 1;
-            vqtex_image ex{half_w, half_h, img.channels, exemplar.pixels.data()};
+            vqtex_image ex = view(exemplar);
             uint8_t* data = nullptr;
             size_t size = 0;
             vqtex_error err{};
             const double t0 = now_seconds();
             if (vqtex_encode(&ep, &ex, &data, &size, nullptr, &err) != VQTEX_OK) {
-                std::fprintf(stderr, "vqtex-bench: %s: %s\n", f.c_str(), err.detail);
+                std::fprintf(stderr, "vqtex-bench: error: %s: %s\n", name.c_str(), err.detail);
                 return 1;
             }
-            const double t1 = now_seconds();
-            vqtex_decode_params dp;
-            vqtex_decode_params_init(&dp);
-            dp.width = half_w;
-            dp.height = half_h;
-            dp.seed = seed;
-            dp.threads = 1;
-            vqtex_image dec{};
-            const vqtex_status st = vqtex_decode(&dp, data, size, &dec, &err);
-            const double t2 = now_seconds();
+            const double encode_s = now_seconds() - t0;
+            for (const auto& [protocol, scale] : {std::pair{"same", 1}, {"large", 2}}) {
+                vqtex_decode_params dp;
+                vqtex_decode_params_init(&dp);
+                dp.width = w * uint32_t(scale);
+                dp.height = h * uint32_t(scale);
+                dp.seed = seed;
+                dp.threads = 1;
+                vqtex_image dec{};
+                const double t1 = now_seconds();
+                if (vqtex_decode(&dp, data, size, &dec, &err) != VQTEX_OK) {
+                    std::fprintf(stderr, "vqtex-bench: error: %s: %s\n", name.c_str(), err.detail);
+                    return 1;
+                }
+                Row r;
+                r.protocol = protocol;
+                r.codec = "vqtex";
+                r.quality = quality;
+                r.setting = "-q " + std::to_string(quality);
+                r.bytes = size;
+                r.encode_s = encode_s;
+                r.decode_s = now_seconds() - t1;
+                score(r, from_c(dec));
+            }
             vqtex_free(data);
-            if (st != VQTEX_OK) {
-                std::fprintf(stderr, "vqtex-bench: %s: %s\n", f.c_str(), err.detail);
-                return 1;
+            if (no_peers) continue;
+            for (PeerResult& peer : run_budgeted_peers(exemplar, size, scratch.string())) {
+                Row r;
+                r.codec = peer.codec;
+                r.quality = quality;
+                r.setting = peer.setting;
+                r.bytes = peer.bytes;
+                if (!peer.available || !peer.fits) {
+                    r.status = peer.available ? "no-fit" : "missing";
+                    r.protocol = "same";
+                    r.texture = name;
+                    writer.add(r, floor);
+                    continue;
+                }
+                r.protocol = "same";
+                score(r, peer.decoded);
+                r.protocol = "large";
+                score(r, tiled(peer.decoded, int(w) * 2, int(h) * 2));
+                Image synthesised;
+                if (synthesise(peer.decoded, int(w) * 2, int(h) * 2, seed, synthesised)) {
+                    r.codec = peer.codec + "+synth";
+                    score(r, synthesised);
+                }
             }
-            vqtex_metrics::Image decoded{int(dec.width), int(dec.height), int(dec.channels),
-                                         std::vector<uint8_t>(dec.pixels, dec.pixels + std::size_t(dec.width) * dec.height * dec.channels)};
-            vqtex_image_free(&dec);
-            const vqtex_metrics::Scores s = vqtex_metrics::score_all(decoded, held_out, exemplar, seed);
-            const double bpp = 8.0 * double(size) / (double(half_w) * half_h);
-            std::printf("%-26s %4d %8zu %7.3f %7.2f %7.2f %7.2f %7.2f %6.2f %6.2f\n", f.filename().c_str(), q, size,
-                        bpp, s.swd.mean, floor.swd.mean, s.completeness, floor.completeness, s.copy.exact_share,
-                        s.seam_ratio);
-            std::fflush(stdout);
-            if (out)
-                std::fprintf(out, "%s,vqtex,%d,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
-                             f.filename().c_str(), q, size, bpp, bpp, s.swd.mean, floor.swd.mean, s.colour.mean_delta_e,
-                             floor.colour.mean_delta_e, s.completeness, floor.completeness, s.coherence,
-                             floor.coherence, s.copy.exact_share, s.copy.neighbour_coherence, s.seam_ratio,
-                             s.straight_seam, t1 - t0, t2 - t1);
         }
+        if (!no_peers)
+            for (PeerResult& peer : run_astc(exemplar, scratch.string())) {
+                Row r;
+                r.codec = peer.codec;
+                r.setting = peer.setting;
+                r.bytes = peer.bytes;
+                if (!peer.fits) {
+                    r.status = peer.available ? "failed" : "missing";
+                    r.protocol = "same";
+                    r.texture = name;
+                    writer.add(r, floor);
+                    continue;
+                }
+                r.protocol = "same";
+                score(r, peer.decoded);
+                r.protocol = "large";
+                score(r, tiled(peer.decoded, int(w) * 2, int(h) * 2));
+            }
+        std::fprintf(stderr, "vqtex-bench: %s done\n", name.c_str());
     }
+    std::error_code ec;
+    fs::remove_all(scratch, ec);
     if (out) std::fclose(out);
+
+    // Summary: mean over textures of each codec's scores per protocol and rate.
+    struct Sum {
+        double bytes = 0, swd = 0, completeness = 0, copy = 0, seam = 0;
+        int n = 0;
+    };
+    std::map<std::tuple<std::string, int, std::string>, Sum> sums;
+    for (const Row& r : writer.rows) {
+        if (r.status != "ok") continue;
+        Sum& s = sums[{r.protocol, r.quality, r.codec}];
+        s.bytes += double(r.bytes);
+        s.swd += r.scores.swd.mean;
+        s.completeness += r.scores.completeness;
+        s.copy += r.scores.copy.exact_share;
+        s.seam += r.scores.straight_seam;
+        ++s.n;
+    }
+    std::printf("%-6s %4s %-28s %9s %8s %8s %6s %6s %3s\n", "proto", "q", "codec", "bytes", "SWD", "compl", "copy",
+                "seam", "n");
+    for (const auto& [key, s] : sums) {
+        const auto& [protocol, quality, codec] = key;
+        std::printf("%-6s %4d %-28s %9.0f %8.2f %8.2f %6.2f %6.2f %3d\n", protocol.c_str(), quality, codec.c_str(),
+                    s.bytes / s.n, s.swd / s.n, s.completeness / s.n, s.copy / s.n, s.seam / s.n, s.n);
+    }
     return 0;
 }

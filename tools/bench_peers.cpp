@@ -1,0 +1,187 @@
+// bench_peers.cpp - peer codecs for vqtex-bench, through their command-line
+// tools. Each search lands at or under the byte budget with the best
+// quality setting it finds (file size grows monotonically with quality for
+// all of them, so a bisection suffices).
+#include "bench_peers.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+
+#include "image_io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace vqtex_tools {
+namespace {
+
+bool run(const std::string& command) { return std::system((command + " >/dev/null 2>&1").c_str()) == 0; }
+
+std::size_t file_size(const std::string& path) {
+    std::error_code ec;
+    const auto n = fs::file_size(path, ec);
+    return ec ? 0 : std::size_t(n);
+}
+
+vqtex_metrics::Image load_metrics_image(const std::string& path) {
+    LoadedImage li = load_image(path);
+    return vqtex_metrics::Image{int(li.width), int(li.height), int(li.channels), std::move(li.pixels)};
+}
+
+std::string q(const std::string& s) { return "'" + s + "'"; }
+
+// The setting in [lo, hi] giving the best quality whose file fits the
+// budget. `encode` writes the file for a setting and returns its size.
+bool bisect(int lo, int hi, bool higher_is_better, std::size_t budget,
+            const std::function<std::size_t(int)>& encode, int& best) {
+    bool found = false;
+    while (lo <= hi) {
+        const int mid = lo + (hi - lo) / 2;
+        const std::size_t n = encode(mid);
+        const bool fits = n > 0 && n <= budget;
+        if (fits) found = true, best = mid;
+        if (fits == higher_is_better)
+            lo = mid + 1;
+        else
+            hi = mid - 1;
+    }
+    return found;
+}
+
+// The exemplar as RGB (or grey) without alpha: what the peers encode.
+vqtex_metrics::Image opaque(const vqtex_metrics::Image& img) {
+    if (img.channels == 1 || img.channels == 3) return img;
+    const int ch = img.channels == 2 ? 1 : 3;
+    vqtex_metrics::Image out{img.width, img.height, ch, {}};
+    out.pixels.resize(std::size_t(img.width) * img.height * ch);
+    for (std::size_t i = 0; i < std::size_t(img.width) * img.height; ++i)
+        for (int c = 0; c < ch; ++c) out.pixels[i * ch + c] = img.pixels[i * img.channels + c];
+    return out;
+}
+
+}  // namespace
+
+bool tool_available(const std::string& name) { return run("command -v " + name); }
+
+std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar, std::size_t budget,
+                                           const std::string& dir) {
+    const vqtex_metrics::Image img = opaque(exemplar);
+    const std::string png = dir + "/exemplar.png";
+    const std::string pnm = dir + (img.channels == 1 ? "/exemplar.pgm" : "/exemplar.ppm");
+    save_image(png, uint32_t(img.width), uint32_t(img.height), uint32_t(img.channels), img.pixels.data());
+    save_image(pnm, uint32_t(img.width), uint32_t(img.height), uint32_t(img.channels), img.pixels.data());
+    std::vector<PeerResult> results;
+    auto finish = [&](PeerResult& r, const std::string& decoded_path) {
+        if (r.fits) r.decoded = load_metrics_image(decoded_path);
+        results.push_back(std::move(r));
+    };
+
+    {  // JPEG: quality 1..100 (cjpeg 2.1 reads PNM, not PNG).
+        PeerResult r;
+        r.codec = "jpeg";
+        r.available = tool_available("cjpeg") && tool_available("djpeg");
+        const std::string out = dir + "/p.jpg", dec = dir + "/p_jpg.ppm";
+        int best = 0;
+        if (r.available &&
+            (r.fits = bisect(1, 100, true, budget, [&](int quality) {
+                 return run("cjpeg -quality " + std::to_string(quality) + " -outfile " + q(out) + " " + q(pnm))
+                            ? file_size(out) : 0;
+             }, best))) {
+            run("cjpeg -quality " + std::to_string(best) + " -outfile " + q(out) + " " + q(pnm));
+            run("djpeg -pnm -outfile " + q(dec) + " " + q(out));
+            r.bytes = file_size(out);
+            r.setting = "-quality " + std::to_string(best);
+        }
+        finish(r, dec);
+    }
+    {  // WebP: cwebp's own size targeting, then checked.
+        PeerResult r;
+        r.codec = "webp";
+        r.available = tool_available("cwebp") && tool_available("dwebp");
+        const std::string out = dir + "/p.webp", dec = dir + "/p_webp.png";
+        if (r.available && run("cwebp -quiet -size " + std::to_string(budget) + " -pass 10 " + q(png) + " -o " + q(out))) {
+            std::size_t n = file_size(out);
+            // -size is a target, not a cap: step the quality down until it fits.
+            for (int quality = 90; n > budget && quality >= 0; quality -= 5) {
+                run("cwebp -quiet -q " + std::to_string(quality) + " " + q(png) + " -o " + q(out));
+                n = file_size(out);
+                r.setting = "-q " + std::to_string(quality);
+            }
+            if (n > 0 && n <= budget) {
+                r.fits = true;
+                r.bytes = n;
+                if (r.setting.empty()) r.setting = "-size " + std::to_string(budget);
+                run("dwebp " + q(out) + " -o " + q(dec));
+            }
+        }
+        finish(r, dec);
+    }
+    {  // AVIF (avifenc 0.11 has no -q): quantizer 0 (best) .. 63.
+        PeerResult r;
+        r.codec = "avif";
+        r.available = tool_available("avifenc") && tool_available("avifdec");
+        const std::string out = dir + "/p.avif", dec = dir + "/p_avif.png";
+        int best = 63;
+        if (r.available &&
+            (r.fits = bisect(0, 63, false, budget, [&](int qz) {
+                 const std::string s = std::to_string(qz);
+                 return run("avifenc -s 6 --min " + s + " --max " + s + " " + q(png) + " " + q(out)) ? file_size(out) : 0;
+             }, best))) {
+            const std::string s = std::to_string(best);
+            run("avifenc -s 6 --min " + s + " --max " + s + " " + q(png) + " " + q(out));
+            run("avifdec " + q(out) + " " + q(dec));
+            r.bytes = file_size(out);
+            r.setting = "--min/--max " + s;
+        }
+        finish(r, dec);
+    }
+    {  // JPEG XL (cjxl 0.7 has no size target): distance 0.1 .. 25 in tenths.
+        PeerResult r;
+        r.codec = "jxl";
+        r.available = tool_available("cjxl") && tool_available("djxl");
+        const std::string out = dir + "/p.jxl", dec = dir + "/p_jxl.png";
+        int best = 250;
+        auto distance = [](int tenths) {
+            char buf[16];
+            std::snprintf(buf, sizeof buf, "%.1f", tenths / 10.0);
+            return std::string(buf);
+        };
+        if (r.available &&
+            (r.fits = bisect(1, 250, false, budget, [&](int tenths) {
+                 return run("cjxl -d " + distance(tenths) + " " + q(png) + " " + q(out)) ? file_size(out) : 0;
+             }, best))) {
+            run("cjxl -d " + distance(best) + " " + q(png) + " " + q(out));
+            run("djxl " + q(out) + " " + q(dec));
+            r.bytes = file_size(out);
+            r.setting = "-d " + distance(best);
+        }
+        finish(r, dec);
+    }
+    return results;
+}
+
+std::vector<PeerResult> run_astc(const vqtex_metrics::Image& exemplar, const std::string& dir) {
+    std::vector<PeerResult> results;
+    const bool available = tool_available("astcenc");
+    const vqtex_metrics::Image img = opaque(exemplar);
+    const std::string png = dir + "/exemplar.png";
+    save_image(png, uint32_t(img.width), uint32_t(img.height), uint32_t(img.channels), img.pixels.data());
+    for (const char* block : {"4x4", "6x6", "8x8", "10x10", "12x12"}) {
+        PeerResult r;
+        r.codec = std::string("astc-") + block;
+        r.available = available;
+        const std::string out = dir + "/p.astc", dec = dir + "/p_astc.png";
+        if (available && run("astcenc -cl " + q(png) + " " + q(out) + " " + block + " -medium -silent") &&
+            run("astcenc -dl " + q(out) + " " + q(dec) + " -silent")) {
+            r.fits = true;
+            r.bytes = file_size(out);
+            r.setting = block;
+            r.decoded = load_metrics_image(dec);
+        }
+        results.push_back(std::move(r));
+    }
+    return results;
+}
+
+}  // namespace vqtex_tools
