@@ -122,7 +122,8 @@ int main(int argc, char** argv) {
     std::vector<int> qualities{20, 50, 80};
     uint32_t limit = 0;
     uint64_t seed = 1;
-    bool quick = false, no_peers = false;
+    bool quick = false, no_peers = false, no_times = false;
+    std::string sheets;
     app.add_option("folder", folder, "folder of textures (each cut into exemplar and held-out crops)")
         ->capture_default_str();
     app.add_option("--pattern", pattern, "only files whose name contains this (e.g. _256.png)")->capture_default_str();
@@ -132,6 +133,8 @@ int main(int argc, char** argv) {
     app.add_option("--seed", seed, "decoding and synthesis seed")->capture_default_str();
     app.add_flag("--no-peers", no_peers, "vqtex only");
     app.add_flag("--quick", quick, "two textures, one rate");
+    app.add_flag("--no-times", no_times, "write 0 for times (for baselines reviewed as diffs)");
+    app.add_option("--sheets", sheets, "write contact sheets (exemplar | held-out | vqtex | peers) into this folder");
     CLI11_PARSE(app, argc, argv);
     if (quick) {
         limit = 2;
@@ -168,7 +171,14 @@ int main(int argc, char** argv) {
         const vqtex_metrics::Scores floor = vqtex_metrics::floor_scores(held_out, exemplar, seed);
         const std::string name = f.filename().string();
         const double ex_pixels = double(w) * h;
+        // Contact sheet panels, per rate: exemplar | held-out | vqtex | peers.
+        std::map<int, std::vector<Image>> panels;
         auto score = [&](Row r, const Image& output) {
+            if (!sheets.empty() && r.protocol == "same" && r.quality >= 0) {
+                auto& p = panels[r.quality];
+                if (p.empty()) p = {exemplar, held_out};
+                p.push_back(output);
+            }
             r.texture = name;
             r.bpp_exemplar = 8.0 * double(r.bytes) / ex_pixels;
             r.bpp_output = 8.0 * double(r.bytes) / (double(output.width) * output.height);
@@ -218,8 +228,8 @@ int main(int argc, char** argv) {
                 r.quality = quality;
                 r.setting = "-q " + std::to_string(quality);
                 r.bytes = size;
-                r.encode_s = encode_s;
-                r.decode_s = now_seconds() - t1;
+                r.encode_s = no_times ? 0 : encode_s;
+                r.decode_s = no_times ? 0 : now_seconds() - t1;
                 score(r, from_c(dec));
             }
             vqtex_free(data);
@@ -266,6 +276,27 @@ int main(int argc, char** argv) {
                 r.protocol = "large";
                 score(r, tiled(peer.decoded, int(w) * 2, int(h) * 2));
             }
+        if (!sheets.empty()) {
+            fs::create_directories(sheets);
+            for (auto& [quality, images] : panels) {
+                // Side by side, 4 px gaps, every panel padded to the largest.
+                int cell_w = 0, cell_h = 0;
+                for (const Image& im : images) cell_w = std::max(cell_w, im.width), cell_h = std::max(cell_h, im.height);
+                const int gap = 4, sheet_w = int(images.size()) * (cell_w + gap) - gap;
+                std::vector<uint8_t> sheet(std::size_t(sheet_w) * cell_h * 3, 255);
+                for (std::size_t i = 0; i < images.size(); ++i) {
+                    const Image& im = images[i];
+                    for (int y = 0; y < im.height; ++y)
+                        for (int x = 0; x < im.width; ++x)
+                            for (int c = 0; c < 3; ++c)
+                                sheet[(std::size_t(y) * sheet_w + int(i) * (cell_w + gap) + x) * 3 + c] =
+                                    im.pixels[(std::size_t(y) * im.width + x) * im.channels + std::min(c, im.channels - 1)];
+                }
+                const std::string stem = fs::path(name).stem().string();
+                save_image((fs::path(sheets) / (stem + "_q" + std::to_string(quality) + ".png")).string(),
+                           uint32_t(sheet_w), uint32_t(cell_h), 3, sheet.data());
+            }
+        }
         std::fprintf(stderr, "vqtex-bench: %s done\n", name.c_str());
     }
     std::error_code ec;
