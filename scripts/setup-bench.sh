@@ -4,7 +4,7 @@
 # this is optional.
 set -euo pipefail
 "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-packages=(webp libjpeg-turbo-progs libavif-bin libjxl-tools astcenc openimageio-tools gmic python3-matplotlib)
+packages=(webp libjpeg-turbo-progs libavif-bin libjxl-tools astcenc openimageio-tools gmic python3-matplotlib time)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -4,6 +4,11 @@
 // all of them, so a bisection suffices).
 #include "bench_peers.hpp"
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -16,7 +21,7 @@ namespace fs = std::filesystem;
 namespace vqtex_tools {
 namespace {
 
-bool run(const std::string& command) { return std::system((command + " >/dev/null 2>&1").c_str()) == 0; }
+bool run(const std::string& command) { return run_measured(command) == 0; }
 
 std::size_t file_size(const std::string& path) {
     std::error_code ec;
@@ -62,6 +67,33 @@ vqtex_metrics::Image opaque(const vqtex_metrics::Image& img) {
 
 }  // namespace
 
+int run_measured(const std::string& command, long* peak_kib, double* seconds) {
+    // GNU time (Debian package "time") reports the command's own peak
+    // resident memory; wait4 on a child forked from this (large) process
+    // would report ours.
+    static const bool have_time = ::access("/usr/bin/time", X_OK) == 0;
+    char stats[] = "/tmp/vqtex_bench_timeXXXXXX";
+    const int fd = have_time && peak_kib ? ::mkstemp(stats) : -1;
+    if (fd >= 0) ::close(fd);
+    const std::string wrapped =
+        fd >= 0 ? "/usr/bin/time -f %M -o " + std::string(stats) + " sh -c " + q(command) : command;
+    const auto start = std::chrono::steady_clock::now();
+    const int status = std::system((wrapped + " >/dev/null 2>&1").c_str());
+    if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (peak_kib) {
+        *peak_kib = 0;
+        if (fd >= 0) {
+            if (FILE* f = std::fopen(stats, "r")) {
+                long kib = 0;
+                if (std::fscanf(f, "%ld", &kib) == 1) *peak_kib = kib;
+                std::fclose(f);
+            }
+            std::remove(stats);
+        }
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 bool tool_available(const std::string& name) { return run("command -v " + name); }
 
 std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar, std::size_t budget,
@@ -88,8 +120,9 @@ std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar,
                  return run("cjpeg -quality " + std::to_string(quality) + " -outfile " + q(out) + " " + q(pnm))
                             ? file_size(out) : 0;
              }, best))) {
-            run("cjpeg -quality " + std::to_string(best) + " -outfile " + q(out) + " " + q(pnm));
-            run("djpeg -pnm -outfile " + q(dec) + " " + q(out));
+            run_measured("cjpeg -quality " + std::to_string(best) + " -outfile " + q(out) + " " + q(pnm),
+                         &r.encode_peak_kib, &r.encode_s);
+            run_measured("djpeg -pnm -outfile " + q(dec) + " " + q(out), &r.decode_peak_kib, &r.decode_s);
             r.bytes = file_size(out);
             r.setting = "-quality " + std::to_string(best);
         }
@@ -111,8 +144,12 @@ std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar,
             if (n > 0 && n <= budget) {
                 r.fits = true;
                 r.bytes = n;
+                const std::string final_encode = r.setting.empty()
+                    ? "cwebp -quiet -size " + std::to_string(budget) + " -pass 10 " + q(png) + " -o " + q(out)
+                    : "cwebp -quiet " + r.setting + " " + q(png) + " -o " + q(out);
+                run_measured(final_encode, &r.encode_peak_kib, &r.encode_s);
                 if (r.setting.empty()) r.setting = "-size " + std::to_string(budget);
-                run("dwebp " + q(out) + " -o " + q(dec));
+                run_measured("dwebp " + q(out) + " -o " + q(dec), &r.decode_peak_kib, &r.decode_s);
             }
         }
         finish(r, dec);
@@ -129,8 +166,9 @@ std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar,
                  return run("avifenc -s 6 --min " + s + " --max " + s + " " + q(png) + " " + q(out)) ? file_size(out) : 0;
              }, best))) {
             const std::string s = std::to_string(best);
-            run("avifenc -s 6 --min " + s + " --max " + s + " " + q(png) + " " + q(out));
-            run("avifdec " + q(out) + " " + q(dec));
+            run_measured("avifenc -s 6 --min " + s + " --max " + s + " " + q(png) + " " + q(out),
+                         &r.encode_peak_kib, &r.encode_s);
+            run_measured("avifdec " + q(out) + " " + q(dec), &r.decode_peak_kib, &r.decode_s);
             r.bytes = file_size(out);
             r.setting = "--min/--max " + s;
         }
@@ -151,8 +189,8 @@ std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar,
             (r.fits = bisect(1, 250, false, budget, [&](int tenths) {
                  return run("cjxl -d " + distance(tenths) + " " + q(png) + " " + q(out)) ? file_size(out) : 0;
              }, best))) {
-            run("cjxl -d " + distance(best) + " " + q(png) + " " + q(out));
-            run("djxl " + q(out) + " " + q(dec));
+            run_measured("cjxl -d " + distance(best) + " " + q(png) + " " + q(out), &r.encode_peak_kib, &r.encode_s);
+            run_measured("djxl " + q(out) + " " + q(dec), &r.decode_peak_kib, &r.decode_s);
             r.bytes = file_size(out);
             r.setting = "-d " + distance(best);
         }
@@ -172,8 +210,10 @@ std::vector<PeerResult> run_astc(const vqtex_metrics::Image& exemplar, const std
         r.codec = std::string("astc-") + block;
         r.available = available;
         const std::string out = dir + "/p.astc", dec = dir + "/p_astc.png";
-        if (available && run("astcenc -cl " + q(png) + " " + q(out) + " " + block + " -medium -silent") &&
-            run("astcenc -dl " + q(out) + " " + q(dec) + " -silent")) {
+        if (available &&
+            run_measured("astcenc -cl " + q(png) + " " + q(out) + " " + block + " -medium -silent",
+                         &r.encode_peak_kib, &r.encode_s) == 0 &&
+            run_measured("astcenc -dl " + q(out) + " " + q(dec) + " -silent", &r.decode_peak_kib, &r.decode_s) == 0) {
             r.fits = true;
             r.bytes = file_size(out);
             r.setting = block;

@@ -20,7 +20,14 @@ struct PeerResult {
     std::size_t bytes = 0;
     std::string setting;      // the quality setting used
     vqtex_metrics::Image decoded;
+    long encode_peak_kib = 0;  // peak resident memory of the final encode / decode process
+    long decode_peak_kib = 0;
+    double encode_s = 0, decode_s = 0;
 };
+
+// Runs a shell command; returns its exit status and, through the pointers,
+// the peak resident memory (KiB) and wall time of the process tree it ran.
+int run_measured(const std::string& command, long* peak_kib = nullptr, double* seconds = nullptr);
 
 // Every budgeted peer at `budget` bytes; temporary files go into `dir`.
 std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar, std::size_t budget,

@@ -12,10 +12,16 @@
 //          tiled, and the strongest simple alternative: the peer's decode
 //          synthesised to the output size by vqtex's own engine.
 // Plus the ceiling: vqtex synthesis from the exemplar itself.
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <functional>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -78,11 +84,60 @@ bool synthesise(Image& example, int w, int h, uint64_t seed, Image& out) {
     return true;
 }
 
+long status_kib(const char* field) {
+    std::ifstream f("/proc/self/status");
+    std::string line;
+    while (std::getline(f, line))
+        if (line.rfind(field, 0) == 0) return std::atol(line.c_str() + std::strlen(field));
+    return 0;
+}
+
+// Runs `work` in a forked child, so that every encode and decode is measured
+// on its own: the peak memory it added (the child's high-water mark minus
+// what it inherited) and its wall time. The child reports through files.
+bool measured(const std::function<bool()>& work, long& peak_kib, double& seconds) {
+    const auto start = std::chrono::steady_clock::now();
+    std::fflush(nullptr);
+    int pipe_fds[2];
+    if (::pipe(pipe_fds) != 0) return false;
+    const pid_t pid = ::fork();
+    if (pid < 0) return false;
+    if (pid == 0) {
+        ::close(pipe_fds[0]);
+        const long base = status_kib("VmRSS:");
+        const bool ok = work();
+        const long added = status_kib("VmHWM:") - base;
+        if (::write(pipe_fds[1], &added, sizeof added) != ssize_t(sizeof added)) ::_exit(2);
+        ::_exit(ok ? 0 : 1);
+    }
+    ::close(pipe_fds[1]);
+    long added = 0;
+    const bool got = ::read(pipe_fds[0], &added, sizeof added) == ssize_t(sizeof added);
+    ::close(pipe_fds[0]);
+    int status = 0;
+    if (::waitpid(pid, &status, 0) < 0) return false;
+    peak_kib = got ? added : 0;
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+std::vector<uint8_t> read_all(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    return std::vector<uint8_t>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+bool write_all(const std::string& path, const uint8_t* data, std::size_t n) {
+    std::ofstream f(path, std::ios::binary);
+    f.write(reinterpret_cast<const char*>(data), std::streamsize(n));
+    return bool(f);
+}
+
 struct Row {
     std::string texture, protocol, codec, setting;
     int quality = -1;
     std::size_t bytes = 0;
     double bpp_exemplar = 0, bpp_output = 0, encode_s = 0, decode_s = 0;
+    long encode_peak_kib = 0, decode_peak_kib = 0;
     std::string status = "ok";  // ok, missing, no-fit
     vqtex_metrics::Scores scores{};
 };
@@ -93,19 +148,26 @@ public:
         if (f_)
             std::fputs("texture,protocol,codec,quality,setting,status,bytes,bpp_exemplar,bpp_output,swd,swd_floor,"
                        "colour_de,colour_de_floor,colour_dist,completeness,completeness_floor,coherence,"
-                       "coherence_floor,copy_exact,copy_neighbour,seam_ratio,straight_seam,encode_s,decode_s\n",
+                       "coherence_floor,copy_exact,copy_neighbour,seam_ratio,straight_seam,encode_s,decode_s,"
+                       "encode_peak_kib,decode_peak_kib,hard_to_rank\n",
                        f_);
+    }
+    // Textures whose exemplar already differs a lot from the held-out crop
+    // (large features, e.g. clouds) cannot rank codecs reliably.
+    static bool hard_to_rank(const vqtex_metrics::Scores& floor) {
+        return floor.swd.mean > 8.0 || floor.completeness > 15.0;
     }
     void add(const Row& r, const vqtex_metrics::Scores& floor) {
         rows.push_back(r);
         if (!f_) return;
         const auto& s = r.scores;
-        std::fprintf(f_, "%s,%s,%s,%d,%s,%s,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+        std::fprintf(f_, "%s,%s,%s,%d,%s,%s,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%ld,%ld,%d\n",
                      r.texture.c_str(), r.protocol.c_str(), r.codec.c_str(), r.quality, r.setting.c_str(),
                      r.status.c_str(), r.bytes, r.bpp_exemplar, r.bpp_output, s.swd.mean, floor.swd.mean,
                      s.colour.mean_delta_e, floor.colour.mean_delta_e, s.colour.distribution, s.completeness,
                      floor.completeness, s.coherence, floor.coherence, s.copy.exact_share,
-                     s.copy.neighbour_coherence, s.seam_ratio, s.straight_seam, r.encode_s, r.decode_s);
+                     s.copy.neighbour_coherence, s.seam_ratio, s.straight_seam, r.encode_s, r.decode_s,
+                     r.encode_peak_kib, r.decode_peak_kib, hard_to_rank(floor) ? 1 : 0);
         std::fflush(f_);
     }
     std::vector<Row> rows;
@@ -199,16 +261,25 @@ int main(int argc, char** argv) {
             vqtex_encode_params_init(&ep);
             vqtex_encode_params_preset(&ep, quality);
             ep.threads = 1;
-            vqtex_image ex = view(exemplar);
-            uint8_t* data = nullptr;
-            size_t size = 0;
-            vqtex_error err{};
-            const double t0 = now_seconds();
-            if (vqtex_encode(&ep, &ex, &data, &size, nullptr, &err) != VQTEX_OK) {
-                std::fprintf(stderr, "vqtex-bench: error: %s: %s\n", name.c_str(), err.detail);
+            const std::string file = (scratch / "vqtex.vqt").string();
+            long encode_peak = 0;
+            double encode_s = 0;
+            if (!measured([&] {
+                    vqtex_image ex = view(exemplar);
+                    uint8_t* data = nullptr;
+                    size_t size = 0;
+                    vqtex_error err{};
+                    if (vqtex_encode(&ep, &ex, &data, &size, nullptr, &err) != VQTEX_OK) {
+                        std::fprintf(stderr, "vqtex-bench: error: %s: %s\n", name.c_str(), err.detail);
+                        return false;
+                    }
+                    const bool ok = write_all(file, data, size);
+                    vqtex_free(data);
+                    return ok;
+                }, encode_peak, encode_s))
                 return 1;
-            }
-            const double encode_s = now_seconds() - t0;
+            const std::vector<uint8_t> bytes = read_all(file);
+            const std::size_t size = bytes.size();
             for (const auto& [protocol, scale] : {std::pair{"same", 1}, {"large", 2}}) {
                 vqtex_decode_params dp;
                 vqtex_decode_params_init(&dp);
@@ -216,12 +287,22 @@ int main(int argc, char** argv) {
                 dp.height = h * uint32_t(scale);
                 dp.seed = seed;
                 dp.threads = 1;
-                vqtex_image dec{};
-                const double t1 = now_seconds();
-                if (vqtex_decode(&dp, data, size, &dec, &err) != VQTEX_OK) {
-                    std::fprintf(stderr, "vqtex-bench: error: %s: %s\n", name.c_str(), err.detail);
+                const std::string raw = (scratch / "decoded.raw").string();
+                long decode_peak = 0;
+                double decode_s = 0;
+                if (!measured([&] {
+                        vqtex_image dec{};
+                        vqtex_error err{};
+                        if (vqtex_decode(&dp, bytes.data(), bytes.size(), &dec, &err) != VQTEX_OK) {
+                            std::fprintf(stderr, "vqtex-bench: error: %s: %s\n", name.c_str(), err.detail);
+                            return false;
+                        }
+                        const bool ok = write_all(raw, dec.pixels, std::size_t(dec.width) * dec.height * dec.channels);
+                        vqtex_image_free(&dec);
+                        return ok;
+                    }, decode_peak, decode_s))
                     return 1;
-                }
+                Image decoded{int(dp.width), int(dp.height), exemplar.channels, read_all(raw)};
                 Row r;
                 r.protocol = protocol;
                 r.codec = "vqtex";
@@ -229,10 +310,11 @@ int main(int argc, char** argv) {
                 r.setting = "-q " + std::to_string(quality);
                 r.bytes = size;
                 r.encode_s = no_times ? 0 : encode_s;
-                r.decode_s = no_times ? 0 : now_seconds() - t1;
-                score(r, from_c(dec));
+                r.decode_s = no_times ? 0 : decode_s;
+                r.encode_peak_kib = no_times ? 0 : encode_peak;
+                r.decode_peak_kib = no_times ? 0 : decode_peak;
+                score(r, decoded);
             }
-            vqtex_free(data);
             if (no_peers) continue;
             for (PeerResult& peer : run_budgeted_peers(exemplar, size, scratch.string())) {
                 Row r;
@@ -240,6 +322,10 @@ int main(int argc, char** argv) {
                 r.quality = quality;
                 r.setting = peer.setting;
                 r.bytes = peer.bytes;
+                r.encode_s = no_times ? 0 : peer.encode_s;
+                r.decode_s = no_times ? 0 : peer.decode_s;
+                r.encode_peak_kib = no_times ? 0 : peer.encode_peak_kib;
+                r.decode_peak_kib = no_times ? 0 : peer.decode_peak_kib;
                 if (!peer.available || !peer.fits) {
                     r.status = peer.available ? "no-fit" : "missing";
                     r.protocol = "same";
