@@ -247,6 +247,34 @@ int main(int argc, char** argv) {
             r.scores = vqtex_metrics::score_all(output, held_out, exemplar, seed);
             writer.add(r, floor);
         };
+        // A peer's rows: its decode as is, tiled to the larger output, and
+        // (budgeted peers) synthesised to it by vqtex's engine.
+        auto add_peer_rows = [&](PeerResult& peer, int quality, bool with_synthesis) {
+            Row r;
+            r.codec = peer.codec;
+            r.quality = quality;
+            r.setting = peer.setting;
+            r.bytes = peer.bytes;
+            r.encode_s = no_times ? 0 : peer.encode_s;
+            r.decode_s = no_times ? 0 : peer.decode_s;
+            r.encode_peak_kib = no_times ? 0 : peer.encode_peak_kib;
+            r.decode_peak_kib = no_times ? 0 : peer.decode_peak_kib;
+            r.protocol = "same";
+            if (!peer.available || !peer.fits) {
+                r.status = !peer.available ? "missing" : with_synthesis ? "no-fit" : "failed";
+                r.texture = name;
+                writer.add(r, floor);
+                return;
+            }
+            score(r, peer.decoded);
+            r.protocol = "large";
+            score(r, tiled(peer.decoded, int(w) * 2, int(h) * 2));
+            Image synthesised;
+            if (with_synthesis && synthesise(peer.decoded, int(w) * 2, int(h) * 2, seed, synthesised)) {
+                r.codec = peer.codec + "+synth";
+                score(r, synthesised);
+            }
+        };
         for (const auto& [protocol, scale] : {std::pair{"same", 1}, {"large", 2}}) {
             Image syn;
             if (synthesise(exemplar, int(w) * scale, int(h) * scale, seed, syn)) {
@@ -316,52 +344,11 @@ int main(int argc, char** argv) {
                 score(r, decoded);
             }
             if (no_peers) continue;
-            for (PeerResult& peer : run_budgeted_peers(exemplar, size, scratch.string())) {
-                Row r;
-                r.codec = peer.codec;
-                r.quality = quality;
-                r.setting = peer.setting;
-                r.bytes = peer.bytes;
-                r.encode_s = no_times ? 0 : peer.encode_s;
-                r.decode_s = no_times ? 0 : peer.decode_s;
-                r.encode_peak_kib = no_times ? 0 : peer.encode_peak_kib;
-                r.decode_peak_kib = no_times ? 0 : peer.decode_peak_kib;
-                if (!peer.available || !peer.fits) {
-                    r.status = peer.available ? "no-fit" : "missing";
-                    r.protocol = "same";
-                    r.texture = name;
-                    writer.add(r, floor);
-                    continue;
-                }
-                r.protocol = "same";
-                score(r, peer.decoded);
-                r.protocol = "large";
-                score(r, tiled(peer.decoded, int(w) * 2, int(h) * 2));
-                Image synthesised;
-                if (synthesise(peer.decoded, int(w) * 2, int(h) * 2, seed, synthesised)) {
-                    r.codec = peer.codec + "+synth";
-                    score(r, synthesised);
-                }
-            }
+            for (PeerResult& peer : run_budgeted_peers(exemplar, size, scratch.string()))
+                add_peer_rows(peer, quality, true);
         }
         if (!no_peers)
-            for (PeerResult& peer : run_astc(exemplar, scratch.string())) {
-                Row r;
-                r.codec = peer.codec;
-                r.setting = peer.setting;
-                r.bytes = peer.bytes;
-                if (!peer.fits) {
-                    r.status = peer.available ? "failed" : "missing";
-                    r.protocol = "same";
-                    r.texture = name;
-                    writer.add(r, floor);
-                    continue;
-                }
-                r.protocol = "same";
-                score(r, peer.decoded);
-                r.protocol = "large";
-                score(r, tiled(peer.decoded, int(w) * 2, int(h) * 2));
-            }
+            for (PeerResult& peer : run_astc(exemplar, scratch.string())) add_peer_rows(peer, -1, false);
         if (!sheets.empty()) {
             fs::create_directories(sheets);
             for (auto& [quality, images] : panels) {
