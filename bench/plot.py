@@ -1,7 +1,7 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Rate-quality plots from a vqtex-bench CSV: mean SWD and completeness against
 bits per exemplar pixel, one line per codec, one figure per protocol.
-Needs python3-matplotlib (Debian). Usage: bench/plot.py RESULTS.csv OUT_PREFIX"""
+Needs Debian's python3-matplotlib (hence /usr/bin/python3). Usage: bench/plot.py RESULTS.csv OUT_PREFIX"""
 import csv
 import sys
 from collections import defaultdict
