@@ -147,8 +147,9 @@ public:
     explicit Writer(FILE* f) : f_(f) {
         if (f_)
             std::fputs("texture,protocol,codec,quality,setting,status,bytes,bpp_exemplar,bpp_output,swd,swd_floor,"
-                       "colour_de,colour_de_floor,colour_dist,completeness,completeness_floor,coherence,"
-                       "coherence_floor,copy_exact,copy_neighbour,seam_ratio,straight_seam,encode_s,decode_s,"
+                       "colour_de,colour_de_floor,colour_dist,colour_dist_floor,completeness,completeness_floor,"
+                       "coherence,coherence_floor,copy_exact,copy_exact_floor,copy_neighbour,copy_neighbour_floor,"
+                       "seam_ratio,seam_ratio_floor,straight_seam,straight_seam_floor,encode_s,decode_s,"
                        "encode_peak_kib,decode_peak_kib,hard_to_rank\n",
                        f_);
     }
@@ -161,12 +162,14 @@ public:
         rows.push_back(r);
         if (!f_) return;
         const auto& s = r.scores;
-        std::fprintf(f_, "%s,%s,%s,%d,%s,%s,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%ld,%ld,%d\n",
+        std::fprintf(f_, "%s,%s,%s,%d,%s,%s,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%ld,%ld,%d\n",
                      r.texture.c_str(), r.protocol.c_str(), r.codec.c_str(), r.quality, r.setting.c_str(),
                      r.status.c_str(), r.bytes, r.bpp_exemplar, r.bpp_output, s.swd.mean, floor.swd.mean,
-                     s.colour.mean_delta_e, floor.colour.mean_delta_e, s.colour.distribution, s.completeness,
-                     floor.completeness, s.coherence, floor.coherence, s.copy.exact_share,
-                     s.copy.neighbour_coherence, s.seam_ratio, s.straight_seam, r.encode_s, r.decode_s,
+                     s.colour.mean_delta_e, floor.colour.mean_delta_e, s.colour.distribution,
+                     floor.colour.distribution, s.completeness, floor.completeness, s.coherence, floor.coherence,
+                     s.copy.exact_share, floor.copy.exact_share, s.copy.neighbour_coherence,
+                     floor.copy.neighbour_coherence, s.seam_ratio, floor.seam_ratio, s.straight_seam,
+                     floor.straight_seam, r.encode_s, r.decode_s,
                      r.encode_peak_kib, r.decode_peak_kib, hard_to_rank(floor) ? 1 : 0);
         std::fflush(f_);
     }
