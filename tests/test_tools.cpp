@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include <OpenImageIO/imageio.h>
+
 #include "image_io.hpp"
 #include "test_support.hpp"
 
@@ -181,4 +183,29 @@ TEST(Tools, EncodeRejectsBadArgumentsWithoutOutput) {
     const ToolRun r = encode_tool("/nonexistent.png " + out);
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.output.find("no such file"), std::string::npos) << r.output;
+}
+
+TEST(Tools, SixteenBitAndFloatInputsAreConvertedWithANotice) {
+    const fs::path dir = scratch_dir();
+    const vqtex::Image src = vqtex_test::load_corpus("weave_128.png");
+    for (const auto& [name, type] : {std::pair{"deep.png", OIIO::TypeDesc::UINT16}, {"float.exr", OIIO::TypeDesc::FLOAT}}) {
+        const fs::path path = dir / name;
+        auto out = OIIO::ImageOutput::create(path.string());
+        ASSERT_TRUE(out);
+        OIIO::ImageSpec spec(src.width, src.height, src.channels, type);
+        ASSERT_TRUE(out->open(path.string(), spec));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, src.pixels.data()));
+        out->close();
+        const fs::path result = dir / (std::string(name) + ".out.png");
+        const ToolRun r = run_tool(path.string() + " " + result.string() + " --size 32");
+        EXPECT_EQ(r.status, 0) << r.output;
+        EXPECT_NE(r.output.find("note:"), std::string::npos) << name << ": " << r.output;
+        EXPECT_NE(r.output.find("to 8 bits"), std::string::npos) << r.output;
+        // The conversion is a rounding of the same values, not a truncation.
+        const vqtex_tools::LoadedImage back = vqtex_tools::load_image(path.string());
+        int worst = 0;
+        for (std::size_t i = 0; i < src.pixels.size(); ++i)
+            worst = std::max(worst, std::abs(int(back.pixels[i]) - int(src.pixels[i])));
+        EXPECT_LE(worst, 1) << name;
+    }
 }
