@@ -116,7 +116,7 @@ std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* d
     opt.width = int(w);
     opt.height = int(h);
     opt.seed = p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed;
-    opt.threads = p->threads ? int(p->threads) : hardware_threads();
+    opt.threads = resolve_threads(p->threads);
     opt.init = f.init;
     if (p->progress)
         opt.progress = [p](uint64_t done, uint64_t total) {
@@ -184,7 +184,7 @@ vqtex_status vqtex_encode(const vqtex_encode_params* params, const vqtex_image* 
         *size = 0;
         check_encode_params(params);
         const Image ex = image_from_c(example, "example image");
-        const int threads = params->threads ? int(params->threads) : hardware_threads();
+        const int threads = resolve_threads(params->threads);
         ProgressFn progress;
         if (params->progress)
             progress = [params](uint64_t done, uint64_t total) {

@@ -289,6 +289,24 @@ const Image& C() {
   return im;
 }
 
+// Smallest SSD between the p x p RGB window of `out` at (qx, qy) and any
+// window of `ex`, by brute force: the oracle for the pruned searches.
+long long brute_nearest_ssd(const Image& out, int qx, int qy, const Image& ex, int p) {
+  long long best = std::numeric_limits<long long>::max();
+  for (int y = 0; y + p <= ex.height; ++y)
+    for (int x = 0; x + p <= ex.width; ++x) {
+      long long s = 0;
+      for (int dy = 0; dy < p; ++dy)
+        for (int j = 0; j < 3 * p; ++j) {
+          const int d = out.pixels[(static_cast<size_t>(qy + dy) * out.width + qx) * 3 + j] -
+                        ex.pixels[(static_cast<size_t>(y + dy) * ex.width + x) * 3 + j];
+          s += d * d;
+        }
+      best = std::min(best, s);
+    }
+  return best;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -462,18 +480,7 @@ TEST(Patches, NearestNeighbourIsExact) {
   int n = 0;
   for (int qy = 0; qy + p <= out.height; ++qy)
     for (int qx = 0; qx + p <= out.width; ++qx, ++n) {
-      long long best = std::numeric_limits<long long>::max();
-      for (int y = 0; y + p <= ex.height; ++y)
-        for (int x = 0; x + p <= ex.width; ++x) {
-          long long s = 0;
-          for (int dy = 0; dy < p; ++dy)
-            for (int j = 0; j < 3 * p; ++j) {
-              const int d = out.pixels[(static_cast<size_t>(qy + dy) * out.width + qx) * 3 + j] -
-                            ex.pixels[(static_cast<size_t>(y + dy) * ex.width + x) * 3 + j];
-              s += d * d;
-            }
-          best = std::min(best, s);
-        }
+      const long long best = brute_nearest_ssd(out, qx, qy, ex, p);
       brute += std::sqrt(static_cast<double>(best) / dims);
     }
   brute /= n;
@@ -495,18 +502,7 @@ TEST(Patches, CopyStatsMatchBruteForce) {
   int n = 0, exact = 0;
   for (int qy = 0; qy + p <= out.height; qy += step)
     for (int qx = 0; qx + p <= out.width; qx += step, ++n) {
-      long long best = std::numeric_limits<long long>::max();
-      for (int y = 0; y + p <= ex.height; ++y)
-        for (int x = 0; x + p <= ex.width; ++x) {
-          long long s = 0;
-          for (int dy = 0; dy < p; ++dy)
-            for (int j = 0; j < 3 * p; ++j) {
-              const int d = out.pixels[(static_cast<size_t>(qy + dy) * out.width + qx) * 3 + j] -
-                            ex.pixels[(static_cast<size_t>(y + dy) * ex.width + x) * 3 + j];
-              s += d * d;
-            }
-          best = std::min(best, s);
-        }
+      const long long best = brute_nearest_ssd(out, qx, qy, ex, p);
       rms += std::sqrt(static_cast<double>(best) / dims);
       exact += 4 * best < dims;
     }

@@ -109,25 +109,39 @@ std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar,
         results.push_back(std::move(r));
     };
 
-    {  // JPEG: quality 1..100 (cjpeg 2.1 reads PNM, not PNG).
+    // A peer whose quality setting is bisected to fit the budget; the final
+    // setting's encode and decode are run once more, measured.
+    auto budgeted = [&](const std::string& codec, const std::string& encoder, const std::string& decoder,
+                        int lo, int hi, bool higher_is_better, const std::string& out, const std::string& dec,
+                        const std::function<std::string(int)>& encode_command, const std::string& decode_command,
+                        const std::function<std::string(int)>& setting_label) {
         PeerResult r;
-        r.codec = "jpeg";
-        r.available = tool_available("cjpeg") && tool_available("djpeg");
-        const std::string out = dir + "/p.jpg", dec = dir + "/p_jpg.ppm";
-        int best = 0;
+        r.codec = codec;
+        r.available = tool_available(encoder) && tool_available(decoder);
+        int best = lo;
         if (r.available &&
-            (r.fits = bisect(1, 100, true, budget, [&](int quality) {
-                 return run("cjpeg -quality " + std::to_string(quality) + " -outfile " + q(out) + " " + q(pnm))
-                            ? file_size(out) : 0;
+            (r.fits = bisect(lo, hi, higher_is_better, budget, [&](int setting) {
+                 return run(encode_command(setting)) ? file_size(out) : 0;
              }, best))) {
-            run_measured("cjpeg -quality " + std::to_string(best) + " -outfile " + q(out) + " " + q(pnm),
-                         &r.encode_peak_kib, &r.encode_s);
-            run_measured("djpeg -pnm -outfile " + q(dec) + " " + q(out), &r.decode_peak_kib, &r.decode_s);
+            run_measured(encode_command(best), &r.encode_peak_kib, &r.encode_s);
+            run_measured(decode_command, &r.decode_peak_kib, &r.decode_s);
             r.bytes = file_size(out);
-            r.setting = "-quality " + std::to_string(best);
+            r.setting = setting_label(best);
         }
         finish(r, dec);
-    }
+    };
+    auto distance = [](int tenths) {
+        char buf[16];
+        std::snprintf(buf, sizeof buf, "%.1f", tenths / 10.0);
+        return std::string(buf);
+    };
+    const std::string jpg = dir + "/p.jpg", avif = dir + "/p.avif", jxl = dir + "/p.jxl";
+    // JPEG: quality 1..100 (cjpeg 2.1 reads PNM, not PNG; djpeg writes PNM).
+    const std::string jpg_dec = dir + "/p_jpg.ppm", avif_dec = dir + "/p_avif.png", jxl_dec = dir + "/p_jxl.png";
+    budgeted("jpeg", "cjpeg", "djpeg", 1, 100, true, jpg, jpg_dec,
+             [&](int quality) { return "cjpeg -quality " + std::to_string(quality) + " -outfile " + q(jpg) + " " + q(pnm); },
+             "djpeg -pnm -outfile " + q(jpg_dec) + " " + q(jpg),
+             [](int quality) { return "-quality " + std::to_string(quality); });
     {  // WebP: cwebp's own size targeting, then checked.
         PeerResult r;
         r.codec = "webp";
@@ -154,48 +168,19 @@ std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar,
         }
         finish(r, dec);
     }
-    {  // AVIF (avifenc 0.11 has no -q): quantizer 0 (best) .. 63.
-        PeerResult r;
-        r.codec = "avif";
-        r.available = tool_available("avifenc") && tool_available("avifdec");
-        const std::string out = dir + "/p.avif", dec = dir + "/p_avif.png";
-        int best = 63;
-        if (r.available &&
-            (r.fits = bisect(0, 63, false, budget, [&](int qz) {
-                 const std::string s = std::to_string(qz);
-                 return run("avifenc -s 6 --min " + s + " --max " + s + " " + q(png) + " " + q(out)) ? file_size(out) : 0;
-             }, best))) {
-            const std::string s = std::to_string(best);
-            run_measured("avifenc -s 6 --min " + s + " --max " + s + " " + q(png) + " " + q(out),
-                         &r.encode_peak_kib, &r.encode_s);
-            run_measured("avifdec " + q(out) + " " + q(dec), &r.decode_peak_kib, &r.decode_s);
-            r.bytes = file_size(out);
-            r.setting = "--min/--max " + s;
-        }
-        finish(r, dec);
-    }
-    {  // JPEG XL (cjxl 0.7 has no size target): distance 0.1 .. 25 in tenths.
-        PeerResult r;
-        r.codec = "jxl";
-        r.available = tool_available("cjxl") && tool_available("djxl");
-        const std::string out = dir + "/p.jxl", dec = dir + "/p_jxl.png";
-        int best = 250;
-        auto distance = [](int tenths) {
-            char buf[16];
-            std::snprintf(buf, sizeof buf, "%.1f", tenths / 10.0);
-            return std::string(buf);
-        };
-        if (r.available &&
-            (r.fits = bisect(1, 250, false, budget, [&](int tenths) {
-                 return run("cjxl -d " + distance(tenths) + " " + q(png) + " " + q(out)) ? file_size(out) : 0;
-             }, best))) {
-            run_measured("cjxl -d " + distance(best) + " " + q(png) + " " + q(out), &r.encode_peak_kib, &r.encode_s);
-            run_measured("djxl " + q(out) + " " + q(dec), &r.decode_peak_kib, &r.decode_s);
-            r.bytes = file_size(out);
-            r.setting = "-d " + distance(best);
-        }
-        finish(r, dec);
-    }
+    // AVIF (avifenc 0.11 has no -q): quantizer 0 (best) .. 63.
+    budgeted("avif", "avifenc", "avifdec", 0, 63, false, avif, avif_dec,
+             [&](int qz) {
+                 const std::string v = std::to_string(qz);
+                 return "avifenc -s 6 --min " + v + " --max " + v + " " + q(png) + " " + q(avif);
+             },
+             "avifdec " + q(avif) + " " + q(avif_dec),
+             [](int qz) { return "--min/--max " + std::to_string(qz); });
+    // JPEG XL (cjxl 0.7 has no size target): distance 0.1 .. 25 in tenths.
+    budgeted("jxl", "cjxl", "djxl", 1, 250, false, jxl, jxl_dec,
+             [&](int tenths) { return "cjxl -d " + distance(tenths) + " " + q(png) + " " + q(jxl); },
+             "djxl " + q(jxl) + " " + q(jxl_dec),
+             [&](int tenths) { return "-d " + distance(tenths); });
     return results;
 }
 

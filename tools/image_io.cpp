@@ -23,6 +23,26 @@ std::string temporary_name_for(const std::string& path) {
     return (p.parent_path() / name).string();
 }
 
+namespace {
+
+// Moves a finished temporary file into place; on failure removes it, so a
+// failed write never leaves anything behind. Throws naming `path`.
+void commit_temporary(const std::string& tmp, const std::string& path, bool ok, const std::string& why) {
+    std::error_code ec;
+    if (!ok) {
+        fs::remove(tmp, ec);
+        throw std::runtime_error("cannot write '" + path + "': " + why);
+    }
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        const std::string message = ec.message();
+        fs::remove(tmp, ec);
+        throw std::runtime_error("cannot write '" + path + "': " + message);
+    }
+}
+
+}  // namespace
+
 LoadedImage load_image(const std::string& path) {
     if (!fs::exists(path)) throw std::runtime_error("cannot read '" + path + "': no such file");
     auto in = OIIO::ImageInput::open(path);
@@ -71,19 +91,8 @@ void save_image(const std::string& path, uint32_t width, uint32_t height, uint32
                                  OIIO::geterror() + ")");
     OIIO::ImageSpec spec(int(width), int(height), int(channels), OIIO::TypeDesc::UINT8);
     const std::string tmp = temporary_name_for(path);
-    bool ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close();
-    if (!ok) {
-        const std::string why = out->geterror();
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw std::runtime_error("cannot write '" + path + "': " + why);
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error("cannot write '" + path + "': " + ec.message());
-    }
+    const bool ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close();
+    commit_temporary(tmp, path, ok, ok ? "" : out->geterror());
 }
 
 std::vector<uint8_t> load_bytes(const std::string& path) {
@@ -113,17 +122,7 @@ std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_ima
                  out->write_image(OIIO::TypeDesc::UINT8, levels[i].pixels);
         }
         ok = ok && out->close();
-        std::error_code ec;
-        if (!ok) {
-            const std::string why = out->geterror();
-            fs::remove(tmp, ec);
-            throw std::runtime_error("cannot write '" + path + "': " + why);
-        }
-        fs::rename(tmp, path, ec);
-        if (ec) {
-            fs::remove(tmp, ec);
-            throw std::runtime_error("cannot write '" + path + "': " + ec.message());
-        }
+        commit_temporary(tmp, path, ok, ok ? "" : out->geterror());
         written.push_back(path);
         return written;
     }
@@ -149,18 +148,9 @@ void save_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
     const std::string tmp = temporary_name_for(path);
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw std::runtime_error("cannot write '" + path + "': cannot create a file in its folder");
-    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
     const bool closed = std::fclose(f) == 0;
-    std::error_code ec;
-    if (!ok || !closed) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error("cannot write '" + path + "': write failed (disk full?)");
-    }
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error("cannot write '" + path + "': " + ec.message());
-    }
+    commit_temporary(tmp, path, written && closed, "write failed (disk full?)");
 }
 
 }  // namespace vqtex_tools
