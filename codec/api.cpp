@@ -102,15 +102,10 @@ vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_imag
         using Clock = std::chrono::steady_clock;
 
         const auto t0 = Clock::now();
-        ProgressFn analyse_progress, synth_progress;
-        if (params->progress) {
-            analyse_progress = [params](uint64_t done, uint64_t total) {
-                return params->progress(params->progress_user, VQTEX_STAGE_ANALYSE, done, total) != 0;
-            };
-            synth_progress = [params](uint64_t done, uint64_t total) {
-                return params->progress(params->progress_user, VQTEX_STAGE_SYNTHESISE, done, total) != 0;
-            };
-        }
+        const ProgressFn analyse_progress =
+            stage_progress(params->progress, params->progress_user, VQTEX_STAGE_ANALYSE);
+        const ProgressFn synth_progress =
+            stage_progress(params->progress, params->progress_user, VQTEX_STAGE_SYNTHESISE);
         if (params->tolerance > 4096)
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "tolerance must be 0 to 4096 (in 1/256 of the best distance)");
         AnalysisResult analysis = analyse_example(ex, params->model, params->search,

@@ -11,6 +11,7 @@
 #include "error.hpp"
 #include "image.hpp"
 #include "parallel.hpp"
+#include "synthesis.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex {
@@ -75,5 +76,12 @@ inline void image_to_c(Image&& img, vqtex_image* out) {
 }
 
 inline int resolve_threads(uint32_t threads) { return threads ? int(threads) : hardware_threads(); }
+
+// The caller's progress callback for one stage, as the engine's ProgressFn
+// (empty when there is no callback).
+inline ProgressFn stage_progress(vqtex_progress_fn fn, void* user, vqtex_stage stage) {
+    if (!fn) return {};
+    return [fn, user, stage](uint64_t done, uint64_t total) { return fn(user, stage, done, total) != 0; };
+}
 
 }  // namespace vqtex

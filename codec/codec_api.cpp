@@ -118,10 +118,7 @@ std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* d
     opt.seed = p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed;
     opt.threads = resolve_threads(p->threads);
     opt.init = f.init;
-    if (p->progress)
-        opt.progress = [p](uint64_t done, uint64_t total) {
-            return p->progress(p->progress_user, VQTEX_STAGE_SYNTHESISE, done, total) != 0;
-        };
+    opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
     return synthesize_pyramid(f.texture, opt);
 }
 
@@ -185,11 +182,7 @@ vqtex_status vqtex_encode(const vqtex_encode_params* params, const vqtex_image* 
         check_encode_params(params);
         const Image ex = image_from_c(example, "example image");
         const int threads = resolve_threads(params->threads);
-        ProgressFn progress;
-        if (params->progress)
-            progress = [params](uint64_t done, uint64_t total) {
-                return params->progress(params->progress_user, VQTEX_STAGE_ANALYSE, done, total) != 0;
-            };
+        const ProgressFn progress = stage_progress(params->progress, params->progress_user, VQTEX_STAGE_ANALYSE);
         const auto t0 = std::chrono::steady_clock::now();
         EncodeResult result;
         uint32_t attempts = 0, chosen_quality = 0;
