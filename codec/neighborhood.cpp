@@ -82,23 +82,85 @@ NeighborhoodLayout::NeighborhoodLayout(const Shape& shape, int channels, int lev
         reach_[t.depth] = std::max({reach_[t.depth], int(std::abs(t.dx)), int(std::abs(t.dy))});
 }
 
-void NeighborhoodLayout::gather(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const {
-    for (int d = 0; d < shape_.levels; ++d) {
-        const Image& img = pyramid[std::size_t(level_ + d)];
-        const int px = x >> d, py = y >> d, r = reach_[d];
-        if (px < r || py < r || px + r >= img.width || py + r >= img.height) {
-            gather_wrapped(pyramid, x, y, out);
-            return;
-        }
+namespace {
+
+// Runs are a few to a few dozen bytes: two overlapping fixed-size moves beat
+// a call to memcpy with a run-time length.
+inline void copy_short(uint8_t* dst, const uint8_t* src, std::size_t n) {
+    if (n >= 8 && n <= 16) {
+        uint64_t head, tail;
+        std::memcpy(&head, src, 8);
+        std::memcpy(&tail, src + n - 8, 8);
+        std::memcpy(dst, &head, 8);
+        std::memcpy(dst + n - 8, &tail, 8);
+    } else if (n >= 4 && n < 8) {
+        uint32_t head, tail;
+        std::memcpy(&head, src, 4);
+        std::memcpy(&tail, src + n - 4, 4);
+        std::memcpy(dst, &head, 4);
+        std::memcpy(dst + n - 4, &tail, 4);
+    } else if (n > 16 && n <= 32) {
+        uint8_t head[16], tail[16];
+        std::memcpy(head, src, 16);
+        std::memcpy(tail, src + n - 16, 16);
+        std::memcpy(dst, head, 16);
+        std::memcpy(dst + n - 16, tail, 16);
+    } else {
+        std::memcpy(dst, src, n);
     }
+}
+
+}  // namespace
+
+NeighborhoodGather::NeighborhoodGather(const NeighborhoodLayout& layout,
+                                       const std::vector<Image>& pyramid)
+    : layout_(&layout), pyramid_(&pyramid) {
+    const int levels = layout.shape().levels;
+    const std::size_t ch = std::size_t(layout.channels());
+    int reach[kMaxLevels] = {};
+    for (const Tap& t : layout.taps())
+        reach[t.depth] = std::max({reach[t.depth], int(std::abs(t.dx)), int(std::abs(t.dy))});
+    x_lo_ = y_lo_ = 0;
+    x_hi_ = y_hi_ = INT32_MAX;
+    for (int d = 0; d < levels; ++d) {
+        const Image& img = pyramid[std::size_t(layout.level() + d)];
+        base_[d] = img.pixels.data();
+        row_bytes_[d] = std::size_t(img.width) * ch;
+        // x >> d must keep reach[d] pixels on both sides at depth d.
+        x_lo_ = std::max(x_lo_, reach[d] << d);
+        y_lo_ = std::max(y_lo_, reach[d] << d);
+        x_hi_ = std::min(x_hi_, std::max(0, img.width - reach[d]) << d);
+        y_hi_ = std::min(y_hi_, std::max(0, img.height - reach[d]) << d);
+    }
+    // Taps are in output order; a tap continues the previous run when it is
+    // the next pixel to the right on the same row of the same level.
+    const Tap* previous = nullptr;
+    for (const Tap& t : layout.taps()) {
+        const std::ptrdiff_t offset =
+            std::ptrdiff_t(t.dy) * std::ptrdiff_t(row_bytes_[t.depth]) + std::ptrdiff_t(t.dx) * std::ptrdiff_t(ch);
+        if (previous && previous->depth == t.depth && previous->dy == t.dy && previous->dx + 1 == t.dx)
+            runs_.back().bytes += ch;
+        else
+            runs_.push_back(Run{t.depth, offset, ch});
+        previous = &t;
+    }
+}
+
+void NeighborhoodGather::gather(int x, int y, uint8_t* out) const {
+    if (!interior(x, y)) {
+        layout_->gather_wrapped(*pyramid_, x, y, out);
+        return;
+    }
+    const std::size_t ch = std::size_t(layout_->channels());
+    const uint8_t* anchor[kMaxLevels];
+    for (int d = 0; d < layout_->shape().levels; ++d)
+        anchor[d] = base_[d] + std::size_t(y >> d) * row_bytes_[d] + std::size_t(x >> d) * ch;
     uint8_t* o = out;
-    const std::size_t ch = std::size_t(channels_);
-    for (const Tap& t : taps_) {
-        const Image& img = pyramid[std::size_t(level_ + t.depth)];
-        const uint8_t* p = img.at((x >> t.depth) + t.dx, (y >> t.depth) + t.dy);
-        for (std::size_t c = 0; c < ch; ++c) *o++ = p[c];
+    for (const Run& run : runs_) {
+        copy_short(o, anchor[run.depth] + run.offset, run.bytes);
+        o += run.bytes;
     }
-    std::memset(o, 0, stride_ - dimension_);
+    for (uint8_t* end = out + layout_->stride(); o < end; ++o) *o = 0;
 }
 
 std::vector<uint16_t> NeighborhoodLayout::entry_key_offsets() const {

@@ -98,9 +98,6 @@ public:
     // Gather the neighbourhood of (x, y) at this level from `pyramid`
     // (toroidal), into `out` (stride() bytes, padding zeroed).
     void gather_wrapped(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const;
-    // The same bytes as gather_wrapped, without per-tap wrapping when the
-    // whole window lies inside every level (most pixels).
-    void gather(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const;
     // True when every tap of (x, y) lies inside its level (no wrap needed).
     bool fits_inside(const std::vector<Image>& pyramid, int x, int y) const;
     void gather_inside(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const;
@@ -113,6 +110,34 @@ private:
     std::size_t stride_;
     std::vector<Tap> taps_;
     int reach_[kMaxLevels] = {};  // largest |dx| or |dy| of the taps at each depth
+};
+
+// A layout bound to one pyramid, for the synthesis hot loop: the taps merged
+// into runs of horizontally adjacent pixels with their byte offsets
+// precomputed for the level sizes, and the interior (the pixels whose whole
+// window lies inside every level) known in advance. Gathering an interior
+// pixel is then a handful of short copies with no per-tap address arithmetic
+// and no wrapping; only the border pixels take the toroidal path. The bytes
+// are exactly those of gather_wrapped. The pyramid's images must not be
+// reallocated while it is in use.
+class NeighborhoodGather {
+public:
+    NeighborhoodGather(const NeighborhoodLayout& layout, const std::vector<Image>& pyramid);
+    bool interior(int x, int y) const { return x >= x_lo_ && x < x_hi_ && y >= y_lo_ && y < y_hi_; }
+    void gather(int x, int y, uint8_t* out) const;
+
+private:
+    struct Run {
+        int depth;
+        std::ptrdiff_t offset;  // bytes from the anchor pixel at that depth
+        std::size_t bytes;
+    };
+    const NeighborhoodLayout* layout_;
+    const std::vector<Image>* pyramid_;
+    std::vector<Run> runs_;
+    const uint8_t* base_[kMaxLevels] = {};
+    std::size_t row_bytes_[kMaxLevels] = {};
+    int x_lo_ = 0, x_hi_ = 0, y_lo_ = 0, y_hi_ = 0;
 };
 
 // The training set / exhaustive candidates of one example level: every

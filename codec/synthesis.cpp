@@ -36,7 +36,7 @@ void upsample_parent(const Image& parent, Image& img) {
 
 // Shared state of one level's wavefront.
 struct LevelRun {
-    const NeighborhoodLayout* layout;
+    const NeighborhoodGather* gather;
     const Matcher* matcher;
     std::vector<Image>* pyramid;
     int level, width, height, lag, reach_x, reach_y;
@@ -75,7 +75,7 @@ void run_row(const LevelRun& r, int y, bool parallel, std::vector<uint8_t>& quer
                      *r.stop);
         if (r.stop->load(std::memory_order_relaxed)) return;
         const int x = start + i < w ? start + i : start + i - w;
-        r.layout->gather(*r.pyramid, x, y, query.data());
+        r.gather->gather(x, y, query.data());
         const MatchContext context{pixel_salt(r.seed, r.level, 0, x, y), r.tolerance};
         const uint8_t* pixel = r.matcher->match(query.data(), context, scratch);
         std::copy(pixel, pixel + out.channels, out.at(x, y));
@@ -99,6 +99,7 @@ void close_seam(const LevelModel& lm, std::vector<Image>& pyramid, int level, in
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "seam matcher and shape disagree at level " +
                                                std::to_string(level));
     const int band = std::min(closing_band_rows(lm.shape), (img.height + 1) / 2);
+    const NeighborhoodGather gather(layout, pyramid);
     std::vector<uint8_t> query(layout.stride());
     std::unique_ptr<MatchScratch> scratch = lm.closing->make_scratch();
     // Two sweeps: the second sees the first's results on both sides.
@@ -106,7 +107,7 @@ void close_seam(const LevelModel& lm, std::vector<Image>& pyramid, int level, in
         for (int k = 0; k < 2 * band; ++k) {
             const int y = Image::wrap(img.height - band + k, img.height);
             for (int x = 0; x < img.width; ++x) {
-                layout.gather(pyramid, x, y, query.data());
+                gather.gather(x, y, query.data());
                 const MatchContext context{pixel_salt(options.seed, level, 1 + sweep, x, y),
                                            options.tolerance};
                 const uint8_t* pixel = lm.closing->match(query.data(), context, scratch.get());
@@ -158,7 +159,8 @@ std::vector<Image> synthesize_pyramid(const TextureModel& model, const Synthesis
             trace->assign(img.pixel_count(), 0);
         }
         const Shape& shape = layout.shape();
-        LevelRun run{&layout, lm.matcher.get(), &pyramid, l, img.width, img.height,
+        const NeighborhoodGather gather(layout, pyramid);
+        LevelRun run{&gather, lm.matcher.get(), &pyramid, l, img.width, img.height,
                      scan_lag(shape), causal_reach_x(shape), causal_reach_y(shape),
                      &progress, &stop, &pixels_done, trace, &trace_counter,
                      options.seed, options.tolerance};

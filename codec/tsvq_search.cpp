@@ -24,6 +24,7 @@ struct TsvqScratch final : MatchScratch {
 TsvqMatcher::TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrack_leaves)
     : book_(std::move(book)), backtrack_(std::max<uint32_t>(1, backtrack_leaves)) {
     if (!book_ || book_->leaf_count() == 0) fail(VQTEX_ERROR_INVALID_ARGUMENT, "empty codebook");
+    depth_ = book_->depth();
     const Codebook& b = *book_;
     const std::size_t n = b.stride();
     const std::size_t internal = b.node_count() - b.leaf_count();
@@ -62,7 +63,8 @@ std::size_t TsvqMatcher::descend(const uint8_t* query) const {
 
 std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
     auto s = std::make_unique<TsvqScratch>();
-    s->heap.reserve(64);
+    // Each descent leaves at most one pending branch per level.
+    s->heap.reserve(std::size_t(kLinearScanLeaves) * std::size_t(depth_ + 1));
     return s;
 }
 
@@ -76,41 +78,65 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
     const std::size_t n = b.stride();
     TsvqScratch local;
     TsvqScratch& work = scratch ? *static_cast<TsvqScratch*>(scratch) : local;
+    work.visited.clear();
+    // Pending branches are ordered by (distance, node), a total order, so a
+    // heap and a linear scan for the minimum pop them in the same order. For
+    // the small budgets used in synthesis the scan is cheaper than keeping a
+    // heap of every branch not taken; large budgets (up to exhaustive) need
+    // the heap.
+    const bool use_heap = leaves > kLinearScanLeaves;
     std::vector<uint64_t>& heap = work.heap;
     heap.clear();
-    work.visited.clear();
+    if (!use_heap) heap.resize(std::size_t(leaves) * std::size_t(depth_ + 1) + 1);
+    uint64_t* pending = heap.data();
+    std::size_t pending_count = 0;
     const auto later = std::greater<uint64_t>();
 
     uint32_t best_distance = UINT32_MAX, best_key = UINT32_MAX;
     std::size_t best_leaf = 0;
-    uint32_t visited = 0;
-    heap.push_back(uint64_t(k.ssd(query, b.codeword(0), n)) << 32);
-    while (!heap.empty() && visited < leaves) {
-        std::pop_heap(heap.begin(), heap.end(), later);
-        const uint64_t top = heap.back();
-        heap.pop_back();
-        std::size_t node = std::size_t(top & 0xFFFFFFFFu);
-        uint32_t distance = uint32_t(top >> 32);
-        while (b.node(node).first_child >= 0) {
-            const std::size_t a = std::size_t(b.node(node).first_child), c = a + 1;
-            const uint32_t da = k.ssd(query, b.codeword(a), n);
-            const uint32_t dc = k.ssd(query, b.codeword(c), n);
-            std::size_t other;
-            uint32_t other_distance;
-            if (da <= dc) {
-                node = a, distance = da, other = c, other_distance = dc;
+    // The root's own distance only matters when it is a leaf.
+    uint64_t next = uint64_t(b.node(0).first_child < 0 ? k.ssd(query, b.codeword(0), n) : 0) << 32;
+    for (uint32_t visited = 0;;) {
+        std::size_t node = std::size_t(next & 0xFFFFFFFFu);
+        uint32_t distance = uint32_t(next >> 32);
+        for (int32_t first = b.node(node).first_child; first >= 0; first = b.node(node).first_child) {
+            // Siblings are stored next to each other: one pass over the
+            // query gives both distances.
+            const std::size_t a = std::size_t(first), c = a + 1;
+            uint32_t d[2];
+            k.ssd2(query, b.codeword(a), n, d);
+            uint64_t other;
+            if (d[0] <= d[1]) {
+                node = a, distance = d[0], other = uint64_t(d[1]) << 32 | c;
             } else {
-                node = c, distance = dc, other = a, other_distance = da;
+                node = c, distance = d[1], other = uint64_t(d[0]) << 32 | a;
             }
-            heap.push_back(uint64_t(other_distance) << 32 | other);
-            std::push_heap(heap.begin(), heap.end(), later);
+            if (use_heap) {
+                heap.push_back(other);
+                std::push_heap(heap.begin(), heap.end(), later);
+            } else {
+                pending[pending_count++] = other;
+            }
         }
         const std::size_t leaf = std::size_t(b.node(node).leaf);
         const uint32_t key = b.leaf_key(leaf);
         if (distance < best_distance || (distance == best_distance && key < best_key))
             best_distance = distance, best_key = key, best_leaf = leaf;
         if (context.tolerance) work.visited.emplace_back(distance, uint32_t(leaf));
-        ++visited;
+        if (++visited >= leaves) break;
+        if (use_heap) {
+            if (heap.empty()) break;
+            std::pop_heap(heap.begin(), heap.end(), later);
+            next = heap.back();
+            heap.pop_back();
+        } else {
+            if (pending_count == 0) break;
+            std::size_t lowest = 0;
+            for (std::size_t i = 1; i < pending_count; ++i)
+                if (pending[i] < pending[lowest]) lowest = i;
+            next = pending[lowest];
+            pending[lowest] = pending[--pending_count];
+        }
     }
     if (context.tolerance == 0) return best_leaf;
     const uint32_t threshold = tolerance_threshold(best_distance, context.tolerance);
@@ -155,10 +181,20 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, ui
     // favours smooth continuations and the texture collapses into flat
     // blocks.)
     const auto& offsets = b.key_offsets();
+    const std::size_t n = std::min<std::size_t>(count, kMaxEntries);
+    if (offsets.empty()) {
+        // Every entry qualifies (below): the salt alone decides.
+        std::size_t chosen = 0;
+        uint64_t chosen_rank = candidate_rank(salt ^ 0x5EEDull, 0);
+        for (std::size_t i = 1; i < n; ++i) {
+            const uint64_t rank = candidate_rank(salt ^ 0x5EEDull, uint32_t(i));
+            if (rank < chosen_rank) chosen = i, chosen_rank = rank;
+        }
+        return chosen;
+    }
     const int ch = b.channels();
     uint32_t distance[kMaxEntries];
     uint32_t best = UINT32_MAX;
-    const std::size_t n = std::min<std::size_t>(count, kMaxEntries);
     for (std::size_t i = 0; i < n; ++i) {
         const uint8_t* key = b.entry(leaf, i) + ch;
         uint32_t d = 0;

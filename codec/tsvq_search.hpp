@@ -33,6 +33,8 @@ public:
 
     // Entries per leaf the search considers; more are never stored.
     static constexpr std::size_t kMaxEntries = 64;
+    // Up to this many leaves, pending branches are kept unsorted (see search).
+    static constexpr uint32_t kLinearScanLeaves = 8;
 
 private:
     // Single-leaf descent: at each internal node, the side of the plane
@@ -42,6 +44,7 @@ private:
 
     std::shared_ptr<const Codebook> book_;
     uint32_t backtrack_;
+    int depth_ = 0;
     std::vector<int32_t> plane_of_node_;  // index into the planes, internal nodes only
     std::vector<int16_t> plane_normals_;  // per plane: first child - second child (stride values)
     std::vector<int64_t> plane_offsets_;  // per plane: |first|^2 - |second|^2

@@ -37,6 +37,11 @@ struct Kernels {
     // descent uses it to compare a query with two children at once:
     // |q-a|^2 <= |q-b|^2  <=>  2 q.(a-b) >= |a|^2 - |b|^2.
     int32_t (*dot)(const uint8_t* a, const int16_t* w, std::size_t n);
+    // The distances from `query` to two vectors of n bytes stored one after
+    // the other at `pair` (two sibling codewords of a TSVQ node): the query
+    // is loaded once for both. out[0] = ssd(query, pair), out[1] =
+    // ssd(query, pair + n).
+    void (*ssd2)(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_t* out);
 };
 
 // The kernels chosen for this CPU, once. The environment variable

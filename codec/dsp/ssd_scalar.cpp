@@ -45,7 +45,12 @@ int32_t dot_scalar(const uint8_t* a, const int16_t* w, std::size_t n) {
     return sum;
 }
 
-const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar, dot_scalar};
+void ssd2_scalar(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_t* out) {
+    out[0] = ssd_scalar(query, pair, n);
+    out[1] = ssd_scalar(query, pair + n, n);
+}
+
+const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar, dot_scalar, ssd2_scalar};
 
 }  // namespace
 
