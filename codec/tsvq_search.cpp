@@ -17,6 +17,7 @@ struct TsvqScratch final : MatchScratch {
     // key orders by distance, then by node index, so ties are deterministic.
     std::vector<uint64_t> heap;
     std::vector<std::pair<uint32_t, uint32_t>> visited;  // (distance, leaf)
+    std::vector<int8_t> signed_query;                    // query bytes - 128
 };
 
 }  // namespace
@@ -28,6 +29,17 @@ TsvqMatcher::TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrac
     const Codebook& b = *book_;
     const std::size_t n = b.stride();
     const std::size_t internal = b.node_count() - b.leaf_count();
+    // |q - c|^2 = |q|^2 + |c|^2 - 2 q.c, and with q = s + 128 (s signed),
+    // q.c = s.c + 128 sum(c): so |q - c|^2 = |q|^2 + bias(c) - 2 s.c with
+    // bias(c) = |c|^2 - 256 sum(c). Exact integers: the same distances as
+    // ssd, from one unsigned-by-signed dot product per codeword.
+    node_bias_.assign(b.node_count(), 0);
+    for (std::size_t node = 0; node < b.node_count(); ++node) {
+        const uint8_t* c = b.codeword(node);
+        int64_t bias = 0;
+        for (std::size_t d = 0; d < n; ++d) bias += int64_t(c[d]) * c[d] - 256 * int64_t(c[d]);
+        node_bias_[node] = bias;
+    }
     plane_of_node_.assign(b.node_count(), -1);
     plane_normals_.assign(internal * n, 0);
     plane_offsets_.assign(internal, 0);
@@ -65,6 +77,7 @@ std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
     auto s = std::make_unique<TsvqScratch>();
     // Each descent leaves at most one pending branch per level.
     s->heap.reserve(std::size_t(kLinearScanLeaves) * std::size_t(depth_ + 1));
+    s->signed_query.resize(book_->stride());
     return s;
 }
 
@@ -92,6 +105,15 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
     std::size_t pending_count = 0;
     const auto later = std::greater<uint64_t>();
 
+    work.signed_query.resize(n);
+    int8_t* signed_query = work.signed_query.data();
+    int64_t query_norm = 0;
+    for (std::size_t d = 0; d < n; ++d) {
+        signed_query[d] = int8_t(int(query[d]) - 128);
+        query_norm += int64_t(query[d]) * query[d];
+    }
+    const int64_t* bias = node_bias_.data();
+
     uint32_t best_distance = UINT32_MAX, best_key = UINT32_MAX;
     std::size_t best_leaf = 0;
     // The root's own distance only matters when it is a leaf.
@@ -101,10 +123,12 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
         uint32_t distance = uint32_t(next >> 32);
         for (int32_t first = b.node(node).first_child; first >= 0; first = b.node(node).first_child) {
             // Siblings are stored next to each other: one pass over the
-            // query gives both distances.
+            // query gives both distances (exact; see node_bias_).
             const std::size_t a = std::size_t(first), c = a + 1;
-            uint32_t d[2];
-            k.ssd2(query, b.codeword(a), n, d);
+            int32_t dots[2];
+            k.dot2(signed_query, b.codeword(a), n, dots);
+            const uint32_t d[2] = {uint32_t(query_norm + bias[a] - 2 * int64_t(dots[0])),
+                                   uint32_t(query_norm + bias[c] - 2 * int64_t(dots[1]))};
             uint64_t other;
             if (d[0] <= d[1]) {
                 node = a, distance = d[0], other = uint64_t(d[1]) << 32 | c;

@@ -69,6 +69,37 @@ TEST(Dsp, PairDistancesEqualTwoSingleDistancesOnEveryKernelSet) {
     }
 }
 
+TEST(Dsp, SignedPairDotsEqualTheDefinitionOnEveryKernelSet) {
+    for (std::size_t n : {16u, 32u, 48u, 64u, 80u, 112u, 208u, 1024u}) {
+        for (uint64_t seed = 0; seed < 20; ++seed) {
+            const auto raw = random_bytes(n, seed * 5), pair = random_bytes(2 * n, seed * 5 + 1);
+            std::vector<int8_t> q(n);
+            for (std::size_t i = 0; i < n; ++i) q[i] = int8_t(int(raw[i]) - 128);
+            int32_t first = 0, second = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+                first += int32_t(q[i]) * pair[i];
+                second += int32_t(q[i]) * pair[n + i];
+            }
+            for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+                int32_t out[2] = {0, 0};
+                dsp::available_kernels(k).dot2(q.data(), pair.data(), n, out);
+                EXPECT_EQ(out[0], first) << dsp::available_kernels(k).name << " n=" << n;
+                EXPECT_EQ(out[1], second) << dsp::available_kernels(k).name << " n=" << n;
+            }
+        }
+    }
+    // Extremes: -128 and 127 against 255.
+    std::vector<int8_t> low(208, -128), high(208, 127);
+    std::vector<uint8_t> full(416, 255);
+    for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+        int32_t out[2] = {0, 0};
+        dsp::available_kernels(k).dot2(low.data(), full.data(), 208, out);
+        EXPECT_EQ(out[0], -128 * 255 * 208);
+        dsp::available_kernels(k).dot2(high.data(), full.data(), 208, out);
+        EXPECT_EQ(out[1], 127 * 255 * 208);
+    }
+}
+
 TEST(Dsp, NearestAgreesWithBruteForceIncludingTies) {
     const std::size_t stride = 64, n = 48, count = 500;
     // Few distinct values, so equal distances are common and the tie rule

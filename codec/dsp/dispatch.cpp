@@ -9,18 +9,22 @@ namespace vqtex::dsp {
 namespace {
 
 struct Available {
-    const Kernels* sets[4];
+    const Kernels* sets[5];
     int count;
 };
 
 Available detect() {
-    Available a{{&scalar_kernels(), nullptr, nullptr, nullptr}, 1};
+    Available a{{&scalar_kernels(), nullptr, nullptr, nullptr, nullptr}, 1};
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_cpu_init();
     if (const Kernels* k = sse2_kernels(); k && __builtin_cpu_supports("sse2")) a.sets[a.count++] = k;
     if (const Kernels* k = avx2_kernels(); k && __builtin_cpu_supports("avx2")) a.sets[a.count++] = k;
     if (const Kernels* k = avx512_kernels();
         k && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw"))
+        a.sets[a.count++] = k;
+    if (const Kernels* k = avx512vnni_kernels();
+        k && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+        __builtin_cpu_supports("avx512vnni"))
         a.sets[a.count++] = k;
 #endif
     return a;
@@ -36,9 +40,9 @@ const Kernels& choose() {
     const Kernels* chosen = a.sets[a.count - 1];
     if (const char* forced = std::getenv("VQTEX_SIMD")) {
         // Take the best available level not above the one asked for.
-        static const char* const order[] = {"scalar", "sse2", "avx2", "avx512"};
+        static const char* const order[] = {"scalar", "sse2", "avx2", "avx512", "avx512vnni"};
         int wanted = -1;
-        for (int i = 0; i < 4; ++i)
+        for (int i = 0; i < 5; ++i)
             if (std::strcmp(forced, order[i]) == 0) wanted = i;
         if (wanted >= 0) {
             chosen = a.sets[0];

@@ -42,10 +42,16 @@ struct Kernels {
     // is loaded once for both. out[0] = ssd(query, pair), out[1] =
     // ssd(query, pair + n).
     void (*ssd2)(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_t* out);
+    // Dot products of a signed query (the query's bytes minus 128) with two
+    // byte vectors stored one after the other at `pair`: out[0] =
+    // sum q[i] * pair[i], out[1] = sum q[i] * pair[n + i]. With per-codeword
+    // constants this gives exact distances (see tsvq_search.cpp) in the one
+    // operation AVX-512 VNNI does natively (unsigned x signed bytes).
+    void (*dot2)(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out);
 };
 
 // The kernels chosen for this CPU, once. The environment variable
-// VQTEX_SIMD=scalar|sse2|avx2|avx512 forces a level (for tests and for
+// VQTEX_SIMD=scalar|sse2|avx2|avx512|avx512vnni forces a level (for tests and for
 // checking that results never depend on it); a level the CPU lacks falls back
 // to the best one it has.
 const Kernels& kernels();
@@ -59,5 +65,12 @@ const Kernels& scalar_kernels();
 const Kernels* sse2_kernels();
 const Kernels* avx2_kernels();
 const Kernels* avx512_kernels();
+const Kernels* avx512vnni_kernels();
+
+namespace detail {
+// The AVX-512 set, which the AVX-512 VNNI set extends (only defined when the
+// AVX-512 file is compiled with its flags).
+const Kernels& avx512_base();
+}  // namespace detail
 
 }  // namespace vqtex::dsp

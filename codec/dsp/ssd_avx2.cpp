@@ -88,7 +88,20 @@ void ssd2_avx2(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_
     out[1] = uint32_t(_mm_extract_epi32(t, 1));
 }
 
-const Kernels kAvx2 = {"avx2", ssd_avx2, nearest_avx2, dot_avx2, ssd2_avx2};
+void dot2_avx2(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
+    __m256i acc0 = _mm256_setzero_si256(), acc1 = _mm256_setzero_si256();
+    for (std::size_t i = 0; i < n; i += 16) {
+        const __m256i q = _mm256_cvtepi8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(query + i)));
+        const __m256i a = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pair + i)));
+        const __m256i b = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pair + n + i)));
+        acc0 = _mm256_add_epi32(acc0, _mm256_madd_epi16(q, a));
+        acc1 = _mm256_add_epi32(acc1, _mm256_madd_epi16(q, b));
+    }
+    out[0] = int32_t(hsum(acc0));
+    out[1] = int32_t(hsum(acc1));
+}
+
+const Kernels kAvx2 = {"avx2", ssd_avx2, nearest_avx2, dot_avx2, ssd2_avx2, dot2_avx2};
 
 }  // namespace
 

@@ -100,11 +100,36 @@ void ssd2_avx512(const uint8_t* query, const uint8_t* pair, std::size_t n, uint3
     out[1] = uint32_t(_mm512_reduce_add_epi32(acc1));
 }
 
-const Kernels kAvx512 = {"avx512", ssd_avx512, nearest_avx512, dot_avx512, ssd2_avx512};
+void dot2_avx512(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
+    __m512i acc0 = _mm512_setzero_si512(), acc1 = _mm512_setzero_si512();
+    std::size_t i = 0;
+    for (; i + 32 <= n; i += 32) {
+        const __m512i q = _mm512_cvtepi8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(query + i)));
+        const __m512i a = _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(pair + i)));
+        const __m512i b = _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(pair + n + i)));
+        acc0 = _mm512_add_epi32(acc0, _mm512_madd_epi16(q, a));
+        acc1 = _mm512_add_epi32(acc1, _mm512_madd_epi16(q, b));
+    }
+    if (i < n) {
+        const __m256i q = _mm256_cvtepi8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(query + i)));
+        const __m256i a = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pair + i)));
+        const __m256i b = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pair + n + i)));
+        acc0 = _mm512_add_epi32(acc0, _mm512_zextsi256_si512(_mm256_madd_epi16(q, a)));
+        acc1 = _mm512_add_epi32(acc1, _mm512_zextsi256_si512(_mm256_madd_epi16(q, b)));
+    }
+    out[0] = _mm512_reduce_add_epi32(acc0);
+    out[1] = _mm512_reduce_add_epi32(acc1);
+}
+
+const Kernels kAvx512 = {"avx512", ssd_avx512, nearest_avx512, dot_avx512, ssd2_avx512, dot2_avx512};
 
 }  // namespace
 
 const Kernels* avx512_kernels() { return &kAvx512; }
+
+namespace detail {
+const Kernels& avx512_base() { return kAvx512; }
+}  // namespace detail
 
 }  // namespace vqtex::dsp
 #else

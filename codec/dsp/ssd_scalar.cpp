@@ -50,7 +50,17 @@ void ssd2_scalar(const uint8_t* query, const uint8_t* pair, std::size_t n, uint3
     out[1] = ssd_scalar(query, pair + n, n);
 }
 
-const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar, dot_scalar, ssd2_scalar};
+void dot2_scalar(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
+    int32_t first = 0, second = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        first += int32_t(query[i]) * int32_t(pair[i]);
+        second += int32_t(query[i]) * int32_t(pair[n + i]);
+    }
+    out[0] = first;
+    out[1] = second;
+}
+
+const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar, dot_scalar, ssd2_scalar, dot2_scalar};
 
 }  // namespace
 

@@ -87,7 +87,27 @@ void ssd2_sse2(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_
     out[1] = hsum(acc1);
 }
 
-const Kernels kSse2 = {"sse2", ssd_sse2, nearest_sse2, dot_sse2, ssd2_sse2};
+void dot2_sse2(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
+    const __m128i zero = _mm_setzero_si128();
+    __m128i acc0 = _mm_setzero_si128(), acc1 = _mm_setzero_si128();
+    for (std::size_t i = 0; i < n; i += 16) {
+        const __m128i q = _mm_loadu_si128(reinterpret_cast<const __m128i*>(query + i));
+        // Sign-extend: each byte into the high half of a 16-bit lane, then an
+        // arithmetic shift down.
+        const __m128i qlo = _mm_srai_epi16(_mm_unpacklo_epi8(zero, q), 8);
+        const __m128i qhi = _mm_srai_epi16(_mm_unpackhi_epi8(zero, q), 8);
+        const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(pair + i));
+        const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(pair + n + i));
+        acc0 = _mm_add_epi32(acc0, _mm_add_epi32(_mm_madd_epi16(qlo, _mm_unpacklo_epi8(a, zero)),
+                                                 _mm_madd_epi16(qhi, _mm_unpackhi_epi8(a, zero))));
+        acc1 = _mm_add_epi32(acc1, _mm_add_epi32(_mm_madd_epi16(qlo, _mm_unpacklo_epi8(b, zero)),
+                                                 _mm_madd_epi16(qhi, _mm_unpackhi_epi8(b, zero))));
+    }
+    out[0] = int32_t(hsum(acc0));
+    out[1] = int32_t(hsum(acc1));
+}
+
+const Kernels kSse2 = {"sse2", ssd_sse2, nearest_sse2, dot_sse2, ssd2_sse2, dot2_sse2};
 
 }  // namespace
 
