@@ -223,19 +223,46 @@ ExampleSet collect_examples(const NeighborhoodLayout& layout, const std::vector<
     set.dimension = layout.dimension();
     set.stride = layout.stride();
     set.channels = img.channels;
+    // The taps' extent per depth: a window fits inside exactly when its
+    // extreme taps do (the same test as fits_inside, without the tap loop).
+    int min_dx[kMaxLevels], max_dx[kMaxLevels], min_dy[kMaxLevels], max_dy[kMaxLevels];
+    std::fill(min_dx, min_dx + kMaxLevels, 0);
+    std::fill(max_dx, max_dx + kMaxLevels, 0);
+    std::fill(min_dy, min_dy + kMaxLevels, 0);
+    std::fill(max_dy, max_dy + kMaxLevels, 0);
+    for (const Tap& t : layout.taps()) {
+        min_dx[t.depth] = std::min(min_dx[t.depth], int(t.dx));
+        max_dx[t.depth] = std::max(max_dx[t.depth], int(t.dx));
+        min_dy[t.depth] = std::min(min_dy[t.depth], int(t.dy));
+        max_dy[t.depth] = std::max(max_dy[t.depth], int(t.dy));
+    }
+    const int depths = layout.shape().levels;
+    auto fits = [&](int x, int y) {
+        for (int d = 0; d < depths; ++d) {
+            const Image& lv = pyramid[std::size_t(layout.level() + d)];
+            const int px = x >> d, py = y >> d;
+            if (px + min_dx[d] < 0 || py + min_dy[d] < 0 || px + max_dx[d] >= lv.width ||
+                py + max_dy[d] >= lv.height)
+                return false;
+        }
+        return true;
+    };
+    const NeighborhoodGather gather(layout, pyramid);
+    const std::size_t ch = std::size_t(set.channels);
+    set.vectors.reserve(img.pixel_count() * set.stride);
+    set.pixels.reserve(img.pixel_count() * ch);
+    set.positions.reserve(img.pixel_count());
     for (int y = 0; y < img.height; ++y) {
         for (int x = 0; x < img.width; ++x) {
-            if (!tileable && !layout.fits_inside(pyramid, x, y)) continue;
+            if (!tileable && !fits(x, y)) continue;
             const std::size_t i = set.positions.size();
             set.positions.push_back(uint32_t(y) * uint32_t(img.width) + uint32_t(x));
             set.vectors.resize((i + 1) * set.stride);
-            set.pixels.resize((i + 1) * std::size_t(set.channels));
-            if (tileable)
-                layout.gather_wrapped(pyramid, x, y, set.vectors.data() + i * set.stride);
-            else
-                layout.gather_inside(pyramid, x, y, set.vectors.data() + i * set.stride);
-            std::memcpy(set.pixels.data() + i * std::size_t(set.channels), img.at(x, y),
-                        std::size_t(set.channels));
+            set.pixels.resize((i + 1) * ch);
+            // Inside the example the wrapped gather reads exactly what an
+            // unwrapped one would.
+            gather.gather(x, y, set.vectors.data() + i * set.stride);
+            std::memcpy(set.pixels.data() + i * ch, img.at(x, y), ch);
         }
     }
     return set;

@@ -59,6 +59,8 @@ struct Cluster {
     std::vector<uint64_t> sum;      // per dimension, exact
     std::vector<uint8_t> centroid;  // stride bytes
     uint64_t distortion = 0;        // sum of SSD to the centroid
+    uint32_t far_distance = 0;      // largest SSD to the centroid
+    std::size_t far = 0;            // position in members of the (first) farthest
 };
 
 struct Split {
@@ -73,13 +75,17 @@ public:
 
     uint32_t ssd(const uint8_t* a, const uint8_t* b) const { return k_.ssd(a, b, ex_.stride); }
 
+    // __restrict: bytes may alias anything, so without it the compiler must
+    // reload the vector after every store and cannot vectorise.
     void add(std::vector<uint64_t>& sum, uint32_t member) const {
-        const uint8_t* v = ex_.vector(member);
-        for (std::size_t d = 0; d < ex_.dimension; ++d) sum[d] += v[d];
+        const uint8_t* __restrict v = ex_.vector(member);
+        uint64_t* __restrict s = sum.data();
+        for (std::size_t d = 0; d < ex_.dimension; ++d) s[d] += v[d];
     }
     void subtract(std::vector<uint64_t>& sum, uint32_t member) const {
-        const uint8_t* v = ex_.vector(member);
-        for (std::size_t d = 0; d < ex_.dimension; ++d) sum[d] -= v[d];
+        const uint8_t* __restrict v = ex_.vector(member);
+        uint64_t* __restrict s = sum.data();
+        for (std::size_t d = 0; d < ex_.dimension; ++d) s[d] -= v[d];
     }
 
     std::vector<uint8_t> mean(const std::vector<uint64_t>& sum, uint64_t n) const {
@@ -95,28 +101,52 @@ public:
         c.centroid = mean(c.sum, c.members.size());
     }
 
+    // Distortion, and the member farthest from the centroid (lowest index
+    // on ties), which a split starts from.
     void compute_distortion(Cluster& c) const {
         const std::size_t chunks = (c.members.size() + kGrain - 1) / kGrain;
-        std::vector<uint64_t> partial(chunks, 0);
+        struct Partial {
+            uint64_t sum = 0;
+            uint32_t far_distance = 0;
+            std::size_t far = 0;
+        };
+        std::vector<Partial> partial(chunks);
         parallel_for(threads_for(c.members.size()), c.members.size(), kGrain,
                      [&](std::size_t b, std::size_t e) {
-                         uint64_t s = 0;
-                         for (std::size_t i = b; i < e; ++i)
-                             s += ssd(ex_.vector(c.members[i]), c.centroid.data());
-                         partial[b / kGrain] = s;
+                         Partial p{0, 0, b};
+                         for (std::size_t i = b; i < e; ++i) {
+                             const uint32_t d = ssd(ex_.vector(c.members[i]), c.centroid.data());
+                             p.sum += d;
+                             if (d > p.far_distance) p.far_distance = d, p.far = i;
+                         }
+                         partial[b / kGrain] = p;
                      });
-        c.distortion = std::accumulate(partial.begin(), partial.end(), uint64_t(0));
+        c.distortion = 0;
+        c.far_distance = 0;
+        c.far = 0;
+        for (const Partial& p : partial) {
+            c.distortion += p.sum;
+            if (p.far_distance > c.far_distance) c.far_distance = p.far_distance, c.far = p.far;
+        }
     }
 
     // Assign members to the nearer of two codewords (ties to the first):
-    // per-member flags, 1 = second.
+    // per-member flags, 1 = second. |v-b|^2 < |v-a|^2 exactly when
+    // 2 v.(a-b) < |a|^2 - |b|^2: one dot product per member instead of two
+    // distances, the same partition.
     void assign(const Cluster& c, const uint8_t* ca, const uint8_t* cb, std::vector<uint8_t>& side) const {
         side.resize(c.members.size());
+        std::vector<int16_t> normal(ex_.stride, 0);
+        int64_t offset = 0;
+        for (std::size_t d = 0; d < ex_.stride; ++d) {
+            normal[d] = int16_t(int(ca[d]) - int(cb[d]));
+            offset += int64_t(ca[d]) * ca[d] - int64_t(cb[d]) * cb[d];
+        }
         parallel_for(threads_for(c.members.size()), c.members.size(), kGrain,
                      [&](std::size_t b, std::size_t e) {
                          for (std::size_t i = b; i < e; ++i) {
-                             const uint8_t* v = ex_.vector(c.members[i]);
-                             side[i] = ssd(v, cb) < ssd(v, ca) ? 1 : 0;
+                             const int64_t dot = k_.dot(ex_.vector(c.members[i]), normal.data(), ex_.stride);
+                             side[i] = 2 * dot < offset ? 1 : 0;
                          }
                      });
     }
@@ -126,13 +156,8 @@ public:
         const std::size_t n = c.members.size();
         if (n < 2) return s;
         s.possible = true;
-        // The member farthest from the centroid (lowest index on ties).
-        uint32_t far_distance = 0;
-        std::size_t far = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            const uint32_t d = ssd(ex_.vector(c.members[i]), c.centroid.data());
-            if (d > far_distance) far_distance = d, far = i;
-        }
+        const uint32_t far_distance = c.far_distance;
+        const std::size_t far = c.far;
         std::vector<uint8_t> side;
         bool lloyd_ok = far_distance > 0;
         if (lloyd_ok) {
