@@ -9,15 +9,18 @@ namespace {
 constexpr int kTaps[5] = {1, 4, 6, 4, 1};
 
 int edge_index(int i, int size, EdgeMode edges) {
-    if (edges == EdgeMode::Wrap) return Image::wrap(i, size);
+    return edges == EdgeMode::Wrap ? Image::wrap(i, size) : reflect_index(i, size);
+}
+
+}  // namespace
+
+int reflect_index(int i, int size) {
     if (size == 1) return 0;
     // Reflect repeatedly, so even windows wider than a tiny image are defined.
     const int period = 2 * (size - 1);
     i = Image::wrap(i, period);
     return i < size ? i : period - i;
 }
-
-}  // namespace
 
 int pyramid_level_size(int size, int level) {
     for (int l = 0; l < level; ++l) size = (size + 1) / 2;

@@ -17,6 +17,10 @@ enum class EdgeMode {
     Wrap,    // tileable examples and synthesised textures: toroidal
 };
 
+// Index i reflected into [0, size) the way EdgeMode::Mirror reads past the
+// border (no duplicated edge pixel; repeated for windows wider than the image).
+int reflect_index(int i, int size);
+
 // Size of pyramid level `level` for a level-0 size (ceil division by 2^level).
 int pyramid_level_size(int size, int level);
 

@@ -217,4 +217,29 @@ Scores score_all(const Image& output, const Image& reference_heldout, const Imag
 Scores floor_scores(const Image& reference_heldout, const Image& exemplar,
                     uint64_t seed = kDefaultSeed);
 
+// ---------------------------------------------------------------------------
+// 7. Boundaries of a filled region (hole filling, paper section 5.1).
+//
+// `mask` has width*height bytes, non-zero where the image was synthesised.
+// For 4-adjacent pixel pairs, d = mean over RGB of |difference|. Known pairs
+// have both pixels outside the mask; boundary pairs one inside and one
+// outside. A boundary pair is "trailing" when its known pixel lies right of
+// or below its filled pixel (the edges a raster scan reaches last, where
+// causal synthesis leaves seams), "leading" when left or above.
+//  ratio_*: mean over the boundary pairs of d / (mean d of the known pairs
+//    along the same axis). 1 = the boundary is as smooth as the image;
+//    larger = a visible seam. LOWER IS BETTER down to about 1.
+//  exceed_*: share of boundary pairs whose d exceeds the 95th percentile of
+//    the known pairs' d along the same axis. About 0.05 when the boundary is
+//    statistically like the image; larger = a seam. LOWER IS BETTER down to
+//    about 0.05.
+// Throws std::invalid_argument when the mask has the wrong size or there are
+// no known or no boundary pairs.
+struct FillSeamStats {
+  double ratio_all = 0, ratio_leading = 0, ratio_trailing = 0;
+  double exceed_all = 0, exceed_leading = 0, exceed_trailing = 0;
+  int pairs_leading = 0, pairs_trailing = 0;
+};
+FillSeamStats fill_seam_stats(const Image& filled, const std::vector<uint8_t>& mask);
+
 }  // namespace vqtex_metrics

@@ -278,6 +278,68 @@ typedef struct vqtex_file_info {
 VQTEX_API vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_limit,
                                      vqtex_file_info* info, vqtex_error* error);
 
+/* ---- Constrained synthesis: hole filling and extrapolation -----------------
+ * Pixels under a mask are synthesised so that they look like the rest of the
+ * image and meet it without a visible boundary (paper section 5.1); every
+ * other pixel is returned byte for byte. The example is the image itself
+ * outside the mask, or a separate example image. The image is not treated
+ * as periodic: reads past its border are mirrored. */
+
+typedef enum vqtex_fill_method {
+    /* Spiral order from the hole's border inwards, two passes per pyramid
+     * level with symmetric neighbourhoods (paper section 5.1, default). */
+    VQTEX_FILL_TWO_PASS = 0,
+    /* One raster-order pass per level with causal neighbourhoods: the
+     * paper's Fig. 12c, seams at the right and bottom edges. For comparison. */
+    VQTEX_FILL_CAUSAL = 1
+} vqtex_fill_method;
+
+typedef struct vqtex_fill_params {
+    uint32_t struct_size;       /* set by vqtex_fill_params_init */
+    uint32_t levels;            /* pyramid depth; 0 = the deepest the image and mask allow [--levels] */
+    vqtex_search search;        /* [--exhaustive] */
+    uint32_t backtrack;         /* TSVQ leaves visited per search [--backtrack] */
+    float codeword_fraction;    /* TSVQ leaves per example neighbourhood, (0, 1] [--codewords] */
+    uint32_t tolerance;         /* near-ties within best*(1+tolerance/256) are chosen among with
+                                   the seed; 0 = nearest only [--tolerance] */
+    uint64_t seed;              /* [--seed] */
+    vqtex_fill_method method;   /* [--causal] */
+    uint32_t threads;           /* 0 = all cores; the output is the same for any count [--threads] */
+    vqtex_progress_fn progress; /* stages ANALYSE (trees built) and SYNTHESISE (pixels) */
+    void* progress_user;
+} vqtex_fill_params;
+
+VQTEX_API void vqtex_fill_params_init(vqtex_fill_params* params);
+
+typedef struct vqtex_fill_stats {
+    uint32_t levels;
+    vqtex_shape shapes[VQTEX_MAX_LEVELS];       /* [0] = finest; symmetric for the two-pass method */
+    uint32_t examples[VQTEX_MAX_LEVELS];        /* usable example neighbourhoods per level */
+    uint32_t block_examples[VQTEX_MAX_LEVELS];  /* pass-1 example blocks per level (0: coarsest) */
+    uint32_t filled[VQTEX_MAX_LEVELS];          /* pixels synthesised per level */
+    double analyse_seconds;
+    double fill_seconds;
+} vqtex_fill_stats;
+
+/* Fills the pixels of `image` where `mask` (1 channel, image's size) is
+ * non-zero. `example` may be NULL (the image outside the mask is the
+ * example) or an image with image's channel count. `out` receives a new
+ * image of image's size (free with vqtex_image_free); stats and error may be
+ * NULL. A mask that leaves too little example fails with
+ * VQTEX_ERROR_IMAGE_TOO_SMALL. */
+VQTEX_API vqtex_status vqtex_fill(const vqtex_fill_params* params, const vqtex_image* image,
+                                  const vqtex_image* mask, const vqtex_image* example,
+                                  vqtex_image* out, vqtex_fill_stats* stats, vqtex_error* error);
+
+/* Extrapolation: places `image` at (x, y) in a new width x height canvas
+ * (1 to 16384 per side, the image wholly inside) and synthesises the rest
+ * of the canvas, plus the pixels of `image` where `mask` is non-zero (mask
+ * may be NULL; otherwise 1 channel, image's size). */
+VQTEX_API vqtex_status vqtex_extend(const vqtex_fill_params* params, const vqtex_image* image,
+                                    const vqtex_image* mask, uint32_t width, uint32_t height,
+                                    uint32_t x, uint32_t y, const vqtex_image* example,
+                                    vqtex_image* out, vqtex_fill_stats* stats, vqtex_error* error);
+
 #ifdef __cplusplus
 }
 #endif

@@ -117,4 +117,23 @@ inline vqtex_file_info inspect(const uint8_t* data, size_t size, uint64_t memory
     return info;
 }
 
+// Hole filling (paper section 5.1); example may be null.
+inline Image fill(const vqtex_fill_params& params, const vqtex_image& image, const vqtex_image& mask,
+                  const vqtex_image* example = nullptr, vqtex_fill_stats* stats = nullptr) {
+    Image out;
+    vqtex_error err{};
+    check(vqtex_fill(&params, &image, &mask, example, out.out(), stats, &err), err);
+    return out;
+}
+
+// Extrapolation: image placed at (x, y) in a width x height canvas; mask may be null.
+inline Image extend(const vqtex_fill_params& params, const vqtex_image& image, uint32_t width,
+                    uint32_t height, uint32_t x, uint32_t y, const vqtex_image* mask = nullptr,
+                    const vqtex_image* example = nullptr, vqtex_fill_stats* stats = nullptr) {
+    Image out;
+    vqtex_error err{};
+    check(vqtex_extend(&params, &image, mask, width, height, x, y, example, out.out(), stats, &err), err);
+    return out;
+}
+
 }  // namespace vqtex_cpp
