@@ -6,12 +6,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <numeric>
 #include <string>
 
 #include "image_io.hpp"
 #include "neighborhood3d.hpp"
+#include "volume_codec.hpp"
+#include "vqtex/vqtex.hpp"
+#include "container.hpp"
 #include "rng.hpp"
+#include "test_support.hpp"
 #include "temporal_model.hpp"
 #include "temporal_synthesis.hpp"
 #include "volume.hpp"
@@ -309,4 +314,145 @@ TEST(TemporalSynthesis, StaticInputGivesStaticOutput) {
         EXPECT_LT(change, 0.1 * moving_change);
         EXPECT_LT(worst, 0.5 * moving_change);
     }
+}
+
+namespace {
+
+// Encodes a corpus animation with small settings through the public API.
+std::vector<uint8_t> encode_corpus(const char* name, int quality = 30) {
+    const Volume ex = load_sequence(name);
+    vqtex_volume_encode_params p;
+    vqtex_volume_encode_params_init(&p);
+    EXPECT_EQ(vqtex_encode_params_preset(&p.codec, quality), VQTEX_OK);
+    p.codec.threads = 2;
+    const vqtex_volume in{uint32_t(ex.width), uint32_t(ex.height), uint32_t(ex.frames), uint32_t(ex.channels),
+                          const_cast<uint8_t*>(ex.stack.pixels.data())};
+    vqtex_cpp::Buffer b = vqtex_cpp::encode_volume(p, in);
+    return std::vector<uint8_t>(b.data(), b.data() + b.size());
+}
+
+}  // namespace
+
+TEST(TemporalCodec, RoundTripThroughTheFileIsBitExactForAnyThreadCount) {
+    const std::vector<uint8_t> file = encode_corpus("flicker_32_anim");
+    std::printf("flicker_32_anim (32x32x32 RGB, %d bytes of PNG frames) -> %zu bytes\n", 64891, file.size());
+    const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
+    EXPECT_EQ(info.exemplar_frames, 32u);
+    EXPECT_EQ(info.exemplar_width, 32u);
+    EXPECT_EQ(info.levels, 3u);
+    EXPECT_EQ(info.window_frames[0], 5);
+    EXPECT_EQ(info.seam_closing, 1u);
+    vqtex_decode_params d;
+    vqtex_decode_params_init(&d);
+    d.width = 40;
+    d.height = 24;
+    d.threads = 1;
+    const vqtex_cpp::Volume one = vqtex_cpp::decode_volume(d, 20, file.data(), file.size());
+    EXPECT_EQ(one.frames(), 20u);
+    EXPECT_EQ(one.width(), 40u);
+    EXPECT_EQ(one.height(), 24u);
+    EXPECT_EQ(one.channels(), 3u);
+    d.threads = 3;
+    const vqtex_cpp::Volume three = vqtex_cpp::decode_volume(d, 20, file.data(), file.size());
+    EXPECT_EQ(0, std::memcmp(one.frame(0), three.frame(0), one.frame_bytes() * 20));
+    // The decoder rebuilt exactly what the file describes: the same pixels
+    // from the internal decode.
+    const DecodedVolumeFile f = decode_volume_file(file.data(), file.size(), 1u << 30);
+    VolumeSynthesisOptions o;
+    o.width = 40;
+    o.height = 24;
+    o.frames = 20;
+    o.seed = info.seed;
+    o.init = f.init;
+    const Volume direct = synthesize_volume_pyramid(f.texture, o)[0];
+    EXPECT_EQ(0, std::memcmp(one.frame(0), direct.stack.pixels.data(), one.frame_bytes() * 20));
+    // Another seed, another animation; defaults give the example's size.
+    d.width = d.height = 0;
+    d.seed = 99;
+    const vqtex_cpp::Volume other = vqtex_cpp::decode_volume(d, 0, file.data(), file.size());
+    EXPECT_EQ(other.frames(), 32u);
+    EXPECT_EQ(other.width(), 32u);
+    EXPECT_NE(0, std::memcmp(one.frame(0), other.frame(0), 32 * 3));
+}
+
+TEST(TemporalCodec, StillAndAnimatedFilesAreNotConfused) {
+    const std::vector<uint8_t> anim = encode_corpus("advected_32_anim", 0);
+    vqtex_decode_params d;
+    vqtex_decode_params_init(&d);
+    vqtex_image img{};
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_decode(&d, anim.data(), anim.size(), &img, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(err.detail).find("vqtex_decode_volume"), std::string::npos) << err.detail;
+    EXPECT_EQ(img.pixels, nullptr);
+    // A still texture through the animation call.
+    const Image still = vqtex_test::load_corpus("grey_noise_64.png");
+    vqtex_encode_params e;
+    vqtex_encode_params_init(&e);
+    e.threads = 2;
+    const vqtex_image in{uint32_t(still.width), uint32_t(still.height), uint32_t(still.channels),
+                         const_cast<uint8_t*>(still.pixels.data())};
+    const vqtex_cpp::Buffer b = vqtex_cpp::encode(e, in);
+    vqtex_volume v{};
+    EXPECT_EQ(vqtex_decode_volume(&d, 4, b.data(), b.size(), &v, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(err.detail).find("still texture"), std::string::npos) << err.detail;
+    EXPECT_EQ(v.pixels, nullptr);
+    EXPECT_EQ(vqtex_cpp::inspect(b.data(), b.size()).exemplar_frames, 0u);
+    // Out-of-range requests.
+    EXPECT_EQ(vqtex_decode_volume(&d, 20000, anim.data(), anim.size(), &v, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    d.memory_limit = 1 << 20;
+    d.width = d.height = 1024;
+    EXPECT_EQ(vqtex_decode_volume(&d, 64, anim.data(), anim.size(), &v, &err), VQTEX_ERROR_LIMIT_EXCEEDED);
+}
+
+TEST(TemporalCodec, DamagedFilesAreRejectedWithSpecificErrors) {
+    const std::vector<uint8_t> file = encode_corpus("advected_32_anim", 0);
+    vqtex_decode_params d;
+    vqtex_decode_params_init(&d);
+    d.width = d.height = 8;
+    d.threads = 1;
+    auto decode = [&](const std::vector<uint8_t>& bytes) {
+        vqtex_volume v{};
+        vqtex_error err{};
+        const vqtex_status st = vqtex_decode_volume(&d, 4, bytes.data(), bytes.size(), &v, &err);
+        if (st == VQTEX_OK) {
+            vqtex_volume_free(&v);
+        } else {
+            EXPECT_EQ(v.pixels, nullptr);
+            EXPECT_NE(err.detail[0], '\0');
+        }
+        return st;
+    };
+    ASSERT_EQ(decode(file), VQTEX_OK);
+    // Every truncation.
+    for (std::size_t n = 0; n < file.size(); n += 1 + n / 16) {
+        const vqtex_status st = decode(std::vector<uint8_t>(file.begin(), file.begin() + std::ptrdiff_t(n)));
+        EXPECT_TRUE(st == VQTEX_ERROR_TRUNCATED || st == VQTEX_ERROR_CORRUPT || st == VQTEX_ERROR_INVALID_ARGUMENT) << n;
+    }
+    // Flipped bits anywhere: the checksum (or an earlier structural check).
+    Rng rng(3);
+    for (int i = 0; i < 200; ++i) {
+        std::vector<uint8_t> bad = file;
+        bad[std::size_t(rng.below(bad.size()))] ^= uint8_t(1u << rng.below(8));
+        EXPECT_NE(decode(bad), VQTEX_OK);
+    }
+    // A consistent file (checksum recomputed) with a lying frame count or
+    // shape: rebuild the container with one section's payload altered.
+    const Container c = read_container(file.data(), file.size(), 1u << 30);
+    auto rewrite = [&](const char tag[4], int level, const std::vector<uint8_t>& payload) {
+        ContainerWriter w(c.header);
+        for (const Section& s : c.sections) {
+            std::vector<uint8_t> raw = section_bytes(file.data(), s);
+            if (std::memcmp(s.tag.data(), tag, 4) == 0 && s.level == level && s.kind == 0) raw = payload;
+            w.add(s.tag.data(), s.level, s.kind, raw);
+        }
+        return w.write();
+    };
+    EXPECT_EQ(decode(rewrite("VOLU", 0, {0, 2})), VQTEX_ERROR_CORRUPT);           // 0 frames
+    EXPECT_EQ(decode(rewrite("VOLU", 0, {32, 3})), VQTEX_ERROR_CORRUPT);          // factor 3
+    EXPECT_EQ(decode(rewrite("VOLU", 0, {0xFF, 0xFF, 0xFF, 0x7F, 2})), VQTEX_ERROR_CORRUPT);  // 2^28 frames
+    EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 4, 2, 4, 7, 1, 5, 5, 5})), VQTEX_ERROR_CORRUPT);  // even D
+    EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 5, 9, 4, 7, 1, 5, 5, 5})), VQTEX_ERROR_CORRUPT);  // k too deep
+    EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 5, 2, 4, 7, 1, 5, 5, 1})), VQTEX_ERROR_CORRUPT);  // closing D < 3
+    // Shapes that disagree with the stored trees' sizes.
+    EXPECT_EQ(decode(rewrite("LEVL", 0, {3, 3, 5, 2, 4, 7, 1, 5, 5, 5})), VQTEX_ERROR_CORRUPT);
 }
