@@ -51,6 +51,8 @@ VolumePlan plan_volume_model(const vqtex_model_params& params, const std::vector
 
 namespace {
 
+constexpr std::size_t kMinTraining = 2048;
+
 struct BuiltMatcher {
     std::shared_ptr<const Matcher> matcher;
     std::shared_ptr<const Codebook> codebook;
@@ -65,9 +67,15 @@ BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, c
         built.matcher = std::make_shared<ExhaustiveMatcher>(std::move(set));
         return built;
     }
+    // The paper trains on a random 10% of the neighbourhoods; the coarse
+    // levels of a small example have only a few hundred, and 10% of those
+    // leaves the coarsest level a handful of codewords, from which every
+    // output collapses into a flat field (measured on corpus/flicker_32_anim
+    // decoded at 128x128). So the fraction applies above kMinTraining.
     std::size_t subset_size = set.count();
     if (params.train_fraction > 0 && params.train_fraction < 1)
-        subset_size = std::max<std::size_t>(1, std::size_t(std::llround(double(subset_size) * params.train_fraction)));
+        subset_size = std::max<std::size_t>(std::min(set.count(), kMinTraining),
+                                            std::size_t(std::llround(double(subset_size) * params.train_fraction)));
     if (params.train_count > 0) subset_size = std::min<std::size_t>(subset_size, params.train_count);
     const std::vector<uint32_t> subset =
         choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level) + (closing ? 64u : 0u));
