@@ -16,6 +16,7 @@
 #include "pyramid.hpp"
 #include "synthesis.hpp"
 #include "texture_model.hpp"
+#include "volume_codec.hpp"
 #include "vqtex/vqtex.h"
 
 using namespace vqtex;
@@ -276,6 +277,10 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
     return guarded(error, [&] {
         if (!info) fail(VQTEX_ERROR_INVALID_ARGUMENT, "info pointer is NULL");
         *info = vqtex_file_info{};
+        if (is_volume_file(data, size)) {
+            describe_volume_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit), info);
+            return;
+        }
         const DecodedFile f = decode_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit));
         info->format_version = f.header.version;
         info->file_bytes = size;

@@ -19,7 +19,8 @@ inline constexpr std::size_t kTrailerSize = 4;
 
 enum HeaderFlags : uint16_t {
     kFlagSeamClosing = 1u << 0,  // at least one level has a closing tree
-    kKnownFlags = kFlagSeamClosing,
+    kFlagVolume = 1u << 1,       // an animated texture: 3D model (volume_codec.hpp)
+    kKnownFlags = kFlagSeamClosing | kFlagVolume,
 };
 
 enum class SectionCoding : uint8_t { Stored = 0, Zstd = 1 };

@@ -72,23 +72,22 @@ std::vector<int32_t> topology_of(const Codebook& b) {
 // the coarse structure there (fine detail nearby still counts, and entries
 // carry the exact adjacent pixels), and the repeated values cost almost
 // nothing after the planar layout and zstd.
-std::vector<uint8_t> smoothed_codewords(const Codebook& b, const NeighborhoodLayout& layout, int smoothing) {
-    const std::size_t k = b.leaf_count(), dim = b.dimension(), ch = std::size_t(layout.channels());
+std::vector<uint8_t> smoothed_codewords(const Codebook& b, const TreeLayout& layout, int smoothing) {
+    const std::size_t k = b.leaf_count(), dim = b.dimension(), ch = std::size_t(layout.channels);
     std::vector<uint8_t> out(k * dim);
     for (std::size_t l = 0; l < k; ++l) std::memcpy(out.data() + l * dim, b.leaf_codeword(l), dim);
     if (smoothing <= 1) return out;
-    const auto& taps = layout.taps();
+    const auto& taps = layout.taps;
     auto floor_div = [](int a, int g) { return a >= 0 ? a / g : -((-a + g - 1) / g); };
-    std::vector<int> group(taps.size());
     std::vector<std::vector<std::size_t>> members;
-    std::vector<std::tuple<int, int, int>> keys;
+    std::vector<std::tuple<int, int, int, int>> keys;
     for (std::size_t t = 0; t < taps.size(); ++t) {
-        const Tap& tap = taps[t];
-        std::tuple<int, int, int> key;
-        if (tap.depth == 0 && std::abs(tap.dx) <= 1 && std::abs(tap.dy) <= 1)
-            key = {-1 - int(t), 0, 0};  // its own group
+        const TreeLayout::Tap& tap = taps[t];
+        std::tuple<int, int, int, int> key;
+        if (tap.depth == 0 && std::abs(tap.dt) <= 1 && std::abs(tap.dx) <= 1 && std::abs(tap.dy) <= 1)
+            key = {-1 - int(t), 0, 0, 0};  // its own group
         else
-            key = {tap.depth, floor_div(tap.dy, smoothing), floor_div(tap.dx, smoothing)};
+            key = {tap.depth, tap.dt, floor_div(tap.dy, smoothing), floor_div(tap.dx, smoothing)};
         auto it = std::find(keys.begin(), keys.end(), key);
         if (it == keys.end()) {
             keys.push_back(key);
@@ -110,11 +109,20 @@ std::vector<uint8_t> smoothed_codewords(const Codebook& b, const NeighborhoodLay
     return out;
 }
 
-struct TreeSections {
-    std::vector<uint8_t> topology, codewords, entries;
-};
+}  // namespace
 
-TreeSections encode_tree(const Codebook& b, const NeighborhoodLayout& layout, const EncodeSettings& s) {
+TreeLayout tree_layout_of(const NeighborhoodLayout& layout) {
+    TreeLayout t;
+    t.dimension = layout.dimension();
+    t.stride = layout.stride();
+    t.channels = layout.channels();
+    t.key_offsets = layout.entry_key_offsets();
+    t.predictor = layout.pixel_predictor();
+    for (const Tap& tap : layout.taps()) t.taps.push_back({tap.depth, 0, tap.dy, tap.dx});
+    return t;
+}
+
+TreeSections encode_tree(const Codebook& b, const TreeLayout& layout, const EncodeSettings& s) {
     TreeSections out;
     const std::size_t k = b.leaf_count(), dim = b.dimension(), ch = std::size_t(b.channels());
     const std::size_t key_len = b.key_length();
@@ -152,7 +160,7 @@ TreeSections encode_tree(const Codebook& b, const NeighborhoodLayout& layout, co
         }
     }
     // Entries: keys (planar per key position), then pixels (planar per channel).
-    const PixelPredictor taps = layout.pixel_predictor();
+    const PixelPredictor taps = layout.predictor;
     const auto& key_offsets = b.key_offsets();
     std::vector<uint8_t> keys, pixels;
     for (std::size_t kpos = 0; kpos < key_len; ++kpos)
@@ -189,7 +197,7 @@ TreeSections encode_tree(const Codebook& b, const NeighborhoodLayout& layout, co
 std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology_bytes,
                                             const std::vector<uint8_t>& codeword_bytes,
                                             const std::vector<uint8_t>& entry_bytes,
-                                            const NeighborhoodLayout& layout, int precision,
+                                            const TreeLayout& layout, int precision,
                                             int pixel_precision, const std::string& where,
                                             std::size_t memory_limit) {
     ByteReader topo(topology_bytes.data(), topology_bytes.size(), "topology of " + where);
@@ -202,9 +210,9 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
     const std::size_t nodes = std::size_t(2 * k - 1);
     // What the rebuilt tree will hold, checked before anything is allocated.
     {
-        const std::size_t entry_size = std::size_t(layout.channels()) + (has_keys ? layout.entry_key_offsets().size() : 0);
+        const std::size_t entry_size = std::size_t(layout.channels) + (has_keys ? layout.key_offsets.size() : 0);
         // Codewords, plus the planes the search precomputes (2 bytes a sample).
-        const uint64_t tree_bytes = uint64_t(nodes) * (3 * layout.stride() + 64) + k * max_entries * entry_size;
+        const uint64_t tree_bytes = uint64_t(nodes) * (3 * layout.stride + 64) + k * max_entries * entry_size;
         if (tree_bytes > memory_limit)
             fail(VQTEX_ERROR_LIMIT_EXCEEDED, where + " would need " + std::to_string(tree_bytes) +
                                                  " bytes, above the memory limit of " + std::to_string(memory_limit));
@@ -234,8 +242,8 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
         }
     topo.expect_end();
 
-    const std::size_t dim = layout.dimension(), ch = std::size_t(layout.channels());
-    const std::vector<uint16_t> key_offsets = has_keys ? layout.entry_key_offsets() : std::vector<uint16_t>{};
+    const std::size_t dim = layout.dimension, ch = std::size_t(layout.channels);
+    const std::vector<uint16_t> key_offsets = has_keys ? layout.key_offsets : std::vector<uint16_t>{};
     const std::size_t key_len = key_offsets.size();
     if (codeword_bytes.size() != k * dim)
         fail(VQTEX_ERROR_CORRUPT, "codewords of " + where + ": " + std::to_string(codeword_bytes.size()) +
@@ -274,7 +282,7 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
                 entries[(entry_start[leaf] + e) * entry_size + ch + kpos] = dequantise(q, precision);
             }
         }
-    const PixelPredictor taps = layout.pixel_predictor();
+    const PixelPredictor taps = layout.predictor;
     std::vector<uint8_t> source(dim);
     for (std::size_t c = 0; c < ch; ++c)
         for (std::size_t i = 0; i < k; ++i) {
@@ -290,7 +298,7 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
             }
         }
 
-    Codebook book(dim, layout.stride(), layout.channels(), key_offsets);
+    Codebook book(dim, layout.stride, layout.channels, key_offsets);
     book.add_root();
     for (std::size_t n = 0; n < nodes; ++n)
         if (first_child[n] >= 0) book.split(n);  // appends children in breadth-first order
@@ -305,6 +313,8 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
     book.finalize();
     return std::make_shared<const Codebook>(std::move(book));
 }
+
+namespace {
 
 std::vector<uint8_t> encode_histogram(const LevelHistogram& h) {
     ByteWriter w;
@@ -353,7 +363,7 @@ std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings&
             Shape shape = kind == 0 ? lv.shape : lv.closing_shape;
             shape.causal = kind == 0;
             const NeighborhoodLayout layout(shape, model.channels, l, levels);
-            TreeSections t = encode_tree(*book, layout, s);
+            TreeSections t = encode_tree(*book, tree_layout_of(layout), s);
             writer.add(kTagTopology, uint8_t(l), uint8_t(kind), std::move(t.topology));
             writer.add(kTagCodewords, uint8_t(l), uint8_t(kind), std::move(t.codewords));
             writer.add(kTagEntries, uint8_t(l), uint8_t(kind), std::move(t.entries));
@@ -365,6 +375,10 @@ std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings&
 DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     DecodedFile f;
     const Container c = read_container(data, size, memory_limit);
+    if (c.header.flags & kFlagVolume)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "file holds an animated texture (frames of " + std::to_string(c.header.exemplar_width) +
+                                               "x" + std::to_string(c.header.exemplar_height) +
+                                               "): decode it with vqtex_decode_volume (vqtex-decode --frames)");
     f.header = c.header;
     f.sections = c.sections;
     const int levels = c.header.levels, ch = c.header.channels;
@@ -460,7 +474,8 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
             const auto code = section_bytes(data, require(kTagCodewords, l, kind));
             const auto entr = section_bytes(data, require(kTagEntries, l, kind));
             expected_sections += 3;
-            auto book = decode_tree(topo, code, entr, layout, precision, pixel_precision, where, memory_limit);
+            auto book = decode_tree(topo, code, entr, tree_layout_of(layout), precision, pixel_precision, where,
+                                    memory_limit);
             auto matcher = std::make_shared<TsvqMatcher>(book, c.header.backtrack);
             if (kind == 0) {
                 lv.causal = book;

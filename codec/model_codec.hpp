@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "container.hpp"
+#include "neighborhood.hpp"
 #include "synthesis.hpp"
 #include "tsvq_tree.hpp"
 
@@ -42,6 +43,31 @@ struct CodecModel {
 };
 
 std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& settings);
+
+// What the tree coding needs to know of a neighbourhood shape, 2D or 3D
+// (temporal shapes have dt != 0; volume_codec.cpp): sizes, the taps (for the
+// encoder's smoothing), the entry keys and the pixel predictor.
+struct TreeLayout {
+    struct Tap {
+        int depth, dt, dy, dx;
+    };
+    std::size_t dimension = 0, stride = 0;
+    int channels = 0;
+    std::vector<Tap> taps;
+    std::vector<uint16_t> key_offsets;
+    PixelPredictor predictor;
+};
+TreeLayout tree_layout_of(const NeighborhoodLayout& layout);
+
+// One TSVQ tree as its TOPO, CODE and ENTR payloads, and back.
+struct TreeSections {
+    std::vector<uint8_t> topology, codewords, entries;
+};
+TreeSections encode_tree(const Codebook& book, const TreeLayout& layout, const EncodeSettings& settings);
+std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology, const std::vector<uint8_t>& codewords,
+                                            const std::vector<uint8_t>& entries, const TreeLayout& layout,
+                                            int precision, int pixel_precision, const std::string& where,
+                                            std::size_t memory_limit);
 
 struct DecodedFile {
     FileHeader header;

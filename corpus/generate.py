@@ -398,6 +398,83 @@ TEXTURES = (
 )
 
 
+# ---------------------------------------------------------------------------
+# Animated textures (paper section 5.2).  Each returns (width, height,
+# channels, frames, list of flat pixel lists).  All loop: frame `frames`
+# would equal frame 0, and every frame tiles.
+# ---------------------------------------------------------------------------
+
+ANIMATION_FRAMES = 32
+
+
+def make_waves_anim():
+    """Water: two crossing travelling waves over a fixed grain, blue-green."""
+    w = h = 48
+    n = ANIMATION_FRAMES
+    frames = []
+    for t in range(n):
+        px = []
+        for y in range(h):
+            for x in range(w):
+                # Whole cycles per frame size and per loop keep it periodic.
+                a = math.sin(2.0 * math.pi * ((3 * x + 1 * y) / w - 2 * t / n))
+                b = math.sin(2.0 * math.pi * ((-1 * x + 2 * y) / w - 3 * t / n))
+                g = hash_unit(x, y, 31) - 0.5
+                v = 0.5 + 0.22 * a + 0.16 * b + 0.12 * g
+                px += [u8(255 * clamp01(0.15 + 0.35 * v)),
+                       u8(255 * clamp01(0.35 + 0.45 * v)),
+                       u8(255 * clamp01(0.55 + 0.45 * v))]
+        frames.append(px)
+    return w, h, 3, n, frames
+
+
+def make_advected_anim():
+    """Two noise layers drifting one pixel per frame, one along x, one along y."""
+    w = h = 32
+    n = ANIMATION_FRAMES
+    frames = []
+    for t in range(n):
+        px = []
+        for y in range(h):
+            for x in range(w):
+                a = fbm((x - t) % w, y, (8, 4, 2), w, h, 11)
+                b = fbm(x, (y - t) % h, (8, 4), w, h, 23)
+                px.append(u8(255 * clamp01(0.6 * a + 0.6 * b - 0.1)))
+        frames.append(px)
+    return w, h, 1, n, frames
+
+
+def make_flicker_anim():
+    """Candle-like flicker: warm blotches whose brightness pulses, each cell
+    with its own phase and rate (1 or 2 cycles per loop)."""
+    w = h = 32
+    n = ANIMATION_FRAMES
+    cell = 8
+    frames = []
+    for t in range(n):
+        px = []
+        for y in range(h):
+            for x in range(w):
+                base = fbm(x, y, (8, 4), w, h, 41)
+                cx, cy = x // cell, y // cell
+                phase = hash_unit(cx, cy, 43)
+                rate = 1 + (hash2(cx, cy, 47) & 1)
+                pulse = 0.5 + 0.5 * math.sin(2.0 * math.pi * (rate * t / n + phase))
+                v = clamp01(base * (0.35 + 0.65 * pulse))
+                px += [u8(255 * clamp01(0.1 + 1.0 * v)),
+                       u8(255 * clamp01(0.05 + 0.7 * v)),
+                       u8(255 * clamp01(0.02 + 0.3 * v))]
+        frames.append(px)
+    return w, h, 3, n, frames
+
+
+ANIMATIONS = (
+    ("waves_48_anim", make_waves_anim),
+    ("advected_32_anim", make_advected_anim),
+    ("flicker_32_anim", make_flicker_anim),
+)
+
+
 def main():
     folder = os.path.dirname(os.path.abspath(__file__))
     for name, make in TEXTURES:
@@ -407,6 +484,18 @@ def main():
             f.write(data)
         print("%-20s %3dx%-3d %d ch %7d bytes"
               % (name, width, height, channels, len(data)))
+    for name, make in ANIMATIONS:
+        width, height, channels, frames, images = make()
+        out = os.path.join(folder, name)
+        os.makedirs(out, exist_ok=True)
+        total = 0
+        for t, pixels in enumerate(images):
+            data = png_bytes(width, height, channels, pixels)
+            with open(os.path.join(out, "frame_%03d.png" % t), "wb") as f:
+                f.write(data)
+            total += len(data)
+        print("%-20s %3dx%-3d %d ch %d frames %7d bytes"
+              % (name + "/", width, height, channels, frames, total))
     return 0
 
 

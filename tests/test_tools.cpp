@@ -209,3 +209,55 @@ TEST(Tools, SixteenBitAndFloatInputsAreConvertedWithANotice) {
         EXPECT_LE(worst, 1) << name;
     }
 }
+
+// Animated textures (paper section 5.2): a numbered sequence in, a .vqt, a
+// numbered sequence of another size and length out; bad requests fail with
+// one line and leave no frames behind.
+TEST(Tools, AnimationRoundTrip) {
+    const fs::path dir = scratch_dir() / "anim";
+    fs::create_directories(dir);
+    const std::string file = (dir / "flicker.vqt").string();
+    ToolRun r = encode_tool("'" + corpus + "/flicker_32_anim/frame_%03d.png' " + file + " --quality 10 -j 2");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("32 frames"), std::string::npos) << r.output;
+    r = info_tool(file);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("animation 32 example frames"), std::string::npos) << r.output;
+    r = decode_tool(file + " '" + (dir / "out_%02d.png").string() + "' --frames 6 --size 20x12 -j 2");
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (int t = 0; t < 6; ++t) {
+        char name[16];
+        std::snprintf(name, sizeof name, "out_%02d.png", t);
+        const vqtex::Image frame = vqtex_test::load_file((dir / name).string());
+        EXPECT_EQ(frame.width, 20);
+        EXPECT_EQ(frame.height, 12);
+    }
+    EXPECT_FALSE(fs::exists(dir / "out_06.png"));
+    // A folder of frames works too, and gives the same file.
+    const std::string file2 = (dir / "flicker2.vqt").string();
+    ASSERT_EQ(encode_tool(corpus + "/flicker_32_anim " + file2 + " --quality 10 -j 1").status, 0);
+    EXPECT_EQ(vqtex_tools::load_bytes(file), vqtex_tools::load_bytes(file2));
+    // Still decoding of an animation, and a missing frame field: one-line errors, nothing written.
+    r = decode_tool(file + " " + (dir / "still.png").string());
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("--frames"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "still.png"));
+    r = decode_tool(file + " " + (dir / "noframe.png").string() + " --frames 3");
+    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    // An output folder that does not exist: nothing written anywhere.
+    r = decode_tool(file + " '" + (dir / "missing/f_%03d.png").string() + "' --frames 3");
+    EXPECT_NE(r.status, 0);
+    EXPECT_FALSE(fs::exists(dir / "missing"));
+    // Frames of different sizes.
+    fs::create_directories(dir / "mixed");
+    fs::copy_file(corpus + "/flicker_32_anim/frame_000.png", dir / "mixed/a.png");
+    fs::copy_file(corpus + "/checks_p16_64.png", dir / "mixed/b.png");
+    r = encode_tool((dir / "mixed").string() + " " + (dir / "mixed.vqt").string());
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("all frames must match"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "mixed.vqt"));
+    // No leftover temporary files.
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
+}

@@ -9,6 +9,7 @@
 
 #include "cli_common.hpp"
 #include "image_io.hpp"
+#include "sequence_io.hpp"
 #include "vqtex/vqtex.h"
 
 using namespace vqtex_tools;
@@ -21,10 +22,14 @@ int main(int argc, char** argv) {
     uint64_t seed = 0, memory_mib = 1024;
     uint32_t threads = 0;
     bool mips = false, json = false, quiet = false;
+    uint32_t frames = 0;
     auto* seed_opt = app.add_option("--seed", seed, "seed (default: the file's)");
     app.add_option("input", input, ".vqt file")->required();
     app.add_option("output", output, "output image (format from the extension)")->required();
     app.add_option("-s,--size", size, "output size WxH, 1 to 16384 per side (default: the example's size)");
+    app.add_option("--frames", frames,
+                   "animated texture: frames to write (1 to 16384; default: the example's count); the output "
+                   "name needs a frame-number field, e.g. out/frame_%03d.png")->check(CLI::Range(1, 16384));
     app.add_flag("--mips", mips,
                  "write the whole mip chain: one MIP-mapped file for .tif/.exr, else OUT_mipN.ext per level");
     app.add_option("-j,--threads", threads, "threads (default: all cores; output is identical)");
@@ -44,6 +49,41 @@ int main(int argc, char** argv) {
         ProgressBar bar(!quiet && !json);
         p.progress = ProgressBar::callback;
         p.progress_user = &bar;
+        if (frames || is_frame_pattern(output)) {
+            if (mips) throw std::invalid_argument("--mips is not supported for animations");
+            if (!is_frame_pattern(output))
+                throw std::invalid_argument("output '" + output + "' needs one frame-number field for --frames, e.g. out/frame_%03d.png");
+            vqtex_volume v{};
+            vqtex_error err{};
+            const double t0 = now_seconds();
+            const vqtex_status st = vqtex_decode_volume(&p, frames, bytes.data(), bytes.size(), &v, &err);
+            bar.finish();
+            if (st != VQTEX_OK) {
+                std::fprintf(stderr, "vqtex-decode: error: %s: %s\n", input.c_str(), err.detail);
+                return 1;
+            }
+            const double t1 = now_seconds();
+            std::vector<std::string> written;
+            try {
+                written = save_sequence(output, v);
+            } catch (...) {
+                vqtex_volume_free(&v);
+                throw;
+            }
+            const uint32_t w = v.width, h = v.height, n = v.frames;
+            vqtex_volume_free(&v);
+            if (json) {
+                std::printf("{\"input\":%s,\"output\":%s,\"bytes\":%zu,\"width\":%u,\"height\":%u,\"frames\":%u,"
+                            "\"decode_seconds\":%.6f,\"seconds_per_frame\":%.6f}\n",
+                            json_string(input).c_str(), json_string(output).c_str(), bytes.size(), w, h, n, t1 - t0,
+                            (t1 - t0) / n);
+            } else if (!quiet) {
+                std::printf("%s (%zu bytes) -> %s .. %s, %u frames of %ux%u in %.3f s (%.3f s per frame)\n",
+                            input.c_str(), bytes.size(), written.front().c_str(), written.back().c_str(), n, w, h,
+                            t1 - t0, (t1 - t0) / n);
+            }
+            return 0;
+        }
         vqtex_error err{};
         const double t0 = now_seconds();
         std::vector<vqtex_image> levels(32);

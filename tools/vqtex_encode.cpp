@@ -8,9 +8,50 @@
 
 #include "cli_common.hpp"
 #include "image_io.hpp"
+#include "sequence_io.hpp"
 #include "vqtex/vqtex.h"
 
 using namespace vqtex_tools;
+
+// The animated-texture path (paper section 5.2): a frame sequence in, a
+// .vqt file out.
+int encode_animation(const std::string& input, const std::string& output, vqtex_volume_encode_params& p, bool json,
+                     bool quiet) {
+    LoadedSequence seq = load_sequence(input);
+    if (!seq.notice.empty() && !quiet)
+        std::fprintf(stderr, "vqtex-encode: note: %s: %s\n", input.c_str(), seq.notice.c_str());
+    ProgressBar bar(!quiet && !json);
+    p.codec.progress = ProgressBar::callback;
+    p.codec.progress_user = &bar;
+    const vqtex_volume v{seq.width, seq.height, seq.frames, seq.channels, seq.pixels.data()};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_encode_stats stats{};
+    vqtex_error err{};
+    const double t0 = now_seconds();
+    const vqtex_status st = vqtex_encode_volume(&p, &v, &data, &size, &stats, &err);
+    bar.finish();
+    if (st != VQTEX_OK) {
+        std::fprintf(stderr, "vqtex-encode: error: %s\n", err.detail);
+        return 1;
+    }
+    std::vector<uint8_t> bytes(data, data + size);
+    vqtex_free(data);
+    save_bytes(output, bytes);
+    const double seconds = now_seconds() - t0;
+    if (json) {
+        std::printf("{\"input\":%s,\"output\":%s,\"width\":%u,\"height\":%u,\"frames\":%u,\"channels\":%u,"
+                    "\"bytes\":%zu,\"encode_seconds\":%.6f}\n",
+                    json_string(input).c_str(), json_string(output).c_str(), seq.width, seq.height, seq.frames,
+                    seq.channels, size, seconds);
+    } else if (!quiet) {
+        std::printf("%s (%ux%u, %u frames, %u channels) -> %s\n", input.c_str(), seq.width, seq.height, seq.frames,
+                    seq.channels, output.c_str());
+        std::printf("%zu bytes, %.3f bits per example pixel, %.3f s\n", size,
+                    8.0 * double(size) / (double(seq.width) * seq.height * seq.frames), seconds);
+    }
+    return 0;
+}
 
 int main(int argc, char** argv) {
     CLI::App app{"vqtex-encode: encode an example texture into a .vqt codebook file.\n"
@@ -23,7 +64,9 @@ int main(int argc, char** argv) {
     bool no_entry_keys = false;
     uint64_t target_size = 0, seed = 1;
     bool json = false, quiet = false, no_closing = false, tileable = false;
-    app.add_option("input", input, "example image (any format OpenImageIO reads)")->required();
+    app.add_option("input", input,
+                   "example image (any format OpenImageIO reads), or an animation: a numbered sequence "
+                   "'frames/frame_%03d.png', a folder of frames, or a multi-image file")->required();
     app.add_option("output", output, "output .vqt file")->required();
     app.add_option("-q,--quality", quality, "preset from 0 (smallest file) to 100 (best texture)")
         ->check(CLI::Range(0, 100))->capture_default_str();
@@ -41,7 +84,7 @@ int main(int argc, char** argv) {
     app.add_option("--closing-window", closing_window, "seam-closing window size (odd, 3 to 63)")
         ->check(CLI::Range(3, 63));
     app.add_option("--levels", levels, "pyramid levels (default: automatic)");
-    app.add_option("--shapes", shapes, "neighbourhood per level, finest first, RxC:k");
+    app.add_option("--shapes", shapes, "neighbourhood per level, finest first, RxC:k (animations: RxCxD:k)");
     app.add_option("-L,--backtrack", backtrack, "TSVQ leaves the decoder visits per pixel (1 to 255)")
         ->check(CLI::Range(1, 255));
     app.add_option("--seed", seed, "default decoding seed stored in the file")->capture_default_str();
@@ -61,7 +104,8 @@ int main(int argc, char** argv) {
                 throw std::invalid_argument("--codewords takes counts for the codec (e.g. 512 or 512,256)");
             parse_codewords(codewords, p.model);
         }
-        if (!shapes.empty()) parse_shapes(shapes, p.model);
+        const bool animated = is_sequence(input);
+        if (!shapes.empty() && !animated) parse_shapes(shapes, p.model);
         if (entries) p.model.entries_per_leaf = entries;
         if (precision) p.precision = precision;
         if (pixel_precision) p.pixel_precision = pixel_precision;
@@ -80,6 +124,17 @@ int main(int argc, char** argv) {
         p.target_size = target_size;
         p.threads = threads;
 
+        if (animated) {
+            if (target_size) throw std::invalid_argument("--target-size is not supported for animations: use --quality");
+            vqtex_volume_encode_params vp;
+            vqtex_volume_encode_params_init(&vp);
+            const float train_fraction = vp.codec.model.train_fraction;
+            vp.codec = p;
+            vp.codec.model.train_fraction = train_fraction;
+            if (!levels) vp.codec.model.levels = 0;
+            if (!shapes.empty()) parse_shapes3(shapes, vp.shapes);
+            return encode_animation(input, output, vp, json, quiet);
+        }
         LoadedImage example = load_image(input);
         if (!example.notice.empty() && !quiet)
             std::fprintf(stderr, "vqtex-encode: note: %s: %s\n", input.c_str(), example.notice.c_str());

@@ -42,10 +42,10 @@ int main(int argc, char** argv) {
         if (json) {
             std::printf("{\"file\":%s,\"bytes\":%llu,\"format_version\":%u,\"exemplar_width\":%u,"
                         "\"exemplar_height\":%u,\"channels\":%u,\"levels\":%u,\"seam_closing\":%u,"
-                        "\"precision\":%u,\"seed\":%llu,\"codewords\":[",
+                        "\"precision\":%u,\"seed\":%llu,\"exemplar_frames\":%u,\"codewords\":[",
                         json_string(input).c_str(), (unsigned long long)info.file_bytes, info.format_version,
                         info.exemplar_width, info.exemplar_height, info.channels, info.levels, info.seam_closing,
-                        info.precision, (unsigned long long)info.seed);
+                        info.precision, (unsigned long long)info.seed, info.exemplar_frames);
             for (uint32_t l = 0; l < info.levels; ++l) std::printf("%s%u", l ? "," : "", info.codewords[l]);
             std::printf("],\"sections\":[");
             for (uint32_t i = 0; i < info.section_count; ++i)
@@ -61,6 +61,13 @@ int main(int argc, char** argv) {
         std::printf("example   %ux%u, %u channel%s; default seed %llu\n", info.exemplar_width,
                     info.exemplar_height, info.channels, info.channels == 1 ? "" : "s",
                     (unsigned long long)info.seed);
+        if (info.exemplar_frames) {
+            std::printf("animation %u example frames; windows", info.exemplar_frames);
+            for (uint32_t l = 0; l < info.levels; ++l)
+                std::printf(" {%ux%ux%u,%u}", info.shapes[l].rows, info.shapes[l].cols, info.window_frames[l],
+                            info.shapes[l].levels);
+            std::printf(" (finest first)\n");
+        }
         std::printf("decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
                     info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",
                     info.precision, info.pixel_precision);

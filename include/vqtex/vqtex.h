@@ -272,6 +272,8 @@ typedef struct vqtex_file_info {
     uint32_t closing_codewords[VQTEX_MAX_LEVELS];
     uint32_t section_count;
     vqtex_section_info sections[VQTEX_MAX_SECTIONS];
+    uint32_t exemplar_frames;                      /* animated texture: frames of the example; 0 for a still one */
+    uint8_t window_frames[VQTEX_MAX_LEVELS];       /* animated texture: D of each level's {RxCxD,k} */
 } vqtex_file_info;
 
 /* Verifies and describes a file (everything the decoder checks). */
@@ -339,6 +341,60 @@ VQTEX_API vqtex_status vqtex_extend(const vqtex_fill_params* params, const vqtex
                                     const vqtex_image* mask, uint32_t width, uint32_t height,
                                     uint32_t x, uint32_t y, const vqtex_image* example,
                                     vqtex_image* out, vqtex_fill_stats* stats, vqtex_error* error);
+
+/* ---- Animated textures (paper section 5.2) ----------------------------------
+ * Motion textures (fire, smoke, water, flicker) as volumes in (x, y, t): 3D
+ * pyramids and neighbourhoods {RxCxD,k}, synthesised frame after frame,
+ * coarse to fine. The output tiles in space and loops in time. A file holds
+ * either a still texture or an animation: vqtex_decode on an animation (and
+ * vqtex_decode_volume on a still texture) fails with INVALID_ARGUMENT. */
+
+typedef struct vqtex_volume {
+    uint32_t width;
+    uint32_t height;
+    uint32_t frames;
+    uint32_t channels; /* 1 to 4 */
+    uint8_t* pixels;   /* frame after frame, each width * height * channels bytes */
+} vqtex_volume;
+
+/* Frees pixels the library allocated and zeroes the struct; NULL is fine. */
+VQTEX_API void vqtex_volume_free(vqtex_volume* volume);
+
+/* A spatio-temporal neighbourhood {RxCxD,k}: the D/2 previous frames' full
+ * RxC windows, the causal part of the current frame's RxC window, and full
+ * windows about half as large on every axis at the k-1 coarser levels.
+ * rows, cols and frames are odd. */
+typedef struct vqtex_shape3 {
+    uint8_t rows;
+    uint8_t cols;
+    uint8_t frames;
+    uint8_t levels;
+} vqtex_shape3;
+
+typedef struct vqtex_volume_encode_params {
+    uint32_t struct_size;          /* set by vqtex_volume_encode_params_init */
+    /* Everything a still texture has (quality preset, precision, seed,
+     * threads, progress); codec.model.shapes and codec.target_size are not
+     * used. codec.model.seam_closing builds the loop-closing trees. */
+    vqtex_encode_params codec;
+    vqtex_shape3 shapes[VQTEX_MAX_LEVELS]; /* [0] = finest; {0,0,0,0} = default [--shapes] */
+} vqtex_volume_encode_params;
+
+/* Defaults: 3 levels (fewer for tiny examples), {5x5x5,2} and {5x5x5,1} at
+ * the coarsest level, codebooks trained on a random 10% of the example's
+ * neighbourhoods as the paper, loop closing on. */
+VQTEX_API void vqtex_volume_encode_params_init(vqtex_volume_encode_params* params);
+
+/* Encodes an example frame sequence (at least 1 frame; the paper uses 32). */
+VQTEX_API vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const vqtex_volume* example,
+                                           uint8_t** data, size_t* size, vqtex_encode_stats* stats,
+                                           vqtex_error* error);
+
+/* Decodes an animation of `frames` frames (0 = the example's count, 1 to
+ * 16384) of params->width x params->height (0 = the example's size). The
+ * output loops: frame `frames` would be frame 0 again. */
+VQTEX_API vqtex_status vqtex_decode_volume(const vqtex_decode_params* params, uint32_t frames, const uint8_t* data,
+                                           size_t size, vqtex_volume* out, vqtex_error* error);
 
 #ifdef __cplusplus
 }

@@ -136,4 +136,52 @@ inline Image extend(const vqtex_fill_params& params, const vqtex_image& image, u
     return out;
 }
 
+// Owns a vqtex_volume the library allocated (an animation).
+class Volume {
+public:
+    Volume() = default;
+    Volume(const Volume&) = delete;
+    Volume& operator=(const Volume&) = delete;
+    Volume(Volume&& o) noexcept : raw_(std::exchange(o.raw_, vqtex_volume{})) {}
+    Volume& operator=(Volume&& o) noexcept {
+        if (this != &o) {
+            vqtex_volume_free(&raw_);
+            raw_ = std::exchange(o.raw_, vqtex_volume{});
+        }
+        return *this;
+    }
+    ~Volume() { vqtex_volume_free(&raw_); }
+
+    const vqtex_volume& get() const { return raw_; }
+    vqtex_volume* out() {
+        vqtex_volume_free(&raw_);
+        return &raw_;
+    }
+    uint32_t width() const { return raw_.width; }
+    uint32_t height() const { return raw_.height; }
+    uint32_t frames() const { return raw_.frames; }
+    uint32_t channels() const { return raw_.channels; }
+    size_t frame_bytes() const { return size_t(raw_.width) * raw_.height * raw_.channels; }
+    const uint8_t* frame(uint32_t t) const { return raw_.pixels + frame_bytes() * t; }
+
+private:
+    vqtex_volume raw_{};
+};
+
+inline Buffer encode_volume(const vqtex_volume_encode_params& params, const vqtex_volume& example,
+                            vqtex_encode_stats* stats = nullptr) {
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    check(vqtex_encode_volume(&params, &example, &data, &size, stats, &err), err);
+    return Buffer(data, size);
+}
+
+inline Volume decode_volume(const vqtex_decode_params& params, uint32_t frames, const uint8_t* data, size_t size) {
+    Volume out;
+    vqtex_error err{};
+    check(vqtex_decode_volume(&params, frames, data, size, out.out(), &err), err);
+    return out;
+}
+
 }  // namespace vqtex_cpp

@@ -1,0 +1,227 @@
+// volume_codec.cpp - writing and reading animated-texture files
+// (docs/FORMAT.md section 7). The trees are coded exactly as for still
+// textures (model_codec.cpp); only the shapes and the VOLU section differ.
+#include "volume_codec.hpp"
+
+#include <cstring>
+
+#include "bitstream.hpp"
+#include "error.hpp"
+#include "tsvq_search.hpp"
+
+namespace vqtex {
+namespace {
+
+constexpr char kTagVolume[4] = {'V', 'O', 'L', 'U'};
+constexpr char kTagLevel[4] = {'L', 'E', 'V', 'L'};
+constexpr char kTagHistogram[4] = {'H', 'I', 'S', 'T'};
+constexpr char kTagTopology[4] = {'T', 'O', 'P', 'O'};
+constexpr char kTagCodewords[4] = {'C', 'O', 'D', 'E'};
+constexpr char kTagEntries[4] = {'E', 'N', 'T', 'R'};
+constexpr uint32_t kMaxExemplarFrames = 65536;
+constexpr uint8_t kTimeFactor = 2;
+
+TreeLayout tree_layout_of(const NeighborhoodLayout3& layout) {
+    TreeLayout t;
+    t.dimension = layout.dimension();
+    t.stride = layout.stride();
+    t.channels = layout.channels();
+    t.key_offsets = layout.entry_key_offsets();
+    t.predictor = layout.pixel_predictor();
+    for (const Tap3& tap : layout.taps()) t.taps.push_back({tap.depth, tap.dt, tap.dy, tap.dx});
+    return t;
+}
+
+bool valid_extent(int v, int lowest) { return v % 2 == 1 && v >= lowest && v <= 31; }
+
+}  // namespace
+
+std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const EncodeSettings& s) {
+    if (s.precision < 1 || s.precision > 8 || s.pixel_precision < 1 || s.pixel_precision > 8)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision must be 1 to 8 bits");
+    FileHeader h;
+    h.flags = kFlagVolume;
+    h.exemplar_width = model.exemplar_width;
+    h.exemplar_height = model.exemplar_height;
+    h.channels = uint8_t(model.channels);
+    h.levels = uint8_t(model.levels.size());
+    h.init = s.init == LevelInit::Noise ? 1 : 0;
+    h.backtrack = s.backtrack;
+    h.seed = s.seed;
+    for (const auto& lv : model.levels)
+        if (lv.closing) h.flags |= kFlagSeamClosing;
+    ContainerWriter writer(h, s.zstd_level);
+    ByteWriter vw;
+    vw.varint(model.exemplar_frames);
+    vw.u8(kTimeFactor);
+    writer.add(kTagVolume, 0, 0, std::move(vw.data()));
+    const int levels = int(model.levels.size());
+    for (int l = 0; l < levels; ++l) {
+        const VolumeCodecModel::Level& lv = model.levels[std::size_t(l)];
+        if (!lv.causal) fail(VQTEX_ERROR_INVALID_ARGUMENT, "level " + std::to_string(l) + " has no codebook");
+        ByteWriter lw;
+        lw.u8(uint8_t(lv.shape.rows));
+        lw.u8(uint8_t(lv.shape.cols));
+        lw.u8(uint8_t(lv.shape.frames));
+        lw.u8(uint8_t(lv.shape.levels));
+        lw.u8(uint8_t(s.precision));
+        lw.u8(uint8_t(s.pixel_precision));
+        lw.u8(lv.closing ? 1 : 0);
+        if (lv.closing) {
+            lw.u8(uint8_t(lv.closing_shape.rows));
+            lw.u8(uint8_t(lv.closing_shape.cols));
+            lw.u8(uint8_t(lv.closing_shape.frames));
+        }
+        writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
+        if (s.init == LevelInit::Noise || l == levels - 1) {
+            ByteWriter hw;
+            for (int c = 0; c < lv.histogram.channels; ++c)
+                for (int v = 0; v < 256; ++v) hw.varint(lv.histogram.channel(c)[v]);
+            writer.add(kTagHistogram, uint8_t(l), 0, std::move(hw.data()));
+        }
+        for (int kind = 0; kind < 2; ++kind) {
+            const Codebook* book = kind == 0 ? lv.causal.get() : lv.closing.get();
+            if (!book) continue;
+            Shape3 shape = kind == 0 ? lv.shape : lv.closing_shape;
+            shape.causal = kind == 0;
+            const NeighborhoodLayout3 layout(shape, model.channels, l, levels);
+            TreeSections t = encode_tree(*book, tree_layout_of(layout), s);
+            writer.add(kTagTopology, uint8_t(l), uint8_t(kind), std::move(t.topology));
+            writer.add(kTagCodewords, uint8_t(l), uint8_t(kind), std::move(t.codewords));
+            writer.add(kTagEntries, uint8_t(l), uint8_t(kind), std::move(t.entries));
+        }
+    }
+    return writer.write();
+}
+
+bool is_volume_file(const uint8_t* data, std::size_t size) {
+    return data && size >= kHeaderSize && std::memcmp(data, kMagic, sizeof kMagic) == 0 &&
+           (data[10] & kFlagVolume) != 0;
+}
+
+DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
+    DecodedVolumeFile f;
+    const Container c = read_container(data, size, memory_limit);
+    if (!(c.header.flags & kFlagVolume))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT,
+             "file holds a still texture, not an animation: decode it with vqtex_decode (vqtex-decode without --frames)");
+    f.header = c.header;
+    f.sections = c.sections;
+    const int levels = c.header.levels, ch = c.header.channels;
+    f.init = c.header.init == 1 ? LevelInit::Noise : LevelInit::Parent;
+    f.model.channels = ch;
+    f.model.exemplar_width = c.header.exemplar_width;
+    f.model.exemplar_height = c.header.exemplar_height;
+    f.model.levels.resize(std::size_t(levels));
+    f.texture.channels = ch;
+    f.texture.levels.resize(std::size_t(levels));
+
+    auto require = [&](const char tag[4], int level, int kind) -> const Section& {
+        const Section* found = nullptr;
+        for (const Section& s : c.sections) {
+            if (std::memcmp(s.tag.data(), tag, 4) != 0 || s.level != level || s.kind != kind) continue;
+            if (found) fail(VQTEX_ERROR_CORRUPT, "section " + s.name() + " appears twice");
+            found = &s;
+        }
+        if (!found)
+            fail(VQTEX_ERROR_CORRUPT, "missing section " + std::string(tag, 4) + "[level " + std::to_string(level) +
+                                          (kind ? ", closing]" : "]"));
+        return *found;
+    };
+    std::size_t expected_sections = 1;
+    {
+        const std::vector<uint8_t> vb = section_bytes(data, require(kTagVolume, 0, 0));
+        ByteReader vr(vb.data(), vb.size(), "animation parameters");
+        f.model.exemplar_frames = uint32_t(vr.varint_in("exemplar frames", 1, kMaxExemplarFrames));
+        const uint8_t factor = vr.u8("temporal pyramid factor");
+        vr.expect_end();
+        if (factor != kTimeFactor)
+            fail(VQTEX_ERROR_CORRUPT, "temporal pyramid factor is " + std::to_string(factor) + "; only 2 is defined");
+    }
+    for (int l = 0; l < levels; ++l) {
+        const std::string where_level = "level " + std::to_string(l);
+        const std::vector<uint8_t> lb = section_bytes(data, require(kTagLevel, l, 0));
+        ++expected_sections;
+        ByteReader lr(lb.data(), lb.size(), where_level + " parameters");
+        Shape3 shape;
+        shape.rows = lr.u8("window rows");
+        shape.cols = lr.u8("window columns");
+        shape.frames = lr.u8("window frames");
+        shape.levels = lr.u8("window levels");
+        const int precision = lr.u8("precision"), pixel_precision = lr.u8("pixel precision");
+        const int has_closing = lr.u8("closing flag");
+        Shape3 closing_shape = shape;
+        closing_shape.causal = false;
+        if (has_closing == 1) {
+            closing_shape.rows = lr.u8("closing window rows");
+            closing_shape.cols = lr.u8("closing window columns");
+            closing_shape.frames = lr.u8("closing window frames");
+            if (!valid_extent(closing_shape.rows, 1) || !valid_extent(closing_shape.cols, 1) ||
+                !valid_extent(closing_shape.frames, 3))
+                fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid closing window");
+        }
+        lr.expect_end();
+        if (!valid_extent(shape.rows, 1) || !valid_extent(shape.cols, 1) || !valid_extent(shape.frames, 1) ||
+            shape.levels < 1 || shape.levels > levels - l || shape3_taps(shape).empty())
+            fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid neighbourhood " + shape3_to_string(shape));
+        if (precision < 1 || precision > 8 || pixel_precision < 1 || pixel_precision > 8 || has_closing > 1)
+            fail(VQTEX_ERROR_CORRUPT, where_level + " has invalid precision or flags");
+        if (has_closing && !(c.header.flags & kFlagSeamClosing))
+            fail(VQTEX_ERROR_CORRUPT, where_level + " has a closing tree the header does not announce");
+        if (l == 0) f.precision = precision, f.pixel_precision = pixel_precision;
+
+        VolumeCodecModel::Level& lv = f.model.levels[std::size_t(l)];
+        VolumeLevelModel& tm = f.texture.levels[std::size_t(l)];
+        lv.shape = shape;
+        tm.shape = shape;
+        if (f.init == LevelInit::Noise || l == levels - 1) {
+            const std::vector<uint8_t> hb = section_bytes(data, require(kTagHistogram, l, 0));
+            ++expected_sections;
+            ByteReader hr(hb.data(), hb.size(), "histogram of " + where_level);
+            LevelHistogram h;
+            h.channels = ch;
+            h.counts.resize(std::size_t(ch) * 256);
+            for (auto& n : h.counts) n = uint32_t(hr.varint_in("histogram count", 0, UINT32_MAX));
+            hr.expect_end();
+            for (int cc = 0; cc < ch; ++cc) {
+                uint64_t t = 0;
+                for (int v = 0; v < 256; ++v) t += h.channel(cc)[v];
+                if (t == 0) fail(VQTEX_ERROR_CORRUPT, "histogram of " + where_level + " is empty");
+            }
+            lv.histogram = h;
+            tm.histogram = h;
+        }
+        for (int kind = 0; kind < 1 + has_closing; ++kind) {
+            Shape3 s = kind == 0 ? shape : closing_shape;
+            s.causal = kind == 0;
+            const NeighborhoodLayout3 layout(s, ch, l, levels);
+            const std::string where = std::string(kind ? "closing" : "causal") + " tree of " + where_level;
+            const auto topo = section_bytes(data, require(kTagTopology, l, kind));
+            const auto code = section_bytes(data, require(kTagCodewords, l, kind));
+            const auto entr = section_bytes(data, require(kTagEntries, l, kind));
+            expected_sections += 3;
+            auto book = decode_tree(topo, code, entr, tree_layout_of(layout), precision, pixel_precision, where,
+                                    memory_limit);
+            auto matcher = std::make_shared<TsvqMatcher>(book, c.header.backtrack);
+            if (kind == 0) {
+                lv.causal = book;
+                tm.matcher = matcher;
+            } else {
+                lv.closing = book;
+                lv.closing_shape = s;
+                tm.closing = matcher;
+                tm.closing_shape = s;
+            }
+        }
+    }
+    bool any_closing = false;
+    for (const auto& lv : f.model.levels) any_closing = any_closing || lv.closing != nullptr;
+    if (any_closing != bool(c.header.flags & kFlagSeamClosing))
+        fail(VQTEX_ERROR_CORRUPT, "the header's seam-closing flag disagrees with the closing trees present");
+    if (expected_sections != c.sections.size())
+        fail(VQTEX_ERROR_CORRUPT, "file has " + std::to_string(c.sections.size() - expected_sections) +
+                                      " sections this decoder does not know");
+    return f;
+}
+
+}  // namespace vqtex
