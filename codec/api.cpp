@@ -142,6 +142,7 @@ vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_imag
             stats->analyse_seconds = std::chrono::duration<double>(t1 - t0).count();
             stats->synthesise_seconds = std::chrono::duration<double>(t2 - t1).count();
         }
+        pyramid.resize(1);  // free the coarser levels before the copy
         image_to_c(std::move(pyramid[0]), out);
     });
 }

@@ -245,6 +245,9 @@ vqtex_status vqtex_decode(const vqtex_decode_params* params, const uint8_t* data
         if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output image pointer is NULL");
         *out = vqtex_image{};
         std::vector<Image> pyramid = decode_pyramid(params, data, size);
+        // The coarser levels go before the copy to the caller's buffer: the
+        // peak is then twice the output, not two and a third times.
+        pyramid.resize(1);
         image_to_c(std::move(pyramid[0]), out);
     });
 }
