@@ -34,13 +34,25 @@ void upsample_parent(const Image& parent, Image& img) {
             std::copy(parent.at(x >> 1, y >> 1), parent.at(x >> 1, y >> 1) + img.channels, img.at(x, y));
 }
 
+// A row's count of finished pixels, alone on its cache line: the thread
+// writing it and the thread polling it for the next row would otherwise
+// fight over a line shared with other rows' counters.
+struct alignas(64) RowProgress {
+    std::atomic<int> done{0};
+};
+
+// Rows publish their progress every this many pixels (and at the end): the
+// row below only needs it to be far enough ahead, and publishing per pixel
+// would move the cache line between cores at every pixel.
+constexpr int kPublishEvery = 8;  // a power of two
+
 // Shared state of one level's wavefront.
 struct LevelRun {
     const NeighborhoodGather* gather;
     const Matcher* matcher;
     std::vector<Image>* pyramid;
     int level, width, height, lag, reach_x, reach_y;
-    std::vector<std::atomic<int>>* progress;  // pixels finished per row
+    std::vector<RowProgress>* progress;  // pixels finished per row
     std::atomic<bool>* stop;
     std::atomic<uint64_t>* pixels_done;
     std::vector<uint32_t>* trace;
@@ -63,15 +75,15 @@ void run_row(const LevelRun& r, int y, bool parallel, std::vector<uint8_t>& quer
     Image& out = (*r.pyramid)[std::size_t(r.level)];
     const int w = r.width;
     const int start = row_start(y, r.lag, w);
-    std::atomic<int>& mine = (*r.progress)[std::size_t(y)];
+    std::atomic<int>& mine = (*r.progress)[std::size_t(y)].done;
     if (parallel && y >= r.height - r.reach_y && r.reach_y > 0) {
         // Rows at the bottom are read as noise by the first rows (top wrap);
         // they may change only once those rows are finished.
-        wait_for((*r.progress)[std::size_t(r.reach_y - 1)], w, *r.stop);
+        wait_for((*r.progress)[std::size_t(r.reach_y - 1)].done, w, *r.stop);
     }
     for (int i = 0; i < w; ++i) {
         if (parallel && y > 0)
-            wait_for((*r.progress)[std::size_t(y - 1)], std::min(w, i + r.lag + r.reach_x + 1),
+            wait_for((*r.progress)[std::size_t(y - 1)].done, std::min(w, i + r.lag + r.reach_x + 1),
                      *r.stop);
         if (r.stop->load(std::memory_order_relaxed)) return;
         const int x = start + i < w ? start + i : start + i - w;
@@ -80,7 +92,8 @@ void run_row(const LevelRun& r, int y, bool parallel, std::vector<uint8_t>& quer
         const uint8_t* pixel = r.matcher->match(query.data(), context, scratch);
         std::copy(pixel, pixel + out.channels, out.at(x, y));
         if (r.trace) (*r.trace)[std::size_t(y) * w + x] = r.trace_counter->fetch_add(1);
-        mine.store(i + 1, std::memory_order_release);
+        if (parallel && (((i + 1) & (kPublishEvery - 1)) == 0 || i + 1 == w))
+            mine.store(i + 1, std::memory_order_release);
     }
     r.pixels_done->fetch_add(uint64_t(w), std::memory_order_relaxed);
 }
@@ -150,8 +163,7 @@ std::vector<Image> synthesize_pyramid(const TextureModel& model, const Synthesis
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "matcher and neighbourhood shape disagree at level " +
                                                    std::to_string(l));
 
-        std::vector<std::atomic<int>> progress(std::size_t(img.height));
-        for (auto& p : progress) p.store(0);
+        std::vector<RowProgress> progress(std::size_t(img.height));
         std::atomic<uint32_t> trace_counter{0};
         std::vector<uint32_t>* trace = nullptr;
         if (options.trace) {
