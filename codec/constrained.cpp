@@ -56,6 +56,8 @@ struct KnownLevel {
     std::size_t known_count() const { return std::size_t(std::count(known.begin(), known.end(), uint8_t(1))); }
 };
 
+constexpr int kFilterTaps[5] = {1, 4, 6, 4, 1};
+
 std::vector<KnownLevel> known_pyramid(int width, int height, const std::vector<uint8_t>& known0,
                                       int levels) {
     std::vector<KnownLevel> out(static_cast<std::size_t>(levels));
@@ -81,6 +83,70 @@ std::vector<KnownLevel> known_pyramid(int width, int height, const std::vector<u
         k.build_sums();
     }
     return out;
+}
+
+// Context pyramid of the target: which pixels of each coarser level are
+// usable as context, and with which values. A coarser pixel is usable when
+// at least `threshold`/256 of its filter weight falls on usable finer pixels;
+// its value is then the filter over those pixels alone, renormalised
+// (normalised convolution). With the strict rule of known_pyramid, which
+// wants the whole footprint, holes grow by about two pixels per level, and
+// the ring they grow by is synthesised at the coarse level although the
+// finer level knows most of it: the coarse context of the finer level's
+// boundary pixels then disagrees with their known neighbours and the fill
+// meets them with a step (a visible seam). A wholly known footprint gives
+// exactly the pyramid's value, so strict pixels are unchanged.
+std::vector<KnownLevel> context_known_pyramid(int width, int height, const std::vector<uint8_t>& known0, int levels,
+                                              int threshold) {
+    std::vector<KnownLevel> out(static_cast<std::size_t>(levels));
+    out[0].width = width;
+    out[0].height = height;
+    out[0].known = known0;
+    out[0].build_sums();
+    for (int l = 1; l < levels; ++l) {
+        const KnownLevel& fine = out[std::size_t(l - 1)];
+        KnownLevel& k = out[std::size_t(l)];
+        k.width = pyramid_level_size(width, l);
+        k.height = pyramid_level_size(height, l);
+        k.known.assign(std::size_t(k.width) * std::size_t(k.height), 0);
+        for (int y = 0; y < k.height; ++y)
+            for (int x = 0; x < k.width; ++x) {
+                int weight = 0;
+                for (int t = 0; t < 5; ++t)
+                    for (int s = 0; s < 5; ++s)
+                        if (fine.is_known(reflect_index(2 * x + s - 2, fine.width), reflect_index(2 * y + t - 2, fine.height)))
+                            weight += kFilterTaps[t] * kFilterTaps[s];
+                k.known[std::size_t(y) * std::size_t(k.width) + std::size_t(x)] = weight >= threshold ? 1 : 0;
+            }
+        k.build_sums();
+    }
+    return out;
+}
+
+// The values of context_known_pyramid: every usable pixel of each coarser
+// level recomputed from the usable pixels of the level below (exact integer
+// arithmetic; a wholly known footprint gives the pyramid's own value).
+void apply_context_values(std::vector<Image>& pyramid, const std::vector<KnownLevel>& known) {
+    for (std::size_t l = 1; l < pyramid.size(); ++l) {
+        const Image& fine = pyramid[l - 1];
+        const KnownLevel& fk = known[l - 1];
+        Image& img = pyramid[l];
+        const int c = img.channels;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                if (!known[l].is_known(x, y)) continue;
+                uint32_t sum[kMaxChannels] = {}, weight = 0;
+                for (int t = 0; t < 5; ++t)
+                    for (int s = 0; s < 5; ++s) {
+                        const int fx = reflect_index(2 * x + s - 2, fine.width), fy = reflect_index(2 * y + t - 2, fine.height);
+                        if (!fk.is_known(fx, fy)) continue;
+                        const uint32_t w = uint32_t(kFilterTaps[t] * kFilterTaps[s]);
+                        weight += w;
+                        for (int ch = 0; ch < c; ++ch) sum[ch] += w * fine.at(fx, fy)[ch];
+                    }
+                for (int ch = 0; ch < c; ++ch) img.at(x, y)[ch] = uint8_t((sum[ch] + weight / 2) / weight);
+            }
+    }
 }
 
 // A rectangle a window reads at one depth, relative to the window's anchor
@@ -204,21 +270,98 @@ ExampleSet collect(const std::vector<Image>& pyramid, const std::vector<KnownLev
     return set;
 }
 
-std::shared_ptr<const Matcher> build_matcher(ExampleSet set, const FillOptions& o) {
-    if (o.exhaustive) return std::make_shared<ExhaustiveMatcher>(std::move(set));
-    TrainParams tp;
-    const double fraction = std::clamp(o.codeword_fraction, 1e-6, 1.0);
-    const std::size_t wanted = std::size_t(std::llround(double(set.count()) * fraction));
-    tp.max_leaves = uint32_t(std::clamp<std::size_t>(wanted, std::min<std::size_t>(set.count(), 64), set.count()));
-    // Medoid leaves: real example neighbourhoods with their real pixels (and
-    // the only representative that works for pass-1 blocks).
-    tp.representative = LeafRepresentative::Medoid;
-    tp.entries_per_leaf = 1;
-    tp.threads = o.threads;
-    std::vector<uint32_t> all(set.count());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = uint32_t(i);
-    auto book = std::make_shared<const Codebook>(train_codebook(set, all, tp));
-    return std::make_shared<TsvqMatcher>(book, o.backtrack);
+// One level's example neighbourhoods (pass-2 windows or pass-1 blocks) with
+// the tree over them, and a map from example position to neighbourhood, so
+// that the position a pixel was copied from can be turned back into
+// candidates for its neighbours (coherence, see coherent_choice).
+class ExampleIndex {
+public:
+    // `width` x `height`: the grid the set's positions index (the example
+    // level, or the level above it for blocks).
+    ExampleIndex(ExampleSet set, int width, int height, const FillOptions& o)
+        : set_(std::move(set)), width_(width), height_(height), backtrack_(o.backtrack) {
+        at_.assign(std::size_t(width) * std::size_t(height), -1);
+        for (std::size_t i = 0; i < set_.count(); ++i) at_[set_.positions[i]] = int32_t(i);
+        if (o.exhaustive) {
+            exhaustive_ = std::make_unique<ExhaustiveMatcher>(set_);
+            return;
+        }
+        TrainParams tp;
+        std::vector<uint32_t> subset(set_.count());
+        for (std::size_t i = 0; i < subset.size(); ++i) subset[i] = uint32_t(i);
+        if (o.max_train && subset.size() > o.max_train)
+            subset = choose_training_subset(set_.count(), o.max_train, o.seed ^ 0x7472616Eull /* "tran" */);
+        const double fraction = std::clamp(o.codeword_fraction, 1e-6, 1.0);
+        const std::size_t wanted = std::size_t(std::llround(double(subset.size()) * fraction));
+        tp.max_leaves = uint32_t(std::clamp<std::size_t>(wanted, std::min<std::size_t>(subset.size(), 64), subset.size()));
+        // Medoid leaves: real example neighbourhoods, whose tie key is their
+        // index in the set, so a leaf names a position in the example.
+        tp.representative = LeafRepresentative::Medoid;
+        tp.entries_per_leaf = 1;
+        tp.threads = o.threads;
+        tsvq_ = std::make_unique<TsvqMatcher>(std::make_shared<const Codebook>(train_codebook(set_, subset, tp)),
+                                              o.backtrack);
+    }
+
+    const ExampleSet& set() const { return set_; }
+    int width() const { return width_; }
+    std::unique_ptr<MatchScratch> make_scratch() const {
+        return tsvq_ ? tsvq_->make_scratch() : nullptr;
+    }
+    // The neighbourhood the tree (or the exhaustive search) finds.
+    uint32_t search(const uint8_t* query, const MatchContext& context, MatchScratch* scratch) const {
+        if (exhaustive_) return uint32_t(exhaustive_->nearest(query, context));
+        const std::size_t leaf = tsvq_->search(query, backtrack_, scratch, context);
+        return tsvq_->codebook().leaf_key(leaf);
+    }
+    // The neighbourhood at example position (x, y), or -1 when there is none
+    // (outside, or its window is not wholly known).
+    int32_t at(int x, int y) const {
+        if (x < 0 || y < 0 || x >= width_ || y >= height_) return -1;
+        return at_[std::size_t(y) * std::size_t(width_) + std::size_t(x)];
+    }
+
+private:
+    ExampleSet set_;
+    int width_, height_;
+    uint32_t backtrack_;
+    std::vector<int32_t> at_;
+    std::unique_ptr<TsvqMatcher> tsvq_;
+    std::unique_ptr<ExhaustiveMatcher> exhaustive_;
+};
+
+// Coherence (after Ashikhmin 2001, as a candidate set beside the tree's
+// answer): a pixel whose neighbour at offset d was copied from example
+// position s is offered the example neighbourhood at s - d, which continues
+// the neighbour's patch. The tree's answer and the coherent candidates are
+// compared on the same query with exact distances; a coherent candidate wins
+// when it is within the bias of the tree's (bias in 1/256: 0 = only when at
+// least as close). Ties go to the lower index, so the choice is a pure
+// function of the query and the neighbours' sources.
+struct Candidates {
+    static constexpr int kMax = 32;
+    int32_t index[kMax];
+    int count = 0;
+    void add(int32_t i) {
+        if (i < 0 || count == kMax) return;
+        for (int k = 0; k < count; ++k)
+            if (index[k] == i) return;
+        index[count++] = i;
+    }
+};
+
+uint32_t coherent_choice(const ExampleSet& set, const uint8_t* query, uint32_t found, const Candidates& c,
+                         uint32_t bias) {
+    const dsp::Kernels& k = dsp::kernels();
+    if (c.count == 0) return found;
+    const uint32_t found_distance = k.ssd(query, set.vector(found), set.stride);
+    uint32_t best = UINT32_MAX, chosen = UINT32_MAX;
+    for (int i = 0; i < c.count; ++i) {
+        const uint32_t index = uint32_t(c.index[i]);
+        const uint32_t d = k.ssd(query, set.vector(index), set.stride);
+        if (d < best || (d == best && index < chosen)) best = d, chosen = index;
+    }
+    return uint64_t(best) * 256 <= uint64_t(found_distance) * (256 + bias) ? chosen : found;
 }
 
 struct LevelPlan {
@@ -243,11 +386,12 @@ bool try_plan(int levels, const FillOptions& o, int width, int height, const std
               const Image* example, Plan& plan, Shortfall& why) {
     plan = Plan{};
     plan.levels = levels;
-    plan.target_known = known_pyramid(width, height, known0, levels);
-    if (example)
-        plan.example_known = known_pyramid(example->width, example->height,
-                                           std::vector<uint8_t>(example->pixel_count(), 1), levels);
-    const std::vector<KnownLevel>& ek = example ? plan.example_known : plan.target_known;
+    plan.target_known = o.method == FillMethod::TwoPass && o.context_threshold > 0 ? context_known_pyramid(width, height, known0, levels, o.context_threshold)
+                                                : known_pyramid(width, height, known0, levels);
+    plan.example_known = example ? known_pyramid(example->width, example->height,
+                                                 std::vector<uint8_t>(example->pixel_count(), 1), levels)
+                                 : known_pyramid(width, height, known0, levels);
+    const std::vector<KnownLevel>& ek = plan.example_known;
     const std::vector<Shape> shapes = default_shapes(levels);
     plan.level.resize(std::size_t(levels));
     for (int l = levels - 1; l >= 0; --l) {
@@ -340,15 +484,43 @@ constexpr std::size_t kProgressStep = 4096;
 // explicit single-level pyramid on a large image).
 constexpr uint64_t kMaskedSearchPairs = uint64_t(1) << 26;
 
+// Where each pixel of a target level was copied from: an example position
+// (y * example width + x at the same level), or -1 (known pixels, and pixels
+// not synthesised yet).
+struct SourceMap {
+    int width = 0, height = 0;
+    std::vector<int32_t> at;
+    SourceMap(int w, int h) : width(w), height(h), at(std::size_t(w) * std::size_t(h), -1) {}
+    int32_t get(int x, int y) const {
+        if (x < 0 || y < 0 || x >= width || y >= height) return -1;
+        return at[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    }
+};
+
+// The coherent candidates of pixel (x, y): for each neighbour within
+// `radius` with a source s, the neighbourhood at s - offset.
+void add_coherent(Candidates& c, const SourceMap& src, const ExampleIndex& ex, int x, int y, int radius,
+                  bool include_self) {
+    for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx) {
+            if (!include_self && dx == 0 && dy == 0) continue;
+            const int32_t s = src.get(x + dx, y + dy);
+            if (s < 0) continue;
+            c.add(ex.at(s % ex.width() - dx, s / ex.width() - dy));
+        }
+}
+
 // Coarsest level, first pass: spiral order, each pixel matched only on the
 // taps of its symmetric window that are known or already filled.
-void masked_spiral_fill(Image& img, std::vector<uint8_t>& valid, const std::vector<uint32_t>& order,
-                        const ExampleSet& set, const Window& w, const std::vector<Image>& pyramid,
+void masked_spiral_fill(Image& img, std::vector<uint8_t>& valid, SourceMap& src, const std::vector<uint32_t>& order,
+                        const ExampleIndex& ex, const Window& w, const std::vector<Image>& pyramid,
                         int level, const FillOptions& o, FillProgress& progress) {
+    const ExampleSet& set = ex.set();
     const int c = img.channels;
     std::vector<uint32_t> candidates(set.count());
     for (std::size_t i = 0; i < candidates.size(); ++i) candidates[i] = uint32_t(i);
-    if (uint64_t(order.size()) * set.count() > kMaskedSearchPairs)
+    const bool all = uint64_t(order.size()) * set.count() <= kMaskedSearchPairs;
+    if (!all)
         candidates = choose_training_subset(set.count(), std::max<std::size_t>(kMinFillExamples, std::size_t(kMaskedSearchPairs / order.size())),
                                             o.seed ^ 0x6D61736Bull /* "mask" */);
     std::vector<uint8_t> query(set.stride);
@@ -391,7 +563,22 @@ void masked_spiral_fill(Image& img, std::vector<uint8_t>& valid, const std::vect
                 if (rank < chosen_rank || (rank == chosen_rank && i < chosen)) chosen = i, chosen_rank = rank;
             }
         }
+        if (all && o.coherence) {
+            // Every example is a candidate here, so the coherent ones'
+            // masked distances are already known.
+            Candidates coherent;
+            add_coherent(coherent, src, ex, x, y, o.coherence_radius, false);
+            uint32_t cbest = UINT32_MAX, cchosen = UINT32_MAX;
+            for (int k = 0; k < coherent.count; ++k) {
+                const uint32_t i = uint32_t(coherent.index[k]);
+                if (distance[i] < cbest || (distance[i] == cbest && i < cchosen)) cbest = distance[i], cchosen = i;
+            }
+            if (cchosen != UINT32_MAX &&
+                uint64_t(cbest) * 256 <= uint64_t(distance[chosen]) * (256 + o.coherence_bias))
+                chosen = cchosen;
+        }
         std::memcpy(img.at(x, y), set.pixel(candidates[chosen]), std::size_t(c));
+        src.at[index] = int32_t(set.positions[candidates[chosen]]);
         valid[index] = 1;
         if (++since == kProgressStep) progress.advance(since), since = 0;
     }
@@ -400,42 +587,63 @@ void masked_spiral_fill(Image& img, std::vector<uint8_t>& valid, const std::vect
 
 // Pass 1 (not the coarsest level): every hole pixel from the coarser levels
 // only. Reads nothing at this level, so pixels are independent: parallel.
-void block_pass(Image& img, const std::vector<uint32_t>& order, const Matcher& matcher, const Window& w,
-                const std::vector<Image>& pyramid, int level, const FillOptions& o, FillProgress& progress) {
+// Coherent candidates come from the parent level's sources: the block under
+// the parent's own source continues its patch one level finer.
+void block_pass(Image& img, SourceMap& src, const SourceMap& parent_src, const std::vector<uint32_t>& order,
+                const ExampleIndex& ex, const Window& w, const std::vector<Image>& pyramid, int level,
+                int example_width, const FillOptions& o, FillProgress& progress) {
+    const ExampleSet& set = ex.set();
     const std::size_t c = std::size_t(img.channels);
     constexpr std::size_t kBatch = 16384;
     for (std::size_t begin = 0; begin < order.size(); begin += kBatch) {
         const std::size_t end = std::min(order.size(), begin + kBatch);
         parallel_for(o.threads, end - begin, 1024, [&](std::size_t b, std::size_t e) {
-            std::vector<uint8_t> query(matcher.stride());
-            std::unique_ptr<MatchScratch> scratch = matcher.make_scratch();
+            std::vector<uint8_t> query(set.stride);
+            std::unique_ptr<MatchScratch> scratch = ex.make_scratch();
             for (std::size_t i = begin + b; i < begin + e; ++i) {
                 const int x = int(order[i] % uint32_t(img.width)), y = int(order[i] / uint32_t(img.width));
                 gather(pyramid, level, w, x & ~1, y & ~1, query.data(), query.size());
                 const MatchContext context{pixel_salt(o.seed, level, 1, x >> 1, y >> 1), o.tolerance};
-                const uint8_t* block = matcher.match(query.data(), context, scratch.get());
-                const std::size_t phase = std::size_t((y & 1) * 2 + (x & 1));
-                std::memcpy(img.at(x, y), block + phase * c, c);
+                uint32_t chosen = ex.search(query.data(), context, scratch.get());
+                if (o.coherence) {
+                    Candidates coherent;
+                    add_coherent(coherent, parent_src, ex, x >> 1, y >> 1, 1, true);
+                    chosen = coherent_choice(set, query.data(), chosen, coherent, o.coherence_bias);
+                }
+                const int phase_x = x & 1, phase_y = y & 1;
+                std::memcpy(img.at(x, y), set.pixel(chosen) + std::size_t(phase_y * 2 + phase_x) * c, c);
+                const uint32_t coarse = set.positions[chosen];
+                const int sx = 2 * int(coarse % uint32_t(ex.width())) + phase_x;
+                const int sy = 2 * int(coarse / uint32_t(ex.width())) + phase_y;
+                src.at[order[i]] = sy * example_width + sx;
             }
         });
         progress.advance(end - begin);
     }
 }
 
-// Pass 2, or the single-pass reference: in `order`, each pixel from its full
-// window as it stands (known, already re-synthesised, or predicted).
-void ordered_pass(Image& img, const std::vector<uint32_t>& order, const Matcher& matcher, const Window& w,
-                  const std::vector<Image>& pyramid, int level, int pass, const FillOptions& o,
-                  FillProgress& progress) {
-    std::vector<uint8_t> query(matcher.stride());
-    std::unique_ptr<MatchScratch> scratch = matcher.make_scratch();
+// Pass 2, its refinement sweeps, or the single-pass reference: in `order`,
+// each pixel from its full window as it stands (known, already
+// re-synthesised, or predicted).
+void ordered_pass(Image& img, SourceMap& src, const std::vector<uint32_t>& order, const ExampleIndex& ex,
+                  const Window& w, const std::vector<Image>& pyramid, int level, int pass, bool coherence,
+                  const FillOptions& o, FillProgress& progress) {
+    const ExampleSet& set = ex.set();
+    std::vector<uint8_t> query(set.stride);
+    std::unique_ptr<MatchScratch> scratch = ex.make_scratch();
     std::size_t since = 0;
     for (const uint32_t index : order) {
         const int x = int(index % uint32_t(img.width)), y = int(index / uint32_t(img.width));
         gather(pyramid, level, w, x, y, query.data(), query.size());
         const MatchContext context{pixel_salt(o.seed, level, pass, x, y), o.tolerance};
-        const uint8_t* pixel = matcher.match(query.data(), context, scratch.get());
-        std::memcpy(img.at(x, y), pixel, std::size_t(img.channels));
+        uint32_t chosen = ex.search(query.data(), context, scratch.get());
+        if (coherence) {
+            Candidates coherent;
+            add_coherent(coherent, src, ex, x, y, o.coherence_radius, false);
+            chosen = coherent_choice(set, query.data(), chosen, coherent, o.coherence_bias);
+        }
+        std::memcpy(img.at(x, y), set.pixel(chosen), std::size_t(img.channels));
+        src.at[index] = int32_t(set.positions[chosen]);
         if (++since == kProgressStep) progress.advance(since), since = 0;
     }
     progress.advance(since);
@@ -466,13 +674,13 @@ Image fill_region(const Image& image, const std::vector<uint8_t>& mask, const Im
         example ? build_pyramid(*example, levels, EdgeMode::Mirror) : std::vector<Image>{};
     std::vector<Image> pyramid = build_pyramid(image, levels, EdgeMode::Mirror);
     const std::vector<Image>& ex_pyr = example ? example_pyramid : pyramid;
-    const std::vector<KnownLevel>& ex_known = example ? plan.example_known : plan.target_known;
+    const std::vector<KnownLevel>& ex_known = plan.example_known;
+    if (o.method == FillMethod::TwoPass && o.context_threshold > 0) apply_context_values(pyramid, plan.target_known);
     const bool two_pass = o.method == FillMethod::TwoPass;
 
     // Analysis: the example sets and their trees, two per level for the
-    // two-pass method. The coarsest level's set is kept for the masked search.
-    std::vector<std::shared_ptr<const Matcher>> main(static_cast<std::size_t>(levels)), blocks(static_cast<std::size_t>(levels));
-    ExampleSet coarsest_set;
+    // two-pass method.
+    std::vector<std::unique_ptr<ExampleIndex>> main(static_cast<std::size_t>(levels)), blocks(static_cast<std::size_t>(levels));
     const uint64_t trees = uint64_t(levels) + (two_pass ? uint64_t(levels - 1) : 0);
     uint64_t built = 0;
     const auto tree_done = [&] {
@@ -482,12 +690,14 @@ Image fill_region(const Image& image, const std::vector<uint8_t>& mask, const Im
     };
     for (int l = levels - 1; l >= 0; --l) {
         const LevelPlan& lp = plan.level[std::size_t(l)];
-        ExampleSet set = collect(ex_pyr, ex_known, l, lp.main, false);
-        if (two_pass && l == levels - 1) coarsest_set = set;
-        main[std::size_t(l)] = build_matcher(std::move(set), o);
+        const KnownLevel& ek = ex_known[std::size_t(l)];
+        main[std::size_t(l)] = std::make_unique<ExampleIndex>(collect(ex_pyr, ex_known, l, lp.main, false), ek.width,
+                                                              ek.height, o);
         tree_done();
         if (two_pass && l + 1 < levels) {
-            blocks[std::size_t(l)] = build_matcher(collect(ex_pyr, ex_known, l, lp.block, true), o);
+            const KnownLevel& ec = ex_known[std::size_t(l + 1)];
+            blocks[std::size_t(l)] = std::make_unique<ExampleIndex>(collect(ex_pyr, ex_known, l, lp.block, true),
+                                                                    ec.width, ec.height, o);
             tree_done();
         }
     }
@@ -496,20 +706,24 @@ Image fill_region(const Image& image, const std::vector<uint8_t>& mask, const Im
     // Synthesis, coarse to fine.
     std::vector<std::vector<uint8_t>> to_fill(static_cast<std::size_t>(levels));
     uint64_t total = 0;
+    const uint64_t passes = two_pass ? 2 + uint64_t(std::max(o.sweeps, 0)) : 1;
     for (int l = 0; l < levels; ++l) {
         const KnownLevel& k = plan.target_known[std::size_t(l)];
         to_fill[std::size_t(l)].resize(k.known.size());
         for (std::size_t i = 0; i < k.known.size(); ++i) to_fill[std::size_t(l)][i] = k.known[i] ? 0 : 1;
-        const uint64_t n = uint64_t(k.known.size() - k.known_count());
-        total += two_pass ? 2 * n : n;
+        total += passes * uint64_t(k.known.size() - k.known_count());
     }
     FillProgress progress{&o.fill_progress, 0, total};
     FillReport r;
     r.levels = levels;
+    std::vector<SourceMap> sources;
+    for (int l = 0; l < levels; ++l) sources.emplace_back(pyramid[std::size_t(l)].width, pyramid[std::size_t(l)].height);
     for (int l = levels - 1; l >= 0; --l) {
         Image& img = pyramid[std::size_t(l)];
         const KnownLevel& k = plan.target_known[std::size_t(l)];
         const LevelPlan& lp = plan.level[std::size_t(l)];
+        const ExampleIndex& ex = *main[std::size_t(l)];
+        SourceMap& src = sources[std::size_t(l)];
         const std::vector<uint8_t>& fill = to_fill[std::size_t(l)];
         if (l == levels - 1)
             fill_with_known_mean(img, k);
@@ -519,14 +733,21 @@ Image fill_region(const Image& image, const std::vector<uint8_t>& mask, const Im
             const std::vector<uint32_t> order = spiral_order(img.width, img.height, fill);
             if (l == levels - 1) {
                 std::vector<uint8_t> valid = k.known;
-                masked_spiral_fill(img, valid, order, coarsest_set, lp.main, pyramid, l, o, progress);
+                masked_spiral_fill(img, valid, src, order, ex, lp.main, pyramid, l, o, progress);
             } else {
-                block_pass(img, order, *blocks[std::size_t(l)], lp.block, pyramid, l, o, progress);
+                block_pass(img, src, sources[std::size_t(l + 1)], order, *blocks[std::size_t(l)], lp.block, pyramid,
+                           l, ex_known[std::size_t(l)].width, o, progress);
             }
-            ordered_pass(img, order, *main[std::size_t(l)], lp.main, pyramid, l, 2, o, progress);
+            ordered_pass(img, src, order, ex, lp.main, pyramid, l, 2, o.coherence, o, progress);
+            // Refinement sweeps: back from the centre to the border, then
+            // out again; each pixel now sees final values on every side.
+            const std::vector<uint32_t> reverse(order.rbegin(), order.rend());
+            for (int s = 0; s < o.sweeps; ++s)
+                ordered_pass(img, src, s % 2 == 0 ? reverse : order, ex, lp.main, pyramid, l, 3 + s, o.coherence, o,
+                             progress);
         } else {
-            ordered_pass(img, raster_order(img.width, img.height, fill), *main[std::size_t(l)], lp.main,
-                         pyramid, l, 0, o, progress);
+            ordered_pass(img, src, raster_order(img.width, img.height, fill), ex, lp.main, pyramid, l, 0, false, o,
+                         progress);
         }
     }
     const auto t2 = Clock::now();

@@ -6,13 +6,13 @@
 // exactly as it was. The example is the image itself outside the mask, or a
 // separate example image.
 //
-// Known pixels per pyramid level. Level 0 is known outside the mask. A
-// coarser pixel is known only when every pixel of its 5x5 filter footprint
-// (the pyramid's [1 4 6 4 1] filter, mirrored at the border) is known, so
-// its value does not depend on anything under the mask. Holes therefore grow
-// by about two pixels per level, and an example neighbourhood is used only
-// when every pixel it reads, at every level, is known (and lies inside the
-// image: the image is not periodic, paper section 2.4).
+// Known pixels per pyramid level. Level 0 is known outside the mask. For
+// the examples, a coarser pixel is known only when every pixel of its 5x5
+// filter footprint (the pyramid's [1 4 6 4 1] filter, mirrored at the border)
+// is known, so its value does not depend on anything under the mask, and an
+// example neighbourhood is used only when every pixel it reads, at every
+// level, is known (and lies inside the image: the image is not periodic,
+// paper section 2.4). As context for the fill, see "coarse context" below.
 //
 // Two passes per level, coarse to fine (paper section 5.1):
 //   pass 1 predicts every hole pixel of level L from the finished coarser
@@ -28,6 +28,18 @@
 //          just before, or predicted by pass 1), so queries are whole vectors
 //          and the TSVQ trees work unchanged: two trees per level, one per
 //          neighbourhood kind, as the paper says.
+// On top of the paper's method (each measured, README.md "Hole filling"):
+//   - coarse context: a coarser pixel whose filter footprint is mostly
+//     known is computed from its known part (normalised convolution) and
+//     used as context instead of being synthesised, so coarse holes do not
+//     grow and the finer level's boundary pixels see coarse values that agree
+//     with their known neighbours (the main cause of visible seams);
+//   - coherence: each search also tries the example neighbourhoods that
+//     continue its neighbours' sources (pass 2) or its parent's (pass 1),
+//     which carries structure (mortar lines, blades) into the hole;
+//   - refinement sweeps: pass 2 repeated out from the centre and in again;
+//   - trees trained on a seeded subset of the neighbourhoods (training was
+//     almost all of the time).
 // The coarsest level has nothing coarser to predict from: there pass 1 is a
 // spiral fill in which each pixel is matched on the known or already filled
 // pixels of its symmetric window only (an exhaustive search with a per-query
@@ -65,6 +77,26 @@ struct FillOptions {
     uint32_t backtrack = 8;           // TSVQ leaves visited per search
     uint32_t tolerance = 0;           // near-ties (see MatchContext), in 1/256
     double codeword_fraction = 1.0;   // TSVQ leaves per example neighbourhood
+    // Additions to the paper's method (two-pass method only; measured in
+    // README.md, "Hole filling"):
+    // Coherent candidates beside the tree's answer (constrained.cpp,
+    // coherent_choice): on/off, how far to look for the neighbours' sources
+    // (1 or 2), and by how much (1/256) a coherent candidate may be farther
+    // than the tree's answer and still win.
+    bool coherence = true;
+    int coherence_radius = 1;
+    uint32_t coherence_bias = 0;
+    // Extra pass-2 sweeps per level after the first, alternately from the
+    // centre outwards and from the border inwards.
+    int sweeps = 2;
+    // Coarse context (constrained.cpp, context_known_pyramid): a coarser
+    // pixel is context when at least this share (1/256) of its filter
+    // weight falls on known pixels; 0 = only wholly known footprints.
+    int context_threshold = 64;
+    // Each tree is trained on at most this many example neighbourhoods (a
+    // seeded subset; 0 = all). Every neighbourhood stays reachable through
+    // coherence.
+    std::size_t max_train = 4096;
     uint64_t seed = 1;
     int threads = 1;
     ProgressFn analyse_progress;      // trees built / trees to build

@@ -203,19 +203,45 @@ TEST(FillSeams, TwoPassHasNoTrailingSeamWhereTheCausalPassHasOne) {
     for (const char* name : {"cellular_128.png", "clouds_128.png"}) {
         SCOPED_TRACE(name);
         const SeamPair s = seams_on(vqtex_test::load_corpus(name), fast_options());
-        std::printf("%-18s two-pass leading %.2f trailing %.2f (exceed %.3f/%.3f) | causal leading %.2f trailing %.2f "
+        std::printf("%-18s two-pass all %.2f leading %.2f trailing %.2f (exceed %.3f/%.3f) | causal leading %.2f trailing %.2f "
                     "(exceed %.3f/%.3f)\n",
-                    name, s.two_pass.ratio_leading, s.two_pass.ratio_trailing, s.two_pass.exceed_leading,
+                    name, s.two_pass.ratio_all, s.two_pass.ratio_leading, s.two_pass.ratio_trailing, s.two_pass.exceed_leading,
                     s.two_pass.exceed_trailing, s.causal.ratio_leading, s.causal.ratio_trailing,
                     s.causal.exceed_leading, s.causal.exceed_trailing);
         // The causal pass: trailing edges much rougher than leading ones.
         EXPECT_GT(s.causal.ratio_trailing, 1.25 * s.causal.ratio_leading);
         // Two passes: no such direction, and trailing edges far smoother
-        // than the causal pass's, with fewer outlier differences.
+        // than the causal pass's, with fewer outlier differences (measured:
+        // trailing 0.89 vs 2.24 on cellular, 1.12 vs 8.76 on clouds), and
+        // leading edges no rougher either.
         EXPECT_LT(s.two_pass.ratio_trailing, 1.15 * s.two_pass.ratio_leading);
-        EXPECT_LT(s.two_pass.ratio_trailing * 1.25, s.causal.ratio_trailing);
-        EXPECT_LT(s.two_pass.exceed_trailing * 1.25, s.causal.exceed_trailing);
+        EXPECT_LT(s.two_pass.ratio_trailing * 2.0, s.causal.ratio_trailing);
+        EXPECT_LT(s.two_pass.exceed_trailing * 2.0, s.causal.exceed_trailing);
+        EXPECT_LT(s.two_pass.ratio_leading, s.causal.ratio_leading);
+        // And close to seamless: boundary differences on average within
+        // 60% of the known region's (measured 1.02 and 1.52).
+        EXPECT_LT(s.two_pass.ratio_all, 1.6);
     }
+}
+
+TEST(FillSeams, AdditionsToThePaperMethodLowerTheSeam) {
+    // The paper's two-pass method alone (strict coarse known pixels, tree
+    // answers only, one pass 2, trees on every neighbourhood) against the
+    // default with coarse context, coherence, sweeps and subset trees. On a
+    // smooth texture the strict rule's grown coarse holes leave a step at
+    // the boundary (measured ratio 2.8 against 1.5).
+    const Image texture = vqtex_test::load_corpus("clouds_128.png");
+    FillOptions paper = fast_options();
+    paper.coherence = false;
+    paper.sweeps = 0;
+    paper.context_threshold = 0;
+    paper.max_train = 0;
+    const SeamPair plain = seams_on(texture, paper);
+    const SeamPair improved = seams_on(texture, fast_options());
+    std::printf("clouds two-pass ratio all: paper %.2f, with the additions %.2f\n", plain.two_pass.ratio_all,
+                improved.two_pass.ratio_all);
+    EXPECT_LT(improved.two_pass.ratio_all * 1.5, plain.two_pass.ratio_all);
+    EXPECT_LT(improved.two_pass.exceed_all * 1.5, plain.two_pass.exceed_all);
 }
 
 // ---- masks of every shape: known pixels byte for byte, filled from the example ----

@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"two-pass", "causal"}));
     app.add_option("--levels", levels, "pyramid levels (default: the deepest the mask allows)")->check(CLI::Range(1, 8));
     app.add_option("-L,--backtrack", backtrack, "TSVQ leaves visited per search (default 8)");
-    app.add_option("-k,--codewords", codewords, "TSVQ leaves as a fraction of the example neighbourhoods")
+    app.add_option("-k,--codewords", codewords, "TSVQ leaves as a fraction of the neighbourhoods each tree is trained on")
         ->check(CLI::Range(1e-6, 1.0))
         ->capture_default_str();
     app.add_option("--tolerance", tolerance,
