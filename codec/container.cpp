@@ -12,7 +12,7 @@ namespace vqtex {
 
 std::string Section::name() const {
     std::string n(tag.data(), 4);
-    return n + "[level " + std::to_string(level) + (kind ? ", closing]" : "]");
+    return n + "[level " + std::to_string(level) + (kind == 2 ? ", frame seam]" : kind ? ", closing]" : "]");
 }
 
 void ContainerWriter::add(const char tag[4], uint8_t level, uint8_t kind, std::vector<uint8_t> raw) {
@@ -75,10 +75,11 @@ Container read_container(const uint8_t* data, std::size_t size, std::size_t memo
     }
     if (size < 10) fail(VQTEX_ERROR_TRUNCATED, "file ends inside the header (" + std::to_string(size) + " bytes)");
     const uint16_t version = uint16_t(data[8] | (data[9] << 8));
-    if (version != kFormatVersion)
+    if (version != kFormatVersion && version != kVolumeFormatVersion)
         fail(VQTEX_ERROR_UNSUPPORTED_VERSION,
-             "file is format version " + std::to_string(version) + "; this library reads version " +
-                 std::to_string(kFormatVersion) + ": use a matching vqtex release");
+             "file is format version " + std::to_string(version) + "; this library reads versions " +
+                 std::to_string(kFormatVersion) + " (still textures) and " + std::to_string(kVolumeFormatVersion) +
+                 " (animations): use a matching vqtex release");
     if (size < kHeaderSize + kTrailerSize)
         fail(VQTEX_ERROR_TRUNCATED, "file ends inside the header (" + std::to_string(size) + " bytes)");
 
@@ -146,6 +147,12 @@ Container read_container(const uint8_t* data, std::size_t size, std::size_t memo
     // Header values, now that the bytes are known to be the ones written.
     if (h.flags & ~kKnownFlags)
         fail(VQTEX_ERROR_CORRUPT, "unknown header flags " + std::to_string(h.flags));
+    if (bool(h.flags & kFlagVolume) != (h.version == kVolumeFormatVersion))
+        fail(VQTEX_ERROR_CORRUPT,
+             h.version == kVolumeFormatVersion
+                 ? std::string("format version 2 is for animations, but the animation flag (header bit 1) is not set")
+                 : std::string("file is format version 1 but has the animation flag (header bit 1): animations are "
+                               "version 2 (a development build wrote this file; encode it again)"));
     if (reserved != 0) fail(VQTEX_ERROR_CORRUPT, "reserved header field is not zero");
     if (h.channels < 1 || h.channels > 4)
         fail(VQTEX_ERROR_CORRUPT, "header declares " + std::to_string(h.channels) + " channels (1 to 4)");

@@ -13,6 +13,11 @@ namespace vqtex {
 
 inline constexpr uint8_t kMagic[8] = {0x89, 'V', 'Q', 'T', '\r', '\n', 0x1A, '\n'};
 inline constexpr uint16_t kFormatVersion = 1;
+// Animated textures (docs/FORMAT.md section 7) are version 2, so that a
+// reader that knows only version 1 says the file needs a newer vqtex
+// (UNSUPPORTED_VERSION) instead of calling it damaged. Still textures stay
+// version 1, byte for byte.
+inline constexpr uint16_t kVolumeFormatVersion = 2;
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;
 inline constexpr std::size_t kTrailerSize = 4;

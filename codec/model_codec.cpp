@@ -163,12 +163,16 @@ TreeSections encode_tree(const Codebook& b, const TreeLayout& layout, const Enco
     const PixelPredictor taps = layout.predictor;
     const auto& key_offsets = b.key_offsets();
     std::vector<uint8_t> keys, pixels;
+    const int kp = layout.keys_at_pixel_precision ? pp : p;
+    const uint8_t key_mask = layout.keys_at_pixel_precision ? pixel_mask : mask;
     for (std::size_t kpos = 0; kpos < key_len; ++kpos)
         for (std::size_t i = 0; i < k; ++i) {
             const uint32_t leaf = order[i];
-            const uint8_t base = quantise(b.leaf_codeword(leaf)[key_offsets[kpos]], p);
+            const uint8_t base = layout.keys_at_pixel_precision
+                                     ? quantise(dequantised[leaf * dim + key_offsets[kpos]], pp)
+                                     : quantise(b.leaf_codeword(leaf)[key_offsets[kpos]], p);
             for (std::size_t e = 0; e < b.entry_count(leaf); ++e)
-                keys.push_back(uint8_t((quantise(b.entry(leaf, e)[ch + kpos], p) - base) & mask));
+                keys.push_back(uint8_t((quantise(b.entry(leaf, e)[ch + kpos], kp) - base) & key_mask));
         }
     std::vector<uint8_t> source(dim);
     for (std::size_t c = 0; c < ch; ++c)
@@ -179,7 +183,7 @@ TreeSections encode_tree(const Codebook& b, const TreeLayout& layout, const Enco
                 // codeword, with this entry's dequantised key over it.
                 std::memcpy(source.data(), dequantised.data() + leaf * dim, dim);
                 for (std::size_t kpos = 0; kpos < key_len; ++kpos)
-                    source[key_offsets[kpos]] = dequantise(quantise(b.entry(leaf, e)[ch + kpos], p), p);
+                    source[key_offsets[kpos]] = dequantise(quantise(b.entry(leaf, e)[ch + kpos], kp), kp);
                 // Keyless entries are stored sorted (see tsvq_train.cpp), so
                 // each is best predicted by the one before it.
                 const uint8_t predicted = (key_len == 0 && e > 0)
@@ -273,13 +277,17 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
     const std::size_t entry_size = ch + key_len;
     std::vector<uint8_t> entries(total_entries * entry_size);
     std::size_t pos = 0;
+    const int key_precision = layout.keys_at_pixel_precision ? pixel_precision : precision;
+    const uint8_t key_mask = layout.keys_at_pixel_precision ? pixel_mask : mask;
     for (std::size_t kpos = 0; kpos < key_len; ++kpos)
         for (std::size_t i = 0; i < k; ++i) {
             const uint32_t leaf = order[i];
-            const uint8_t base = quantised[leaf * dim + key_offsets[kpos]];
+            const uint8_t base = layout.keys_at_pixel_precision
+                                     ? quantise(codewords[leaf * dim + key_offsets[kpos]], pixel_precision)
+                                     : quantised[leaf * dim + key_offsets[kpos]];
             for (std::size_t e = 0; e < entry_counts[leaf]; ++e) {
-                const uint8_t q = uint8_t((base + entry_bytes[pos++]) & mask);
-                entries[(entry_start[leaf] + e) * entry_size + ch + kpos] = dequantise(q, precision);
+                const uint8_t q = uint8_t((base + entry_bytes[pos++]) & key_mask);
+                entries[(entry_start[leaf] + e) * entry_size + ch + kpos] = dequantise(q, key_precision);
             }
         }
     const PixelPredictor taps = layout.predictor;

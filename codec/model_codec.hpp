@@ -56,6 +56,11 @@ struct TreeLayout {
     std::vector<Tap> taps;
     std::vector<uint16_t> key_offsets;
     PixelPredictor predictor;
+    // Keys quantised like the entry pixels (pixel precision, coded against
+    // the dequantised codeword re-quantised so), not like the codewords: a
+    // temporal key must decode equal to its pixel when the example pixel did
+    // not change (neighborhood3d.hpp, docs/FORMAT.md section 7).
+    bool keys_at_pixel_precision = false;
 };
 TreeLayout tree_layout_of(const NeighborhoodLayout& layout);
 

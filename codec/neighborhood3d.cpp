@@ -24,7 +24,7 @@ std::vector<Tap3> shape3_taps(const Shape3& shape) {
                 if (dt == 0 && dy == 0 && dx == 0) continue;
                 // Causal: in the current frame only what the raster scan has
                 // already visited.
-                if (shape.causal && dt == 0 && (dy > 0 || (dy == 0 && dx > 0))) continue;
+                if (shape.causal && !shape.whole_frame && dt == 0 && (dy > 0 || (dy == 0 && dx > 0))) continue;
                 taps.push_back({0, int8_t(dt), int16_t(dy), int16_t(dx)});
             }
     for (int d = 1; d < shape.levels; ++d) {
@@ -38,7 +38,8 @@ std::vector<Tap3> shape3_taps(const Shape3& shape) {
 }
 
 std::string shape3_to_string(const Shape3& shape) {
-    return std::string(shape.causal ? "{" : "symmetric {") + std::to_string(shape.rows) + "x" +
+    return std::string(!shape.causal ? "symmetric {" : shape.whole_frame ? "whole-frame {" : "{") +
+           std::to_string(shape.rows) + "x" +
            std::to_string(shape.cols) + "x" + std::to_string(shape.frames) + "," + std::to_string(shape.levels) + "}";
 }
 
@@ -70,25 +71,39 @@ NeighborhoodLayout3::NeighborhoodLayout3(const Shape3& shape, int channels, int 
     }
 }
 
-std::vector<uint16_t> NeighborhoodLayout3::entry_key_offsets() const {
-    std::vector<uint16_t> offsets;
+int NeighborhoodLayout3::predecessor_offset() const {
     for (std::size_t i = 0; i < taps_.size(); ++i) {
         const Tap3& t = taps_[i];
-        if (t.depth != 0 || t.dt != 0 || std::abs(t.dx) > 1 || std::abs(t.dy) > 1) continue;
-        for (int c = 0; c < channels_; ++c) offsets.push_back(uint16_t(i * std::size_t(channels_) + std::size_t(c)));
+        if (t.depth == 0 && t.dt == -1 && t.dy == 0 && t.dx == 0) return int(i) * channels_;
     }
+    return -1;
+}
+
+std::vector<uint16_t> NeighborhoodLayout3::entry_key_offsets() const {
+    std::vector<uint16_t> offsets;
+    const int o = predecessor_offset();
+    if (o < 0) return offsets;
+    for (int c = 0; c < channels_; ++c) offsets.push_back(uint16_t(o + c));
     return offsets;
 }
 
 PixelPredictor NeighborhoodLayout3::pixel_predictor() const {
     PixelPredictor p;
+    // The median edge detector over three copies of one tap is that tap: an
+    // entry's pixel is predicted by its key, its own value a frame earlier
+    // (the difference is zero wherever the example does not move).
+    const int o = predecessor_offset();
+    if (o >= 0) {
+        p.left = p.up = p.up_left = o;
+        return p;
+    }
     for (std::size_t i = 0; i < taps_.size(); ++i) {
         const Tap3& t = taps_[i];
         if (t.depth != 0 || t.dt != 0) continue;
-        const int o = int(i) * channels_;
-        if (t.dx == -1 && t.dy == 0) p.left = o;
-        if (t.dx == 0 && t.dy == -1) p.up = o;
-        if (t.dx == -1 && t.dy == -1) p.up_left = o;
+        const int off = int(i) * channels_;
+        if (t.dx == -1 && t.dy == 0) p.left = off;
+        if (t.dx == 0 && t.dy == -1) p.up = off;
+        if (t.dx == -1 && t.dy == -1) p.up_left = off;
     }
     return p;
 }

@@ -11,7 +11,9 @@
 //     ancestor (x >> d, y >> d, t >> d), about half as large per level on
 //     every axis (the coarser levels are complete, future frames included).
 // A symmetric shape (for the loop closing around the temporal wrap) holds the
-// full RxCxD window but the centre at the current level.
+// full RxCxD window but the centre at the current level; a whole-frame shape
+// (for closing each frame's top/bottom wrap) the previous frames' windows and
+// the whole RxC window of the current frame but the centre.
 // The gathered vectors are ordinary ExampleSet rows, so the TSVQ trainer and
 // search serve 3D shapes unchanged.
 #pragma once
@@ -32,6 +34,11 @@ struct Shape3 {
     int frames = 5;  // D (odd): D/2 previous frames (and D/2 next, when symmetric)
     int levels = 2;  // k
     bool causal = true;
+    // With causal: the whole RxC window of the current frame (but the
+    // centre) instead of its causal half. Symmetric in space, causal in
+    // time: the shape that closes the top/bottom wrap of each frame once the
+    // frame is done, before the next frame reads it (temporal_synthesis.hpp).
+    bool whole_frame = false;
 
     bool operator==(const Shape3&) const = default;
 };
@@ -66,8 +73,18 @@ public:
     std::size_t stride() const { return stride_; }
     const std::vector<Tap3>& taps() const { return taps_; }
 
-    // The taps adjacent to the pixel in its own frame, as NeighborhoodLayout.
+    // Byte offset of the pixel's own position one frame earlier (tap
+    // depth 0, dt -1, dy 0, dx 0), or -1 when the shape has no previous
+    // frame (D = 1).
+    int predecessor_offset() const;
+    // Entry keys of a 3D codebook: the predecessor (empty without one). An
+    // entry then knows whether its example pixel changed from the previous
+    // frame, which the synthesis uses to keep still what is still in the
+    // example (temporal_synthesis.hpp); the key also picks, among a leaf's
+    // entries, the continuation whose past is nearest the pixel's own past.
     std::vector<uint16_t> entry_key_offsets() const;
+    // Predicts an entry's pixel from its key (see model_codec.cpp); the
+    // spatial median predictor when there is no predecessor.
     PixelPredictor pixel_predictor() const;
 
     // Toroidal gather of (x, y, t) at this level into `out` (stride() bytes).

@@ -60,9 +60,25 @@ struct BuiltMatcher {
 };
 
 BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, const vqtex_model_params& params,
-                           vqtex_search search, uint32_t backtrack, int threads, int level, bool closing) {
+                           vqtex_search search, uint32_t backtrack, int threads, int level, int kind) {
+    // kind: 0 the causal tree, 1 loop closing, 2 frame-seam closing.
+    const bool closing = kind != 0;
     BuiltMatcher built;
+    const int predecessor = layout.predecessor_offset();
     if (search == VQTEX_SEARCH_EXHAUSTIVE) {
+        if (predecessor >= 0) {
+            // Each example pixel followed by its predecessor, as a TSVQ
+            // entry's pixel is followed by its key (temporal_synthesis.hpp).
+            const std::size_t ch = std::size_t(set.channels);
+            std::vector<uint8_t> pairs(set.count() * 2 * ch);
+            for (std::size_t i = 0; i < set.count(); ++i) {
+                std::copy(set.pixel(i), set.pixel(i) + ch, pairs.data() + 2 * i * ch);
+                std::copy(set.vector(i) + predecessor, set.vector(i) + std::size_t(predecessor) + ch,
+                          pairs.data() + (2 * i + 1) * ch);
+            }
+            set.pixels = std::move(pairs);
+            set.channels *= 2;
+        }
         built.bytes = set.vectors.size() + set.pixels.size();
         built.matcher = std::make_shared<ExhaustiveMatcher>(std::move(set));
         return built;
@@ -78,7 +94,7 @@ BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, c
                                             std::size_t(std::llround(double(subset_size) * params.train_fraction)));
     if (params.train_count > 0) subset_size = std::min<std::size_t>(subset_size, params.train_count);
     const std::vector<uint32_t> subset =
-        choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level) + (closing ? 64u : 0u));
+        choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level) + 64u * uint64_t(kind));
     TrainParams tp;
     const uint32_t divisor = closing ? std::max<uint32_t>(1, params.closing_divisor) : 1;
     tp.max_leaves = std::max<uint32_t>(1, codewords_for_level(params, level, subset.size()) / divisor);
@@ -88,7 +104,10 @@ BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, c
     tp.threads = threads;
     tp.entries_per_leaf = params.entries_per_leaf ? params.entries_per_leaf : 1;
     if (closing) tp.entries_per_leaf = std::min<uint32_t>(tp.entries_per_leaf, 4);
-    if (!params.no_entry_keys) tp.key_offsets = layout.entry_key_offsets();
+    // Every entry carries its predecessor as its key, whatever
+    // params.no_entry_keys says (neighborhood3d.hpp).
+    tp.key_offsets = layout.entry_key_offsets();
+    tp.keys_on_single_entries = true;
     built.codebook = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
     built.bytes = built.codebook->memory_bytes();
     built.matcher = std::make_shared<TsvqMatcher>(built.codebook, backtrack);
@@ -113,6 +132,7 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
     result.model.levels.resize(std::size_t(plan.levels));
     result.codebooks.resize(std::size_t(plan.levels));
     result.closing_codebooks.resize(std::size_t(plan.levels));
+    result.seam_codebooks.resize(std::size_t(plan.levels));
     result.training_vectors.resize(std::size_t(plan.levels));
     for (int l = plan.levels - 1; l >= 0; --l) {
         const NeighborhoodLayout3 layout(plan.shapes[std::size_t(l)], example.channels, l, plan.levels);
@@ -129,7 +149,7 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
         VolumeLevelModel& lm = result.model.levels[std::size_t(l)];
         lm.shape = layout.shape();
         lm.histogram = histogram_of(v.stack);
-        BuiltMatcher causal = build_matcher(set, layout, params, search, backtrack, threads, l, false);
+        BuiltMatcher causal = build_matcher(set, layout, params, search, backtrack, threads, l, 0);
         lm.matcher = causal.matcher;
         result.codebooks[std::size_t(l)] = causal.codebook;
         result.model_bytes += causal.bytes;
@@ -145,11 +165,26 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
             ExampleSet closing_set = collect_volume_examples(closing_layout, pyramid, tileable);
             if (closing_set.count() > 0) {
                 BuiltMatcher closing =
-                    build_matcher(closing_set, closing_layout, params, search, backtrack, threads, l, true);
+                    build_matcher(closing_set, closing_layout, params, search, backtrack, threads, l, 1);
                 lm.closing_shape = closing_layout.shape();
                 lm.closing = closing.matcher;
                 result.closing_codebooks[std::size_t(l)] = closing.codebook;
                 result.model_bytes += closing.bytes;
+            }
+            // Frame-seam closing: the causal shape with the whole current
+            // frame's window (temporal_synthesis.hpp).
+            Shape3 seam_shape = layout.shape();
+            seam_shape.rows = closing_layout.shape().rows;
+            seam_shape.cols = closing_layout.shape().cols;
+            seam_shape.whole_frame = true;
+            const NeighborhoodLayout3 seam_layout(seam_shape, example.channels, l, plan.levels);
+            ExampleSet seam_set = collect_volume_examples(seam_layout, pyramid, tileable);
+            if (seam_set.count() > 0) {
+                BuiltMatcher seam = build_matcher(seam_set, seam_layout, params, search, backtrack, threads, l, 2);
+                lm.seam_shape = seam_layout.shape();
+                lm.seam = seam.matcher;
+                result.seam_codebooks[std::size_t(l)] = seam.codebook;
+                result.model_bytes += seam.bytes;
             }
         }
         if (progress && !progress(uint64_t(plan.levels - l), uint64_t(plan.levels)))

@@ -32,11 +32,12 @@ struct VolumeAnalysis {
     VolumeModel model;
     std::vector<std::shared_ptr<const Codebook>> codebooks;          // TSVQ only; [0] = finest
     std::vector<std::shared_ptr<const Codebook>> closing_codebooks;  // TSVQ with loop closing
+    std::vector<std::shared_ptr<const Codebook>> seam_codebooks;     // TSVQ with frame-seam closing
     std::vector<std::size_t> training_vectors;
     std::size_t model_bytes = 0;
 };
 
-// params.seam_closing builds the loop-closing matchers; params.shapes is
+// params.seam_closing builds the loop-closing and frame-seam matchers; params.shapes is
 // ignored (3D shapes come in `shapes`, [0] = finest, may be empty).
 VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& params,
                               const std::vector<Shape3>& shapes, vqtex_search search, uint32_t backtrack,

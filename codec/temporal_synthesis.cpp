@@ -43,10 +43,18 @@ uint64_t voxel_salt(uint64_t seed, int level, int pass, int x, int y) {
     return pixel_salt(seed ^ 0x74656D706F72616Cull /* "temporal" */, level, pass, x, y);
 }
 
+// The matchers of a level whose shape reads the previous frame return the
+// example pixel followed by the same pixel one frame earlier (its entry key,
+// neighborhood3d.hpp). Equal: the example did not change there.
+bool still_in_example(const uint8_t* entry, int channels) {
+    return std::equal(entry, entry + channels, entry + channels);
+}
+
 struct FrameRun {
     const NeighborhoodLayout3* layout;
     const Matcher* matcher;
     std::vector<Volume>* pyramid;
+    bool keep_still;  // the pixel's previous frame is final (not an initial value)
     int level, t, lag, reach_x, reach_y;
     uint64_t seed;
     uint32_t tolerance;
@@ -73,6 +81,7 @@ void run_row(const FrameRun& r, int y, bool parallel, std::vector<uint8_t>& quer
         r.layout->gather(*r.pyramid, x, y, r.t, query.data());
         const MatchContext context{voxel_salt(r.seed, r.level, 0, x, y), r.tolerance};
         const uint8_t* pixel = r.matcher->match(query.data(), context, scratch);
+        if (r.keep_still && still_in_example(pixel, v.channels)) pixel = v.wrapped(x, y, r.t - 1);
         std::copy(pixel, pixel + v.channels, v.at(x, y, r.t));
         if (r.trace)
             (*r.trace)[(std::size_t(r.t) * std::size_t(v.height) + std::size_t(y)) * std::size_t(w) + std::size_t(x)] =
@@ -91,6 +100,7 @@ void close_loop(const VolumeLevelModel& lm, std::vector<Volume>& pyramid, int le
     if (layout.stride() != lm.closing->stride())
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "loop-closing matcher and shape disagree at level " + std::to_string(level));
     const int band = closing_band_frames(lm.shape, v.frames);
+    const bool keep_still = layout.predecessor_offset() >= 0;
     const std::size_t ch = std::size_t(channels), row_bytes = std::size_t(v.width) * ch;
     std::vector<uint8_t> updated(v.frame_pixels() * ch);
     for (int sweep = 0; sweep < kClosingSweeps; ++sweep) {
@@ -105,12 +115,43 @@ void close_loop(const VolumeLevelModel& lm, std::vector<Volume>& pyramid, int le
                         const MatchContext context{voxel_salt(options.seed, level, 1 + sweep, x, int(y)),
                                                    options.tolerance};
                         const uint8_t* pixel = lm.closing->match(query.data(), context, scratch.get());
+                        if (keep_still && still_in_example(pixel, channels)) pixel = v.wrapped(x, int(y), t - 1);
                         std::copy(pixel, pixel + ch, updated.data() + y * row_bytes + std::size_t(x) * ch);
                     }
             });
             std::copy(updated.begin(), updated.end(), v.frame_data(t));
         }
     }
+}
+
+// Frame-seam closing of frame t (see temporal_synthesis.hpp).
+void close_frame_seam(const VolumeLevelModel& lm, std::vector<Volume>& pyramid, int level, int levels, int channels,
+                      int t, bool keep_still, const VolumeSynthesisOptions& options) {
+    Volume& v = pyramid[std::size_t(level)];
+    const NeighborhoodLayout3 layout(lm.seam_shape, channels, level, levels);
+    if (layout.stride() != lm.seam->stride())
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "frame-seam matcher and shape disagree at level " + std::to_string(level));
+    const int band = std::min(2 * (lm.shape.rows / 2) + 1, (v.height + 1) / 2);
+    keep_still = keep_still && layout.predecessor_offset() >= 0;
+    std::vector<uint8_t> query(layout.stride());
+    std::vector<uint8_t> row(std::size_t(v.width) * std::size_t(channels));
+    std::unique_ptr<MatchScratch> scratch = lm.seam->make_scratch();
+    // Each row is computed from the frame as it was before that row's
+    // update: no column is visited first, so the closing itself leaves no
+    // trace at x = 0.
+    for (int sweep = 0; sweep < kClosingSweeps; ++sweep)
+        for (int k = 0; k < 2 * band; ++k) {
+            const int y = Image::wrap(v.height - band + k, v.height);
+            for (int x = 0; x < v.width; ++x) {
+                layout.gather(pyramid, x, y, t, query.data());
+                const MatchContext context{voxel_salt(options.seed ^ 0x7365616Dull /* "seam" */, level, 1 + sweep, x, y),
+                                           options.tolerance};
+                const uint8_t* pixel = lm.seam->match(query.data(), context, scratch.get());
+                if (keep_still && still_in_example(pixel, channels)) pixel = v.wrapped(x, y, t - 1);
+                std::copy(pixel, pixel + channels, row.data() + std::size_t(x) * std::size_t(channels));
+            }
+            std::copy(row.begin(), row.end(), v.at(0, y, t));
+        }
 }
 
 }  // namespace
@@ -158,7 +199,8 @@ std::vector<Volume> synthesize_volume_pyramid(const VolumeModel& model, const Vo
 
         for (int t = 0; t < v.frames; ++t) {
             for (auto& p : progress) p.store(0);
-            const FrameRun run{&layout, lm.matcher.get(), &pyramid, l, t, lag, reach_x, reach_y,
+            const bool keep_still = t > 0 && layout.predecessor_offset() >= 0;
+            const FrameRun run{&layout, lm.matcher.get(), &pyramid, keep_still, l, t, lag, reach_x, reach_y,
                                options.seed, options.tolerance, &progress, &stop, trace, &trace_counter};
             auto worker = [&](int index) {
                 std::vector<uint8_t> query(layout.stride());
@@ -172,6 +214,7 @@ std::vector<Volume> synthesize_volume_pyramid(const VolumeModel& model, const Vo
             for (int i = 1; i < workers; ++i) pool.emplace_back(worker, i);
             worker(0);
             for (auto& th : pool) th.join();
+            if (lm.seam && !stop.load()) close_frame_seam(lm, pyramid, l, levels, model.channels, t, keep_still, options);
             done += v.frame_pixels();
             if (!stop.load() && options.progress && !options.progress(done, total)) stop.store(true);
             if (stop.load()) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");

@@ -295,7 +295,7 @@ Codebook train_codebook(const ExampleSet& examples, const std::vector<uint32_t>&
     if (params.max_leaves < 1) fail(VQTEX_ERROR_INVALID_ARGUMENT, "a codebook needs at least one codeword");
     Trainer trainer(examples, params);
     Codebook book(examples.dimension, examples.stride, examples.channels,
-                  params.entries_per_leaf > 1 ? params.key_offsets : std::vector<uint16_t>{});
+                  params.entries_per_leaf > 1 || params.keys_on_single_entries ? params.key_offsets : std::vector<uint16_t>{});
     // Without keys several entries are still useful: chosen at random.
     book.add_root();
 

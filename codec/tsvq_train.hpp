@@ -27,6 +27,9 @@ struct TrainParams {
     // entries_per_leaf - 1 more members, each with its short key.
     uint32_t entries_per_leaf = 1;
     std::vector<uint16_t> key_offsets;
+    // Keys are normally kept only with several entries (they choose among
+    // them); temporal codebooks need them on every entry (neighborhood3d.hpp).
+    bool keys_on_single_entries = false;
     int threads = 1;
 };
 

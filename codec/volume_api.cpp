@@ -102,6 +102,8 @@ vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const
             lv.causal = a.codebooks[l];
             lv.closing = a.closing_codebooks[l];
             lv.closing_shape = a.model.levels[l].closing_shape;
+            lv.seam = a.seam_codebooks[l];
+            lv.seam_shape = a.model.levels[l].seam_shape;
             model.levels.push_back(lv);
         }
         EncodeSettings s;

@@ -28,11 +28,23 @@ TreeLayout tree_layout_of(const NeighborhoodLayout3& layout) {
     t.channels = layout.channels();
     t.key_offsets = layout.entry_key_offsets();
     t.predictor = layout.pixel_predictor();
+    t.keys_at_pixel_precision = true;
     for (const Tap3& tap : layout.taps()) t.taps.push_back({tap.depth, tap.dt, tap.dy, tap.dx});
     return t;
 }
 
 bool valid_extent(int v, int lowest) { return v % 2 == 1 && v >= lowest && v <= 31; }
+
+// The frame-seam tree's shape is not stored: the causal window's frames and
+// levels with the closing window's rows and columns, whole-frame.
+Shape3 seam_shape_of(const Shape3& causal, const Shape3& closing) {
+    Shape3 s = causal;
+    s.rows = closing.rows;
+    s.cols = closing.cols;
+    s.causal = true;
+    s.whole_frame = true;
+    return s;
+}
 
 }  // namespace
 
@@ -40,6 +52,7 @@ std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const En
     if (s.precision < 1 || s.precision > 8 || s.pixel_precision < 1 || s.pixel_precision > 8)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision must be 1 to 8 bits");
     FileHeader h;
+    h.version = kVolumeFormatVersion;
     h.flags = kFlagVolume;
     h.exemplar_width = model.exemplar_width;
     h.exemplar_height = model.exemplar_height;
@@ -79,11 +92,15 @@ std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const En
                 for (int v = 0; v < 256; ++v) hw.varint(lv.histogram.channel(c)[v]);
             writer.add(kTagHistogram, uint8_t(l), 0, std::move(hw.data()));
         }
-        for (int kind = 0; kind < 2; ++kind) {
-            const Codebook* book = kind == 0 ? lv.causal.get() : lv.closing.get();
+        if (bool(lv.closing) != bool(lv.seam) ||
+            (lv.seam && seam_shape_of(lv.shape, lv.closing_shape) != lv.seam_shape))
+            fail(VQTEX_ERROR_INVALID_ARGUMENT,
+                 "level " + std::to_string(l) + ": loop-closing and frame-seam trees go together");
+        for (int kind = 0; kind < 3; ++kind) {
+            const Codebook* book = kind == 0 ? lv.causal.get() : kind == 1 ? lv.closing.get() : lv.seam.get();
             if (!book) continue;
-            Shape3 shape = kind == 0 ? lv.shape : lv.closing_shape;
-            shape.causal = kind == 0;
+            Shape3 shape = kind == 0 ? lv.shape : kind == 1 ? lv.closing_shape : lv.seam_shape;
+            shape.causal = kind != 1;
             const NeighborhoodLayout3 layout(shape, model.channels, l, levels);
             TreeSections t = encode_tree(*book, tree_layout_of(layout), s);
             writer.add(kTagTopology, uint8_t(l), uint8_t(kind), std::move(t.topology));
@@ -125,7 +142,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
         }
         if (!found)
             fail(VQTEX_ERROR_CORRUPT, "missing section " + std::string(tag, 4) + "[level " + std::to_string(level) +
-                                          (kind ? ", closing]" : "]"));
+                                          (kind == 1 ? ", closing]" : kind == 2 ? ", frame seam]" : "]"));
         return *found;
     };
     std::size_t expected_sections = 1;
@@ -191,26 +208,38 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
             lv.histogram = h;
             tm.histogram = h;
         }
-        for (int kind = 0; kind < 1 + has_closing; ++kind) {
-            Shape3 s = kind == 0 ? shape : closing_shape;
-            s.causal = kind == 0;
+        for (int kind = 0; kind < 1 + 2 * has_closing; ++kind) {
+            Shape3 s = kind == 0 ? shape : kind == 1 ? closing_shape : seam_shape_of(shape, closing_shape);
+            s.causal = kind != 1;
             const NeighborhoodLayout3 layout(s, ch, l, levels);
-            const std::string where = std::string(kind ? "closing" : "causal") + " tree of " + where_level;
+            const std::string where =
+                std::string(kind == 0 ? "causal" : kind == 1 ? "closing" : "frame-seam") + " tree of " + where_level;
             const auto topo = section_bytes(data, require(kTagTopology, l, kind));
             const auto code = section_bytes(data, require(kTagCodewords, l, kind));
             const auto entr = section_bytes(data, require(kTagEntries, l, kind));
             expected_sections += 3;
             auto book = decode_tree(topo, code, entr, tree_layout_of(layout), precision, pixel_precision, where,
                                     memory_limit);
+            // The synthesis reads every entry's predecessor (its key) when
+            // the shape has one (temporal_synthesis.cpp).
+            if (book->key_length() != layout.entry_key_offsets().size())
+                fail(VQTEX_ERROR_CORRUPT, where + ": entries " +
+                                              (book->key_length() ? "carry keys the shape does not define"
+                                                                  : "lack their value in the previous frame"));
             auto matcher = std::make_shared<TsvqMatcher>(book, c.header.backtrack);
             if (kind == 0) {
                 lv.causal = book;
                 tm.matcher = matcher;
-            } else {
+            } else if (kind == 1) {
                 lv.closing = book;
                 lv.closing_shape = s;
                 tm.closing = matcher;
                 tm.closing_shape = s;
+            } else {
+                lv.seam = book;
+                lv.seam_shape = s;
+                tm.seam = matcher;
+                tm.seam_shape = s;
             }
         }
     }

@@ -24,6 +24,8 @@ struct VolumeCodecModel {
         std::shared_ptr<const Codebook> causal;
         std::shared_ptr<const Codebook> closing;  // may be null
         Shape3 closing_shape;
+        std::shared_ptr<const Codebook> seam;     // frame-seam closing: present with `closing`
+        Shape3 seam_shape;
     };
     std::vector<Level> levels;  // [0] = finest
 };

@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
         std::printf("sections:\n");
         for (uint32_t i = 0; i < info.section_count; ++i)
             std::printf("  %s level %u %-8s raw %8llu  stored %8llu\n", info.sections[i].tag, info.sections[i].level,
-                        info.sections[i].kind ? "closing" : "", (unsigned long long)info.sections[i].raw_bytes,
+                        info.sections[i].kind == 2 ? "seam" : info.sections[i].kind ? "closing" : "", (unsigned long long)info.sections[i].raw_bytes,
                         (unsigned long long)info.sections[i].stored_bytes);
         return 0;
     } catch (const std::exception& e) {
