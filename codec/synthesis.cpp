@@ -46,6 +46,13 @@ struct alignas(64) RowProgress {
 // would move the cache line between cores at every pixel.
 constexpr int kPublishEvery = 8;  // a power of two
 
+// A row trails the row above by this many pixels more than its window needs.
+// Without the slack the row above is read a few bytes behind where it is
+// being written, and the cache line under both moves between the two cores
+// at every pixel; with it the threads touch different lines. Waiting longer
+// never changes what is read (those pixels are final either way).
+constexpr int kWavefrontSlack = 64;
+
 // Shared state of one level's wavefront.
 struct LevelRun {
     const NeighborhoodGather* gather;
@@ -83,8 +90,8 @@ void run_row(const LevelRun& r, int y, bool parallel, std::vector<uint8_t>& quer
     }
     for (int i = 0; i < w; ++i) {
         if (parallel && y > 0)
-            wait_for((*r.progress)[std::size_t(y - 1)].done, std::min(w, i + r.lag + r.reach_x + 1),
-                     *r.stop);
+            wait_for((*r.progress)[std::size_t(y - 1)].done,
+                     std::min(w, i + r.lag + r.reach_x + 1 + kWavefrontSlack), *r.stop);
         if (r.stop->load(std::memory_order_relaxed)) return;
         const int x = start + i < w ? start + i : start + i - w;
         r.gather->gather(x, y, query.data());
