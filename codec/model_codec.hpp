@@ -51,6 +51,9 @@ struct DecodedFile {
     // Ready to synthesise: matchers built over the decoded codebooks.
     TextureModel texture;
     LevelInit init = LevelInit::Parent;
+    // Of the memory limit, what the decoded trees may take (an upper bound):
+    // the output must fit in the rest.
+    std::size_t model_bytes = 0;
 };
 
 // Parses, verifies and rebuilds everything; throws a specific error for any
