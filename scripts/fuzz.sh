@@ -8,7 +8,8 @@
 #   bash scripts/fuzz.sh            # CI: about a minute per target
 #   bash scripts/fuzz.sh 3600       # a long local run (see README)
 # Env: VQTEX_FUZZ_BUILD_DIR (default build-fuzz/), VQTEX_FUZZ_TARGETS
-# (default "fuzz_decode fuzz_inspect fuzz_encode").
+# (default "fuzz_decode fuzz_inspect fuzz_encode"), VQTEX_FUZZ_ARGS (more
+# libFuzzer flags, e.g. "-fork=2" to use two cores).
 set -euo pipefail
 seconds="${1:-60}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -43,10 +44,12 @@ for t in "${targets[@]}"; do
   # decoder's memory limit is 32 MiB in the targets, so any single
   # allocation of 256 MiB means a size field escaped it; -rss_limit_mb
   # bounds the whole process the same way.
+  # shellcheck disable=SC2206
+  extra+=(${VQTEX_FUZZ_ARGS:-})
   if "$build/fuzz/$t" "$corpus" "$seed_dir" "${extra[@]}" -max_total_time="$seconds" -timeout=10 \
       -malloc_limit_mb=256 -rss_limit_mb=1024 -print_final_stats=1 \
       -artifact_prefix="$build/fuzz-artifacts/$t-" >"$log" 2>&1; then
-    grep -E "^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)|cov: " "$log" | tail -4 | sed "s/^/  /"
+    grep -E "DONE|^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)" "$log" | sed "s/^/  /"
   else
     echo "fuzz: $t FAILED; the end of its log:" >&2
     tail -40 "$log" >&2
