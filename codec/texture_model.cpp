@@ -148,6 +148,10 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
                 closing_shape.rows = std::min<int>(closing_shape.rows, int(params.closing_window));
                 closing_shape.cols = std::min<int>(closing_shape.cols, int(params.closing_window));
             }
+            // The file's closing windows are 3 to 63 on a side (a causal
+            // window may be 1 wide).
+            closing_shape.rows = std::max(closing_shape.rows, 3);
+            closing_shape.cols = std::max(closing_shape.cols, 3);
             closing_shape.causal = false;
             const NeighborhoodLayout closing_layout(closing_shape, example.channels, l, plan.levels);
             ExampleSet closing_set = collect_examples(closing_layout, pyramid, tileable);

@@ -277,6 +277,25 @@ TEST(HostileImages, ClosingWindowOutsideTheFormatIsRefusedUpFront) {
     EXPECT_EQ(decode(e.file, decode_params(16, 16)).width, 16);
 }
 
+// Regression (found by fuzz_encode): a causal window 1 wide, {7x1,2}, gave
+// a seam-closing window 1 wide, which the format does not allow (3 to 63),
+// so the encoder wrote a file its own decoder refused.
+TEST(HostileImages, NarrowWindowsMakeDecodableFiles) {
+    for (const vqtex_shape shape : {vqtex_shape{7, 1, 2}, vqtex_shape{1, 7, 2}, vqtex_shape{1, 3, 1}}) {
+        SCOPED_TRACE(std::to_string(shape.rows) + "x" + std::to_string(shape.cols));
+        vqtex_encode_params p = fast_encode_params();
+        p.model.levels = 2;
+        p.model.shapes[0] = shape;
+        p.model.shapes[1] = vqtex_shape{0, 0, 0};
+        const Encoded e = try_encode(28, 30, 4, p);
+        ASSERT_EQ(e.status, VQTEX_OK) << e.detail;
+        vqtex_status st;
+        vqtex_error err{};
+        const vqtex::Image out = decode(e.file, decode_params(20, 20), &st, &err);
+        EXPECT_EQ(st, VQTEX_OK) << err.detail;
+    }
+}
+
 // ---- image files through the programs ------------------------------------------
 
 TEST(HostileImages, EveryPixelFormatEncodesAndDecodes) {
