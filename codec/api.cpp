@@ -30,7 +30,12 @@ const char* vqtex_version_string(void) {
 }
 
 const char* vqtex_status_message(vqtex_status status) {
-    switch (status) {
+    // A C caller may pass any int: read it as one (C++ may not load an enum
+    // outside its range; UBSan reports it).
+    int code;
+    static_assert(sizeof code == sizeof status);
+    std::memcpy(&code, &status, sizeof code);
+    switch (code) {
         case VQTEX_OK: return "success";
         case VQTEX_ERROR_INVALID_ARGUMENT: return "invalid argument";
         case VQTEX_ERROR_IMAGE_TOO_SMALL: return "example image too small for the neighbourhood";

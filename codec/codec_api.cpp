@@ -106,8 +106,8 @@ std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* d
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) +
                                                " is out of range: give an explicit size");
     // The output pyramid is at most 4/3 of the texture; check it against
-    // the limit before allocating it.
-    const uint64_t needed = uint64_t(w) * h * f.header.channels * 4 / 3;
+    // what the trees left of the limit before allocating it.
+    const uint64_t needed = uint64_t(w) * h * f.header.channels * 4 / 3 + f.model_bytes;
     if (needed > limit)
         fail(VQTEX_ERROR_LIMIT_EXCEEDED, "a " + std::to_string(w) + "x" + std::to_string(h) +
                                              " output needs about " + std::to_string(needed >> 20) +

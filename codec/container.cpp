@@ -69,7 +69,7 @@ std::vector<uint8_t> ContainerWriter::write() {
 Container read_container(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     if (!data && size) fail(VQTEX_ERROR_INVALID_ARGUMENT, "file data is NULL");
     if (size < sizeof kMagic || std::memcmp(data, kMagic, sizeof kMagic) != 0) {
-        if (size < sizeof kMagic && std::memcmp(data, kMagic, size) == 0)
+        if (size < sizeof kMagic && (size == 0 || std::memcmp(data, kMagic, size) == 0))  // data may be NULL
             fail(VQTEX_ERROR_TRUNCATED, "file is " + std::to_string(size) + " bytes, shorter than the vqtex signature");
         fail(VQTEX_ERROR_BAD_MAGIC, "not a vqtex file: the first 8 bytes are not the vqtex signature");
     }

@@ -203,7 +203,7 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
                                             const std::vector<uint8_t>& entry_bytes,
                                             const TreeLayout& layout, int precision,
                                             int pixel_precision, const std::string& where,
-                                            std::size_t memory_limit) {
+                                            std::size_t& memory_budget) {
     ByteReader topo(topology_bytes.data(), topology_bytes.size(), "topology of " + where);
     // Each leaf costs at least two topology bits and one weight byte, so a
     // leaf count above the section size is a lie; check before allocating.
@@ -212,23 +212,35 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
     const uint8_t has_keys = topo.u8("key flag");
     if (has_keys > 1) topo.corrupt("key flag must be 0 or 1");
     const std::size_t nodes = std::size_t(2 * k - 1);
-    // What the rebuilt tree will hold, checked before anything is allocated.
+    // What the rebuilt tree will hold, checked before anything is allocated,
+    // against what the trees before it left of the limit.
     {
         const std::size_t entry_size = std::size_t(layout.channels) + (has_keys ? layout.key_offsets.size() : 0);
-        // Codewords, plus the planes the search precomputes (2 bytes a sample).
-        const uint64_t tree_bytes = uint64_t(nodes) * (3 * layout.stride + 64) + k * max_entries * entry_size;
-        if (tree_bytes > memory_limit)
+        // Codewords, plus the planes the search precomputes (2 bytes a
+        // sample), the decoded entries twice (here and in the tree), and
+        // finalize()'s 64-bit sums along the deepest path.
+        const uint64_t depth_bound = std::min<uint64_t>(k, kMaxTreeDepth + 1);
+        const uint64_t tree_bytes = uint64_t(nodes) * (3 * layout.stride + 64) + 2 * k * max_entries * entry_size +
+                                    depth_bound * (8 * layout.dimension + 32);
+        if (tree_bytes > memory_budget)
             fail(VQTEX_ERROR_LIMIT_EXCEEDED, where + " would need " + std::to_string(tree_bytes) +
-                                                 " bytes, above the memory limit of " + std::to_string(memory_limit));
+                                                 " bytes; " + std::to_string(memory_budget) +
+                                                 " are left of the memory limit: raise the limit if the file is trusted");
+        memory_budget -= std::size_t(tree_bytes);
     }
     const uint8_t* bits = topo.bytes((nodes + 7) / 8, "topology bits");
     std::vector<int32_t> first_child(nodes, -1);
+    std::vector<uint16_t> depth(nodes, 0);
     std::size_t next = 1, leaves = 0;
     for (std::size_t n = 0; n < nodes; ++n) {
         if (n >= next) topo.corrupt("topology is not a tree (node " + std::to_string(n) + " unreachable)");
         if (bits[n / 8] & (1u << (n % 8))) {
             if (next + 2 > nodes) topo.corrupt("topology has more nodes than 2 x leaves - 1");
+            if (depth[n] >= kMaxTreeDepth)
+                topo.corrupt("tree is deeper than " + std::to_string(kMaxTreeDepth) + " levels (node " +
+                             std::to_string(n) + ")");
             first_child[n] = int32_t(next);
+            depth[next] = depth[next + 1] = uint16_t(depth[n] + 1);
             next += 2;
         } else {
             ++leaves;
@@ -299,8 +311,10 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
                 uint8_t* entry = entries.data() + (entry_start[leaf] + e) * entry_size;
                 std::memcpy(source.data(), codewords.data() + leaf * dim, dim);
                 for (std::size_t kpos = 0; kpos < key_len; ++kpos) source[key_offsets[kpos]] = entry[ch + kpos];
+                // (The previous entry's sample: entry - entry_size, never
+                // entry[c - entry_size], whose unsigned index wraps.)
                 const uint8_t predicted = (key_len == 0 && e > 0)
-                                              ? quantise(entry[c - entry_size], pixel_precision)
+                                              ? quantise((entry - entry_size)[c], pixel_precision)
                                               : quantise(taps.predict(source.data(), int(c)), pixel_precision);
                 entry[c] = dequantise(uint8_t((predicted + entry_bytes[pos++]) & pixel_mask), pixel_precision);
             }
@@ -417,6 +431,14 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
     // Every section must be one the decoder uses: anything else is damage.
     std::size_t expected_sections = 0;
 
+    // The trees share the memory limit with the sections (counted in full,
+    // as read_container checked them); the output then shares it with the
+    // trees (model_bytes), once the sections are freed.
+    std::size_t section_total = 0;
+    for (const Section& s : c.sections) section_total += s.raw_size;
+    const std::size_t tree_budget_start = memory_limit - std::min(memory_limit, section_total);
+    std::size_t tree_budget = tree_budget_start;
+
     for (int l = 0; l < levels; ++l) {
         const std::vector<uint8_t> level_bytes = section_bytes(data, require(kTagLevel, l, 0));
         ++expected_sections;
@@ -459,11 +481,7 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
             LevelHistogram h;
             h.channels = ch;
             h.counts.resize(std::size_t(ch) * 256);
-            uint64_t total = 0;
-            for (auto& n : h.counts) {
-                n = uint32_t(hr.varint_in("histogram count", 0, UINT32_MAX));
-                total += n;
-            }
+            for (auto& n : h.counts) n = uint32_t(hr.varint_in("histogram count", 0, UINT32_MAX));
             hr.expect_end();
             for (int cc = 0; cc < ch; ++cc) {
                 uint64_t t = 0;
@@ -483,7 +501,7 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
             const auto entr = section_bytes(data, require(kTagEntries, l, kind));
             expected_sections += 3;
             auto book = decode_tree(topo, code, entr, tree_layout_of(layout), precision, pixel_precision, where,
-                                    memory_limit);
+                                    tree_budget);
             auto matcher = std::make_shared<TsvqMatcher>(book, c.header.backtrack);
             if (kind == 0) {
                 lv.causal = book;
@@ -503,6 +521,7 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
     if (expected_sections != c.sections.size())
         fail(VQTEX_ERROR_CORRUPT, "file has " + std::to_string(c.sections.size() - expected_sections) +
                                       " sections this decoder does not know");
+    f.model_bytes = tree_budget_start - tree_budget;
     return f;
 }
 

@@ -72,7 +72,7 @@ TreeSections encode_tree(const Codebook& book, const TreeLayout& layout, const E
 std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology, const std::vector<uint8_t>& codewords,
                                             const std::vector<uint8_t>& entries, const TreeLayout& layout,
                                             int precision, int pixel_precision, const std::string& where,
-                                            std::size_t memory_limit);
+                                            std::size_t& memory_budget);
 
 struct DecodedFile {
     FileHeader header;
@@ -82,6 +82,9 @@ struct DecodedFile {
     // Ready to synthesise: matchers built over the decoded codebooks.
     TextureModel texture;
     LevelInit init = LevelInit::Parent;
+    // Of the memory limit, what the decoded trees may take (an upper bound):
+    // the output must fit in the rest.
+    std::size_t model_bytes = 0;
 };
 
 // Parses, verifies and rebuilds everything; throws a specific error for any

@@ -19,6 +19,11 @@ ModelPlan plan_model(const vqtex_model_params& params, int width, int height) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 1 to " + std::to_string(kMaxLevels) +
                                                " (got " + std::to_string(plan.levels) + ")");
     plan.shapes = default_shapes(plan.levels);
+    // The file stores closing windows of 3 to 63, odd; a 1x1 one reads no pixel.
+    if (params.closing_window &&
+        (params.closing_window % 2 == 0 || params.closing_window < 3 || params.closing_window > 63))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "closing window must be odd, 3 to 63 (got " +
+                                               std::to_string(params.closing_window) + ")");
     for (int l = 0; l < plan.levels; ++l) {
         const vqtex_shape& s = params.shapes[l];
         if (s.rows == 0 && s.cols == 0 && s.levels == 0) continue;
@@ -143,6 +148,10 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
                 closing_shape.rows = std::min<int>(closing_shape.rows, int(params.closing_window));
                 closing_shape.cols = std::min<int>(closing_shape.cols, int(params.closing_window));
             }
+            // The file's closing windows are 3 to 63 on a side (a causal
+            // window may be 1 wide).
+            closing_shape.rows = std::max(closing_shape.rows, 3);
+            closing_shape.cols = std::max(closing_shape.cols, 3);
             closing_shape.causal = false;
             const NeighborhoodLayout closing_layout(closing_shape, example.channels, l, plan.levels);
             ExampleSet closing_set = collect_examples(closing_layout, pyramid, tileable);

@@ -302,6 +302,7 @@ Codebook train_codebook(const ExampleSet& examples, const std::vector<uint32_t>&
     // Per node: its cluster and its tentative split, while it is a leaf.
     std::vector<Cluster> clusters(1);
     std::vector<Split> splits(1);
+    std::vector<int> depth(1, 0);
     clusters[0].members = subset;
     trainer.summarise(clusters[0]);
     trainer.compute_distortion(clusters[0]);
@@ -322,12 +323,14 @@ Codebook train_codebook(const ExampleSet& examples, const std::vector<uint32_t>&
         const std::size_t first = book.split(node);
         clusters.resize(first + 2);
         splits.resize(first + 2);
+        depth.resize(first + 2, depth[node] + 1);
         clusters[first] = std::move(split.a);
         clusters[first + 1] = std::move(split.b);
         clusters[node] = Cluster{};
         total -= split.gain;
         ++leaves;
         for (std::size_t child = first; child < first + 2; ++child) {
+            if (depth[child] >= kMaxTreeDepth) continue;  // the format's limit
             splits[child] = trainer.try_split(clusters[child]);
             if (splits[child].possible) heap.push({splits[child].gain, -int64_t(child)});
         }

@@ -25,6 +25,11 @@
 
 namespace vqtex {
 
+// No root-to-leaf path is longer: the trainer stops splitting there and the
+// decoder rejects deeper trees, so search cost per pixel stays bounded on
+// any file. (Trees of 61504 leaves from the corpus are 115 to 165 deep.)
+inline constexpr int kMaxTreeDepth = 1024;
+
 struct TsvqNode {
     int32_t first_child = -1;  // -1 for a leaf; children are first_child and first_child + 1
     int32_t leaf = -1;         // leaf index when a leaf

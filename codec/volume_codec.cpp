@@ -119,6 +119,11 @@ bool is_volume_file(const uint8_t* data, std::size_t size) {
 DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     DecodedVolumeFile f;
     const Container c = read_container(data, size, memory_limit);
+    // One budget for every tree, what the sections leave of the limit (as
+    // for still textures, model_codec.cpp).
+    std::size_t section_total = 0;
+    for (const Section& sec : c.sections) section_total += sec.raw_size;
+    std::size_t tree_budget = memory_limit - std::min(memory_limit, section_total);
     if (!(c.header.flags & kFlagVolume))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "file holds a still texture, not an animation: decode it with vqtex_decode (vqtex-decode without --frames)");
@@ -219,7 +224,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
             const auto entr = section_bytes(data, require(kTagEntries, l, kind));
             expected_sections += 3;
             auto book = decode_tree(topo, code, entr, tree_layout_of(layout), precision, pixel_precision, where,
-                                    memory_limit);
+                                    tree_budget);
             // The synthesis reads every entry's predecessor (its key) when
             // the shape has one (temporal_synthesis.cpp).
             if (book->key_length() != layout.entry_key_offsets().size())

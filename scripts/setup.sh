@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what vqtex needs to build and test, from Debian packages, when it
-# is missing. Safe to run again: it installs nothing that is already there.
+# is missing, plus any packages named as arguments. Safe to run again: it
+# installs nothing that is already there.
 set -euo pipefail
 
 packages=(
@@ -11,6 +12,8 @@ packages=(
   libgtest-dev         # tests
   libbenchmark-dev     # benchmarks
 )
+# Extra packages a caller needs (scripts/test-sanitizers.sh, scripts/fuzz.sh).
+packages+=("$@")
 
 missing=()
 for p in "${packages[@]}"; do

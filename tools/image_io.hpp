@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,22 @@ struct LoadedImage {
     uint32_t width = 0, height = 0, channels = 0;
     std::vector<uint8_t> pixels;
     std::string notice;  // non-empty when the file was converted (bit depth, channels)
+};
+
+// libpng and libjpeg print their own warnings and errors on stderr, and
+// OpenImageIO repeats some; the tools promise a one-line error. While one of
+// these lives, that text goes to a temporary file and is dropped: the reason
+// is in the error vqtex reports.
+class QuietStderr {
+public:
+    QuietStderr();
+    ~QuietStderr();
+    QuietStderr(const QuietStderr&) = delete;
+    QuietStderr& operator=(const QuietStderr&) = delete;
+
+private:
+    std::FILE* file_ = nullptr;
+    int saved_ = -1;
 };
 
 // Throws std::runtime_error with a one-line message naming the file.

@@ -37,6 +37,7 @@ std::string frame_name(const std::string& pattern, uint32_t t) {
 }
 
 int subimage_count(const std::string& path) {
+    const QuietStderr quiet;
     auto in = OIIO::ImageInput::open(path);
     if (!in) return 0;
     int n = 1;
@@ -114,6 +115,7 @@ LoadedSequence load_sequence(const std::string& path) {
         for (const std::string& name : names) append_frame(seq, load_image(name), name);
     } else {
         if (!fs::exists(path)) throw std::runtime_error("cannot read '" + path + "': no such file");
+        const QuietStderr quiet;
         auto in = OIIO::ImageInput::open(path);
         if (!in) throw std::runtime_error("cannot read '" + path + "': " + OIIO::geterror());
         const int n = subimage_count(path);

@@ -1,0 +1,105 @@
+// make_seeds.cpp - writes the fuzzers' seed corpora from the project's own
+// corpus/ images, with the public API: valid .vqt files covering every
+// format feature (keyed and keyless entries, noise and parent init, seam
+// closing on and off, 1 to 4 channels, every precision), and encoder inputs
+// in fuzz_encode.cpp's layout. Small crops keep the seeds small, which is
+// what mutation works best on. Usage: make_seeds CORPUS_DIR OUT_DIR
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "image_io.hpp"
+#include "vqtex/vqtex.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Variant {
+    const char* name;
+    int quality;
+    bool keys, noise_init, closing;
+    uint32_t levels, precision, closing_window, backtrack;
+};
+
+constexpr Variant kVariants[] = {
+    {"q0", 0, false, false, true, 0, 0, 0, 2},
+    {"q60keys", 60, true, false, true, 0, 0, 0, 2},
+    {"noise", 30, false, true, false, 2, 0, 0, 1},
+    {"q100", 100, false, false, true, 0, 8, 3, 3},
+    {"keys1level", 20, true, true, true, 1, 2, 0, 1},
+};
+
+std::vector<uint8_t> crop(const vqtex_tools::LoadedImage& img, uint32_t side, uint32_t channels) {
+    std::vector<uint8_t> out;
+    for (uint32_t y = 0; y < side; ++y)
+        for (uint32_t x = 0; x < side; ++x)
+            for (uint32_t c = 0; c < channels; ++c)
+                out.push_back(img.pixels[(size_t(y % img.height) * img.width + x % img.width) * img.channels +
+                                         c % img.channels]);
+    return out;
+}
+
+void write(const fs::path& path, const uint8_t* data, size_t size) {
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(data), std::streamsize(size));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 3) {
+        std::fprintf(stderr, "usage: make_seeds CORPUS_DIR OUT_DIR\n");
+        return 2;
+    }
+    const fs::path corpus = argv[1], out = argv[2];
+    fs::create_directories(out / "decode");
+    fs::create_directories(out / "encode");
+    const char* images[] = {"grey_noise_64.png", "leaves_rgba_64.png", "checks_p16_64.png", "weave_128.png",
+                            "cellular_128.png"};
+    int files = 0;
+    for (size_t i = 0; i < std::size(images); ++i) {
+        const vqtex_tools::LoadedImage img = vqtex_tools::load_image((corpus / images[i]).string());
+        const std::string stem = fs::path(images[i]).stem().string();
+        // Channel counts cycle so that every count appears with every variant.
+        for (size_t v = 0; v < std::size(kVariants); ++v) {
+            const Variant& var = kVariants[v];
+            const uint32_t channels = uint32_t(1 + (i + v) % 4), side = 40;
+            std::vector<uint8_t> pixels = crop(img, side, channels);
+            vqtex_encode_params p;
+            vqtex_encode_params_init(&p);
+            vqtex_encode_params_preset(&p, var.quality);
+            p.threads = 1;
+            p.model.no_entry_keys = var.keys ? 0 : 1;
+            p.model.seam_closing = var.closing ? 1 : 0;
+            p.model.levels = var.levels;
+            p.model.closing_window = var.closing_window;
+            p.init = var.noise_init ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
+            p.backtrack = var.backtrack;
+            if (var.precision) p.precision = p.pixel_precision = var.precision;
+            const vqtex_image example{side, side, channels, pixels.data()};
+            uint8_t* data = nullptr;
+            size_t size = 0;
+            vqtex_error err;
+            if (vqtex_encode(&p, &example, &data, &size, nullptr, &err) != VQTEX_OK) {
+                std::fprintf(stderr, "make_seeds: %s %s: %s\n", images[i], var.name, err.detail);
+                return 1;
+            }
+            const std::string name = stem + "_" + var.name + "_c" + std::to_string(channels);
+            write(out / "decode" / (name + ".vqt"), data, size);
+            vqtex_free(data);
+            // The same example and settings as a fuzz_encode input (16x16).
+            std::vector<uint8_t> input = {15, 15, uint8_t(channels), uint8_t(var.quality), uint8_t(var.levels), 0,
+                                          0, uint8_t(var.keys ? 4 : 8),
+                                          uint8_t((var.keys ? 0 : 1) | (var.closing ? 2 : 0) | (var.noise_init ? 16 : 0)),
+                                          uint8_t(var.closing_window), 0, 0, uint8_t(var.backtrack - 1), 3, 0, 0};
+            const std::vector<uint8_t> small = crop(img, 16, channels);
+            input.insert(input.end(), small.begin(), small.end());
+            write(out / "encode" / (name + ".bin"), input.data(), input.size());
+            files += 2;
+        }
+    }
+    std::printf("make_seeds: wrote %d seed files under %s\n", files, out.string().c_str());
+    return 0;
+}

@@ -1,0 +1,154 @@
+// test_concurrency.cpp - several encodes, decodes, inspections and
+// syntheses at once in one process, on different data and on shared data,
+// each with its own thread count: every one gives exactly the bytes it gives
+// alone, and cancelling one leaves the others untouched. scripts/
+// test-sanitizers.sh runs this suite under ThreadSanitizer, which also
+// reports any data race between the calls.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+#include "codec_support.hpp"
+#include "test_support.hpp"
+
+using namespace vqtex_test;
+
+namespace {
+
+// Small examples of 1 to 4 channels, loaded before any thread starts.
+vqtex::Image crop(const vqtex::Image& src, int side, int channels) {
+    vqtex::Image out(side, side, channels);
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x)
+            for (int c = 0; c < channels; ++c) out.at(x, y)[c] = src.at(x, y)[c % src.channels];
+    return out;
+}
+
+const std::vector<vqtex::Image>& examples() {
+    static const std::vector<vqtex::Image> images = {
+        crop(load_corpus("grey_noise_64.png"), 40, 1),
+        crop(load_corpus("leaves_rgba_64.png"), 40, 4),
+        crop(load_corpus("weave_128.png"), 40, 3),
+        crop(load_corpus("cellular_128.png"), 40, 2),
+    };
+    return images;
+}
+
+struct Results {
+    std::vector<uint8_t> file;
+    vqtex::Image decoded;
+    std::vector<vqtex::Image> mips;
+    uint32_t inspected_codewords = 0;
+    vqtex::Image synthesised;
+};
+
+vqtex::Image from_c(vqtex_image& img) {
+    vqtex::Image out(int(img.width), int(img.height), int(img.channels));
+    std::memcpy(out.pixels.data(), img.pixels, out.byte_count());
+    vqtex_image_free(&img);
+    return out;
+}
+
+// The whole public pipeline on one example with `threads` inner threads.
+Results run_all(const vqtex::Image& example, uint32_t threads) {
+    Results r;
+    vqtex_encode_params ep = fast_encode_params();
+    ep.threads = threads;
+    r.file = encode(example, ep);
+    r.decoded = decode(r.file, decode_params(56, 36, 11, threads));
+
+    vqtex_decode_params dp = decode_params(20, 12, 5, threads);
+    vqtex_image levels[8];
+    uint32_t count = 0;
+    if (vqtex_decode_mips(&dp, r.file.data(), r.file.size(), levels, 8, &count, nullptr) != VQTEX_OK)
+        throw std::runtime_error("decode_mips failed");
+    for (uint32_t i = 0; i < count; ++i) r.mips.push_back(from_c(levels[i]));
+
+    vqtex_file_info info{};
+    if (vqtex_inspect(r.file.data(), r.file.size(), 0, &info, nullptr) != VQTEX_OK)
+        throw std::runtime_error("inspect failed");
+    r.inspected_codewords = info.codewords[0];
+
+    vqtex_synth_params sp = default_params(24, 24, 3);
+    sp.threads = threads;
+    sp.model.levels = 2;
+    sp.model.codeword_fraction = 0.25f;
+    r.synthesised = synthesize(example, sp);
+    return r;
+}
+
+void expect_same(const Results& got, const Results& want, const std::string& what) {
+    EXPECT_EQ(got.file, want.file) << what;
+    EXPECT_EQ(got.decoded, want.decoded) << what;
+    EXPECT_EQ(got.mips, want.mips) << what;
+    EXPECT_EQ(got.inspected_codewords, want.inspected_codewords) << what;
+    EXPECT_EQ(got.synthesised, want.synthesised) << what;
+}
+
+}  // namespace
+
+TEST(Concurrency, EverythingAtOnceGivesTheSameBytesAsOneAtATime) {
+    const auto& ex = examples();
+    std::vector<Results> alone;
+    for (const auto& e : ex) alone.push_back(run_all(e, 1));
+    // Two calls per example, with 1, 2 or 3 inner threads each, all at once.
+    const std::size_t jobs = 2 * ex.size();
+    std::vector<Results> together(jobs);
+    std::vector<std::string> errors(jobs);
+    std::vector<std::thread> pool;
+    for (std::size_t j = 0; j < jobs; ++j)
+        pool.emplace_back([&, j] {
+            try {
+                together[j] = run_all(ex[j % ex.size()], uint32_t(1 + j % 3));
+            } catch (const std::exception& e) {
+                errors[j] = e.what();
+            }
+        });
+    for (auto& t : pool) t.join();
+    for (std::size_t j = 0; j < jobs; ++j) {
+        ASSERT_EQ(errors[j], "") << "job " << j;
+        expect_same(together[j], alone[j % ex.size()], "job " + std::to_string(j));
+    }
+}
+
+TEST(Concurrency, ManyDecodesOfOneSharedBuffer) {
+    const std::vector<uint8_t> file = encode(examples()[2], fast_encode_params());
+    const vqtex::Image want = decode(file, decode_params(64, 64, 9, 1));
+    std::vector<vqtex::Image> got(6);
+    std::vector<std::thread> pool;
+    for (std::size_t j = 0; j < got.size(); ++j)
+        pool.emplace_back([&, j] { got[j] = decode(file, decode_params(64, 64, 9, uint32_t(1 + j % 2))); });
+    for (auto& t : pool) t.join();
+    for (std::size_t j = 0; j < got.size(); ++j) EXPECT_EQ(got[j], want) << "decode " << j;
+}
+
+TEST(Concurrency, CancellingOneCallLeavesTheOthersUntouched) {
+    const auto& ex = examples();
+    const std::vector<uint8_t> file = encode(ex[0], fast_encode_params());
+    const vqtex::Image want = decode(file, decode_params(48, 48, 4, 2));
+    std::atomic<int> calls{0};
+    auto cancel = [](void* user, vqtex_stage, uint64_t, uint64_t) -> int {
+        static_cast<std::atomic<int>*>(user)->fetch_add(1);
+        return 0;
+    };
+    std::vector<vqtex::Image> got(3);
+    vqtex_status cancelled_status = VQTEX_OK;
+    std::vector<std::thread> pool;
+    pool.emplace_back([&] {
+        vqtex_decode_params p = decode_params(48, 48, 4, 2);
+        p.progress = cancel;
+        p.progress_user = &calls;
+        vqtex_image out{};
+        cancelled_status = vqtex_decode(&p, file.data(), file.size(), &out, nullptr);
+        vqtex_image_free(&out);
+    });
+    for (std::size_t j = 0; j < got.size(); ++j)
+        pool.emplace_back([&, j] { got[j] = decode(file, decode_params(48, 48, 4, 2)); });
+    for (auto& t : pool) t.join();
+    EXPECT_EQ(cancelled_status, VQTEX_ERROR_CANCELLED);
+    EXPECT_GE(calls.load(), 1);
+    for (std::size_t j = 0; j < got.size(); ++j) EXPECT_EQ(got[j], want) << "decode " << j;
+}
