@@ -3,7 +3,10 @@
 #include "texture_model.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <thread>
 
 #include "error.hpp"
 #include "pyramid.hpp"
@@ -121,29 +124,38 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
     result.codebooks.resize(std::size_t(plan.levels));
     result.closing_codebooks.resize(std::size_t(plan.levels));
     result.training_vectors.resize(std::size_t(plan.levels));
-    for (int l = plan.levels - 1; l >= 0; --l) {
-        const NeighborhoodLayout layout(plan.shapes[std::size_t(l)], example.channels, l, plan.levels);
-        ExampleSet set = collect_examples(layout, pyramid, tileable);
+
+    // The training sets first (cheap), then the trees: every tree depends
+    // only on its own set, so the trees are trained side by side, largest
+    // first, and each is the same whatever the thread count.
+    struct Task {
+        int level;
+        bool closing;
+        ExampleSet set;
+        std::unique_ptr<NeighborhoodLayout> layout;
+        BuiltMatcher built;
+    };
+    std::vector<Task> tasks;
+    for (int l = 0; l < plan.levels; ++l) {
+        auto layout = std::make_unique<NeighborhoodLayout>(plan.shapes[std::size_t(l)], example.channels, l,
+                                                           plan.levels);
+        ExampleSet set = collect_examples(*layout, pyramid, tileable);
         if (set.count() == 0) {
             const Image& img = pyramid[std::size_t(l)];
             fail(VQTEX_ERROR_IMAGE_TOO_SMALL,
                  "example " + std::to_string(example.width) + "x" + std::to_string(example.height) +
-                     " is too small for neighbourhood " + shape_to_string(layout.shape()) +
+                     " is too small for neighbourhood " + shape_to_string(layout->shape()) +
                      " at pyramid level " + std::to_string(l) + " (" + std::to_string(img.width) +
                      "x" + std::to_string(img.height) +
                      "): use fewer --levels, smaller --shapes, or --tileable-example");
         }
         result.training_vectors[std::size_t(l)] = set.count();
         LevelModel& lm = result.model.levels[std::size_t(l)];
-        lm.shape = layout.shape();
+        lm.shape = layout->shape();
         lm.histogram = histogram_of(pyramid[std::size_t(l)]);
-        BuiltMatcher causal = build_matcher(set, layout, params, search, backtrack,
-                                            threads, l, false);
-        lm.matcher = causal.matcher;
-        result.codebooks[std::size_t(l)] = causal.codebook;
-        result.model_bytes += causal.bytes;
+        tasks.push_back(Task{l, false, std::move(set), std::move(layout), {}});
         if (params.seam_closing) {
-            Shape closing_shape = layout.shape();
+            Shape closing_shape = lm.shape;
             if (params.closing_window) {
                 closing_shape.rows = std::min<int>(closing_shape.rows, int(params.closing_window));
                 closing_shape.cols = std::min<int>(closing_shape.cols, int(params.closing_window));
@@ -153,20 +165,60 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
             closing_shape.rows = std::max(closing_shape.rows, 3);
             closing_shape.cols = std::max(closing_shape.cols, 3);
             closing_shape.causal = false;
-            const NeighborhoodLayout closing_layout(closing_shape, example.channels, l, plan.levels);
-            ExampleSet closing_set = collect_examples(closing_layout, pyramid, tileable);
+            auto closing_layout =
+                std::make_unique<NeighborhoodLayout>(closing_shape, example.channels, l, plan.levels);
+            ExampleSet closing_set = collect_examples(*closing_layout, pyramid, tileable);
             // A level too small for the symmetric window simply keeps its seam.
-            if (closing_set.count() > 0) {
-                BuiltMatcher closing = build_matcher(closing_set, closing_layout, params,
-                                                     search, backtrack, threads, l, true);
-                lm.closing_shape = closing_shape;
-                lm.closing = closing.matcher;
-                result.closing_codebooks[std::size_t(l)] = closing.codebook;
-                result.model_bytes += closing.bytes;
-            }
+            if (closing_set.count() > 0)
+                tasks.push_back(Task{l, true, std::move(closing_set), std::move(closing_layout), {}});
         }
-        if (progress && !progress(uint64_t(plan.levels - l), uint64_t(plan.levels)))
-            fail(VQTEX_ERROR_CANCELLED, "analysis cancelled by the progress callback");
+    }
+
+    // Tasks are ordered by level (finest, largest first); several threads
+    // take them in that order, each tree on one thread. With fewer trees than
+    // threads, each tree's own training runs on the threads instead.
+    const int workers = std::max(1, std::min(threads, int(tasks.size())));
+    const int inner_threads = workers > 1 ? 1 : threads;
+    std::atomic<std::size_t> next{0}, done{0};
+    std::atomic<bool> stop{false};
+    std::vector<std::exception_ptr> errors(tasks.size());
+    auto work = [&](bool caller) {
+        for (;;) {
+            if (caller && progress && !stop.load() && !progress(done.load(), tasks.size())) stop.store(true);
+            if (stop.load()) return;
+            const std::size_t i = next.fetch_add(1);
+            if (i >= tasks.size()) return;
+            Task& t = tasks[i];
+            try {
+                t.built = build_matcher(t.set, *t.layout, params, search, backtrack, inner_threads, t.level,
+                                        t.closing);
+            } catch (...) {
+                errors[i] = std::current_exception();
+                stop.store(true);
+            }
+            done.fetch_add(1);
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int w = 1; w < workers; ++w) pool.emplace_back(work, false);
+    work(true);
+    for (auto& t : pool) t.join();
+    for (const auto& e : errors)
+        if (e) std::rethrow_exception(e);
+    if (stop.load() || (progress && !progress(tasks.size(), tasks.size())))
+        fail(VQTEX_ERROR_CANCELLED, "analysis cancelled by the progress callback");
+
+    for (Task& t : tasks) {
+        LevelModel& lm = result.model.levels[std::size_t(t.level)];
+        result.model_bytes += t.built.bytes;
+        if (t.closing) {
+            lm.closing_shape = t.layout->shape();
+            lm.closing = t.built.matcher;
+            result.closing_codebooks[std::size_t(t.level)] = t.built.codebook;
+        } else {
+            lm.matcher = t.built.matcher;
+            result.codebooks[std::size_t(t.level)] = t.built.codebook;
+        }
     }
     return result;
 }
