@@ -23,22 +23,6 @@ using namespace vqtex;
 
 namespace {
 
-constexpr uint64_t kDefaultMemoryLimit = uint64_t(1) << 30;
-
-void check_encode_params(const vqtex_encode_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_encode_params))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT,
-             "vqtex_encode_params not initialised with vqtex_encode_params_init()");
-    if (p->precision < 1 || p->precision > 8 || p->pixel_precision < 1 || p->pixel_precision > 8)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision and pixel precision must be 1 to 8 bits");
-    if (p->smoothing < 1 || p->smoothing > 8)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "smoothing must be 1 to 8");
-    if (p->backtrack < 1 || p->backtrack > 255)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "backtrack must be 1 to 255 leaves for an encoded file");
-    if (p->init != VQTEX_INIT_PARENT && p->init != VQTEX_INIT_NOISE)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown init mode");
-}
-
 struct EncodeResult {
     std::vector<uint8_t> bytes;
     AnalysisResult analysis;
@@ -61,14 +45,7 @@ EncodeResult encode_once(const vqtex_encode_params& p, const Image& example, int
         lv.closing_shape = r.analysis.model.levels[l].closing_shape;
         model.levels.push_back(lv);
     }
-    EncodeSettings s;
-    s.precision = int(p.precision);
-    s.pixel_precision = int(p.pixel_precision);
-    s.smoothing = int(p.smoothing);
-    s.backtrack = uint8_t(p.backtrack);
-    s.init = p.init == VQTEX_INIT_NOISE ? LevelInit::Noise : LevelInit::Parent;
-    s.seed = p.seed;
-    r.bytes = encode_model(model, s);
+    r.bytes = encode_model(model, encode_settings_of(p));
     return r;
 }
 
@@ -89,10 +66,6 @@ void check_decode_params(const vqtex_decode_params* p) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(p->width) + "x" +
                                                std::to_string(p->height) + " is out of range (1 to " +
                                                std::to_string(kMaxOutputSide) + " per side)");
-}
-
-std::size_t memory_limit_of(const vqtex_decode_params* p) {
-    return std::size_t(p->memory_limit ? p->memory_limit : kDefaultMemoryLimit);
 }
 
 // Decodes and synthesises; returns the whole synthesised pyramid.
@@ -216,11 +189,7 @@ vqtex_status vqtex_encode(const vqtex_encode_params* params, const vqtex_image* 
                          " bytes (the smallest preset needs more): raise --target-size or use fewer --levels");
         }
         const auto t1 = std::chrono::steady_clock::now();
-        uint8_t* out = static_cast<uint8_t*>(std::malloc(result.bytes.size()));
-        if (!out) throw std::bad_alloc();
-        std::memcpy(out, result.bytes.data(), result.bytes.size());
-        *data = out;
-        *size = result.bytes.size();
+        copy_out(result.bytes, data, size);
         if (stats) {
             *stats = vqtex_encode_stats{};
             fill_stats(stats, result);
@@ -285,34 +254,13 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
             return;
         }
         const DecodedFile f = decode_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit));
-        info->format_version = f.header.version;
-        info->file_bytes = size;
-        info->exemplar_width = f.header.exemplar_width;
-        info->exemplar_height = f.header.exemplar_height;
-        info->channels = f.header.channels;
-        info->levels = f.header.levels;
-        info->seam_closing = (f.header.flags & kFlagSeamClosing) ? 1 : 0;
-        info->init = f.header.init;
-        info->backtrack = f.header.backtrack;
-        info->precision = uint32_t(f.precision);
-        info->pixel_precision = uint32_t(f.pixel_precision);
-        info->seed = f.header.seed;
+        describe_container(f.header, f.sections, size, f.precision, f.pixel_precision, info);
         for (std::size_t l = 0; l < f.model.levels.size(); ++l) {
             const auto& lv = f.model.levels[l];
             info->shapes[l] = vqtex_shape{uint8_t(lv.shape.rows), uint8_t(lv.shape.cols), uint8_t(lv.shape.levels)};
             info->codewords[l] = uint32_t(lv.causal->leaf_count());
             info->entries[l] = uint32_t(lv.causal->total_entries());
             info->closing_codewords[l] = lv.closing ? uint32_t(lv.closing->leaf_count()) : 0;
-        }
-        info->section_count = uint32_t(std::min<std::size_t>(f.sections.size(), VQTEX_MAX_SECTIONS));
-        for (uint32_t i = 0; i < info->section_count; ++i) {
-            const Section& s = f.sections[i];
-            std::memcpy(info->sections[i].tag, s.tag.data(), 4);
-            info->sections[i].tag[4] = '\0';
-            info->sections[i].level = s.level;
-            info->sections[i].kind = s.kind;
-            info->sections[i].raw_bytes = s.raw_size;
-            info->sections[i].stored_bytes = s.stored_size + kSectionHeaderSize;
         }
     });
 }

@@ -30,11 +30,6 @@
 namespace vqtex {
 namespace {
 
-constexpr char kTagLevel[4] = {'L', 'E', 'V', 'L'};
-constexpr char kTagHistogram[4] = {'H', 'I', 'S', 'T'};
-constexpr char kTagTopology[4] = {'T', 'O', 'P', 'O'};
-constexpr char kTagCodewords[4] = {'C', 'O', 'D', 'E'};
-constexpr char kTagEntries[4] = {'E', 'N', 'T', 'R'};
 
 constexpr uint32_t kMaxLeaves = 1u << 24;
 
@@ -336,8 +331,6 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
     return std::make_shared<const Codebook>(std::move(book));
 }
 
-namespace {
-
 std::vector<uint8_t> encode_histogram(const LevelHistogram& h) {
     ByteWriter w;
     for (int c = 0; c < h.channels; ++c)
@@ -345,7 +338,40 @@ std::vector<uint8_t> encode_histogram(const LevelHistogram& h) {
     return std::move(w.data());
 }
 
-}  // namespace
+LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels, const std::string& where) {
+    ByteReader r(bytes.data(), bytes.size(), "histogram of " + where);
+    LevelHistogram h;
+    h.channels = channels;
+    h.counts.resize(std::size_t(channels) * 256);
+    for (auto& n : h.counts) n = uint32_t(r.varint_in("histogram count", 0, UINT32_MAX));
+    r.expect_end();
+    for (int c = 0; c < channels; ++c) {
+        uint64_t total = 0;
+        for (int v = 0; v < 256; ++v) total += h.channel(c)[v];
+        if (total == 0) fail(VQTEX_ERROR_CORRUPT, "histogram of " + where + " is empty");
+    }
+    return h;
+}
+
+const Section& require_section(const Container& c, const char tag[4], int level, int kind,
+                               const std::string& kind_name) {
+    const Section* found = nullptr;
+    for (const Section& s : c.sections) {
+        if (!tag_is(s, tag) || s.level != level || s.kind != kind) continue;
+        if (found) fail(VQTEX_ERROR_CORRUPT, "section " + s.name() + " appears twice");
+        found = &s;
+    }
+    if (!found)
+        fail(VQTEX_ERROR_CORRUPT, "missing section " + std::string(tag, 4) + "[level " + std::to_string(level) +
+                                      (kind_name.empty() ? "]" : ", " + kind_name + "]"));
+    return *found;
+}
+
+std::size_t tree_budget_of(const Container& c, std::size_t memory_limit) {
+    std::size_t section_total = 0;
+    for (const Section& s : c.sections) section_total += s.raw_size;
+    return memory_limit - std::min(memory_limit, section_total);
+}
 
 std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& s) {
     if (s.precision < 1 || s.precision > 8 || s.pixel_precision < 1 || s.pixel_precision > 8)
@@ -412,31 +438,15 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
     f.texture.channels = ch;
     f.texture.levels.resize(std::size_t(levels));
 
-    auto find = [&](const char tag[4], int level, int kind) -> const Section* {
-        const Section* found = nullptr;
-        for (const Section& s : c.sections) {
-            if (!tag_is(s, tag) || s.level != level || s.kind != kind) continue;
-            if (found) fail(VQTEX_ERROR_CORRUPT, "section " + s.name() + " appears twice");
-            found = &s;
-        }
-        return found;
-    };
     auto require = [&](const char tag[4], int level, int kind) -> const Section& {
-        const Section* s = find(tag, level, kind);
-        if (!s)
-            fail(VQTEX_ERROR_CORRUPT, "missing section " + std::string(tag, 4) + "[level " + std::to_string(level) +
-                                          (kind ? ", closing]" : "]"));
-        return *s;
+        return require_section(c, tag, level, kind, kind ? "closing" : "");
     };
     // Every section must be one the decoder uses: anything else is damage.
     std::size_t expected_sections = 0;
 
-    // The trees share the memory limit with the sections (counted in full,
-    // as read_container checked them); the output then shares it with the
-    // trees (model_bytes), once the sections are freed.
-    std::size_t section_total = 0;
-    for (const Section& s : c.sections) section_total += s.raw_size;
-    const std::size_t tree_budget_start = memory_limit - std::min(memory_limit, section_total);
+    // The output shares the memory limit with the trees (model_bytes), once
+    // the sections are freed.
+    const std::size_t tree_budget_start = tree_budget_of(c, memory_limit);
     std::size_t tree_budget = tree_budget_start;
 
     for (int l = 0; l < levels; ++l) {
@@ -475,19 +485,9 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
         tm.shape = shape;
         const bool needs_histogram = f.init == LevelInit::Noise || l == levels - 1;
         if (needs_histogram) {
-            const std::vector<uint8_t> hb = section_bytes(data, require(kTagHistogram, l, 0));
+            const LevelHistogram h =
+                decode_histogram(section_bytes(data, require(kTagHistogram, l, 0)), ch, "level " + std::to_string(l));
             ++expected_sections;
-            ByteReader hr(hb.data(), hb.size(), "histogram of level " + std::to_string(l));
-            LevelHistogram h;
-            h.channels = ch;
-            h.counts.resize(std::size_t(ch) * 256);
-            for (auto& n : h.counts) n = uint32_t(hr.varint_in("histogram count", 0, UINT32_MAX));
-            hr.expect_end();
-            for (int cc = 0; cc < ch; ++cc) {
-                uint64_t t = 0;
-                for (int v = 0; v < 256; ++v) t += h.channel(cc)[v];
-                if (t == 0) fail(VQTEX_ERROR_CORRUPT, "histogram of level " + std::to_string(l) + " is empty");
-            }
             lv.histogram = h;
             tm.histogram = h;
         }

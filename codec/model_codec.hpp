@@ -74,6 +74,26 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
                                             int precision, int pixel_precision, const std::string& where,
                                             std::size_t& memory_budget);
 
+// Section tags shared by still and animated files (docs/FORMAT.md).
+inline constexpr char kTagLevel[4] = {'L', 'E', 'V', 'L'};
+inline constexpr char kTagHistogram[4] = {'H', 'I', 'S', 'T'};
+inline constexpr char kTagTopology[4] = {'T', 'O', 'P', 'O'};
+inline constexpr char kTagCodewords[4] = {'C', 'O', 'D', 'E'};
+inline constexpr char kTagEntries[4] = {'E', 'N', 'T', 'R'};
+
+// The one section of `c` with this tag, level and kind; a missing or repeated
+// one is CORRUPT. `kind_name` names the kind in the message ("" for kind 0).
+const Section& require_section(const Container& c, const char tag[4], int level, int kind,
+                               const std::string& kind_name);
+
+// A HIST payload: 256 counts per channel, as varints.
+std::vector<uint8_t> encode_histogram(const LevelHistogram& h);
+LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels, const std::string& where);
+
+// What the decoded trees may take of the memory limit: the trees share it
+// with the sections (counted in full, as read_container checked them).
+std::size_t tree_budget_of(const Container& c, std::size_t memory_limit);
+
 struct DecodedFile {
     FileHeader header;
     std::vector<Section> sections;

@@ -17,7 +17,6 @@ using namespace vqtex;
 
 namespace {
 
-constexpr uint64_t kDefaultMemoryLimit = uint64_t(1) << 30;
 constexpr uint32_t kMaxOutputFrames = 16384;
 
 Volume volume_from_c(const vqtex_volume* in) {
@@ -43,13 +42,8 @@ void check_params(const vqtex_volume_encode_params* p) {
         p->codec.struct_size != sizeof(vqtex_encode_params))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "vqtex_volume_encode_params not initialised with vqtex_volume_encode_params_init()");
+    check_encode_params(&p->codec);
     const vqtex_encode_params& c = p->codec;
-    if (c.precision < 1 || c.precision > 8 || c.pixel_precision < 1 || c.pixel_precision > 8)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision and pixel precision must be 1 to 8 bits");
-    if (c.smoothing < 1 || c.smoothing > 8) fail(VQTEX_ERROR_INVALID_ARGUMENT, "smoothing must be 1 to 8");
-    if (c.backtrack < 1 || c.backtrack > 255)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "backtrack must be 1 to 255 leaves for an encoded file");
-    if (c.init != VQTEX_INIT_PARENT && c.init != VQTEX_INIT_NOISE) fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown init mode");
     if (c.target_size != 0)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "a target size is not supported for animated textures: choose a quality");
 }
@@ -106,20 +100,9 @@ vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const
             lv.seam_shape = a.model.levels[l].seam_shape;
             model.levels.push_back(lv);
         }
-        EncodeSettings s;
-        s.precision = int(c.precision);
-        s.pixel_precision = int(c.pixel_precision);
-        s.smoothing = int(c.smoothing);
-        s.backtrack = uint8_t(c.backtrack);
-        s.init = c.init == VQTEX_INIT_NOISE ? LevelInit::Noise : LevelInit::Parent;
-        s.seed = c.seed;
-        const std::vector<uint8_t> bytes = encode_volume_model(model, s);
+        const std::vector<uint8_t> bytes = encode_volume_model(model, encode_settings_of(c));
         const auto t1 = std::chrono::steady_clock::now();
-        uint8_t* out = static_cast<uint8_t*>(std::malloc(bytes.size()));
-        if (!out) throw std::bad_alloc();
-        std::memcpy(out, bytes.data(), bytes.size());
-        *data = out;
-        *size = bytes.size();
+        copy_out(bytes, data, size);
         if (stats) {
             *stats = vqtex_encode_stats{};
             stats->bytes = bytes.size();
@@ -146,7 +129,7 @@ vqtex_status vqtex_decode_volume(const vqtex_decode_params* p, uint32_t frames, 
                                                    " with " + std::to_string(frames) + " frames is out of range (1 to " +
                                                    std::to_string(kMaxOutputSide) + " per side, 1 to " +
                                                    std::to_string(kMaxOutputFrames) + " frames)");
-        const std::size_t limit = std::size_t(p->memory_limit ? p->memory_limit : kDefaultMemoryLimit);
+        const std::size_t limit = memory_limit_of(p);
         const DecodedVolumeFile f = decode_volume_file(data, size, limit);
         const uint32_t w = p->width ? p->width : f.header.exemplar_width;
         const uint32_t h = p->height ? p->height : f.header.exemplar_height;
@@ -185,19 +168,8 @@ namespace vqtex {
 
 void describe_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit, vqtex_file_info* info) {
     const DecodedVolumeFile f = decode_volume_file(data, size, memory_limit);
-    info->format_version = f.header.version;
-    info->file_bytes = size;
-    info->exemplar_width = f.header.exemplar_width;
-    info->exemplar_height = f.header.exemplar_height;
+    describe_container(f.header, f.sections, size, f.precision, f.pixel_precision, info);
     info->exemplar_frames = f.model.exemplar_frames;
-    info->channels = f.header.channels;
-    info->levels = f.header.levels;
-    info->seam_closing = (f.header.flags & kFlagSeamClosing) ? 1 : 0;
-    info->init = f.header.init;
-    info->backtrack = f.header.backtrack;
-    info->precision = uint32_t(f.precision);
-    info->pixel_precision = uint32_t(f.pixel_precision);
-    info->seed = f.header.seed;
     for (std::size_t l = 0; l < f.model.levels.size(); ++l) {
         const auto& lv = f.model.levels[l];
         info->shapes[l] = vqtex_shape{uint8_t(lv.shape.rows), uint8_t(lv.shape.cols), uint8_t(lv.shape.levels)};
@@ -205,16 +177,6 @@ void describe_volume_file(const uint8_t* data, std::size_t size, std::size_t mem
         info->codewords[l] = uint32_t(lv.causal->leaf_count());
         info->entries[l] = uint32_t(lv.causal->total_entries());
         info->closing_codewords[l] = lv.closing ? uint32_t(lv.closing->leaf_count()) : 0;
-    }
-    info->section_count = uint32_t(std::min<std::size_t>(f.sections.size(), VQTEX_MAX_SECTIONS));
-    for (uint32_t i = 0; i < info->section_count; ++i) {
-        const Section& s = f.sections[i];
-        std::memcpy(info->sections[i].tag, s.tag.data(), 4);
-        info->sections[i].tag[4] = '\0';
-        info->sections[i].level = s.level;
-        info->sections[i].kind = s.kind;
-        info->sections[i].raw_bytes = s.raw_size;
-        info->sections[i].stored_bytes = s.stored_size + kSectionHeaderSize;
     }
 }
 

@@ -13,11 +13,6 @@ namespace vqtex {
 namespace {
 
 constexpr char kTagVolume[4] = {'V', 'O', 'L', 'U'};
-constexpr char kTagLevel[4] = {'L', 'E', 'V', 'L'};
-constexpr char kTagHistogram[4] = {'H', 'I', 'S', 'T'};
-constexpr char kTagTopology[4] = {'T', 'O', 'P', 'O'};
-constexpr char kTagCodewords[4] = {'C', 'O', 'D', 'E'};
-constexpr char kTagEntries[4] = {'E', 'N', 'T', 'R'};
 constexpr uint32_t kMaxExemplarFrames = 65536;
 constexpr uint8_t kTimeFactor = 2;
 
@@ -86,12 +81,8 @@ std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const En
             lw.u8(uint8_t(lv.closing_shape.frames));
         }
         writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
-        if (s.init == LevelInit::Noise || l == levels - 1) {
-            ByteWriter hw;
-            for (int c = 0; c < lv.histogram.channels; ++c)
-                for (int v = 0; v < 256; ++v) hw.varint(lv.histogram.channel(c)[v]);
-            writer.add(kTagHistogram, uint8_t(l), 0, std::move(hw.data()));
-        }
+        if (s.init == LevelInit::Noise || l == levels - 1)
+            writer.add(kTagHistogram, uint8_t(l), 0, encode_histogram(lv.histogram));
         if (bool(lv.closing) != bool(lv.seam) ||
             (lv.seam && seam_shape_of(lv.shape, lv.closing_shape) != lv.seam_shape))
             fail(VQTEX_ERROR_INVALID_ARGUMENT,
@@ -119,11 +110,7 @@ bool is_volume_file(const uint8_t* data, std::size_t size) {
 DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     DecodedVolumeFile f;
     const Container c = read_container(data, size, memory_limit);
-    // One budget for every tree, what the sections leave of the limit (as
-    // for still textures, model_codec.cpp).
-    std::size_t section_total = 0;
-    for (const Section& sec : c.sections) section_total += sec.raw_size;
-    std::size_t tree_budget = memory_limit - std::min(memory_limit, section_total);
+    std::size_t tree_budget = tree_budget_of(c, memory_limit);
     if (!(c.header.flags & kFlagVolume))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "file holds a still texture, not an animation: decode it with vqtex_decode (vqtex-decode without --frames)");
@@ -139,16 +126,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     f.texture.levels.resize(std::size_t(levels));
 
     auto require = [&](const char tag[4], int level, int kind) -> const Section& {
-        const Section* found = nullptr;
-        for (const Section& s : c.sections) {
-            if (std::memcmp(s.tag.data(), tag, 4) != 0 || s.level != level || s.kind != kind) continue;
-            if (found) fail(VQTEX_ERROR_CORRUPT, "section " + s.name() + " appears twice");
-            found = &s;
-        }
-        if (!found)
-            fail(VQTEX_ERROR_CORRUPT, "missing section " + std::string(tag, 4) + "[level " + std::to_string(level) +
-                                          (kind == 1 ? ", closing]" : kind == 2 ? ", frame seam]" : "]"));
-        return *found;
+        return require_section(c, tag, level, kind, kind == 1 ? "closing" : kind == 2 ? "frame seam" : "");
     };
     std::size_t expected_sections = 1;
     {
@@ -197,19 +175,8 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
         lv.shape = shape;
         tm.shape = shape;
         if (f.init == LevelInit::Noise || l == levels - 1) {
-            const std::vector<uint8_t> hb = section_bytes(data, require(kTagHistogram, l, 0));
+            const LevelHistogram h = decode_histogram(section_bytes(data, require(kTagHistogram, l, 0)), ch, where_level);
             ++expected_sections;
-            ByteReader hr(hb.data(), hb.size(), "histogram of " + where_level);
-            LevelHistogram h;
-            h.channels = ch;
-            h.counts.resize(std::size_t(ch) * 256);
-            for (auto& n : h.counts) n = uint32_t(hr.varint_in("histogram count", 0, UINT32_MAX));
-            hr.expect_end();
-            for (int cc = 0; cc < ch; ++cc) {
-                uint64_t t = 0;
-                for (int v = 0; v < 256; ++v) t += h.channel(cc)[v];
-                if (t == 0) fail(VQTEX_ERROR_CORRUPT, "histogram of " + where_level + " is empty");
-            }
             lv.histogram = h;
             tm.histogram = h;
         }
