@@ -53,11 +53,6 @@ namespace {
 
 constexpr std::size_t kMinTraining = 2048;
 
-struct BuiltMatcher {
-    std::shared_ptr<const Matcher> matcher;
-    std::shared_ptr<const Codebook> codebook;
-    std::size_t bytes = 0;
-};
 
 BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, const vqtex_model_params& params,
                            vqtex_search search, uint32_t backtrack, int threads, int level, int kind) {
@@ -95,15 +90,7 @@ BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, c
     if (params.train_count > 0) subset_size = std::min<std::size_t>(subset_size, params.train_count);
     const std::vector<uint32_t> subset =
         choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level) + 64u * uint64_t(kind));
-    TrainParams tp;
-    const uint32_t divisor = closing ? std::max<uint32_t>(1, params.closing_divisor) : 1;
-    tp.max_leaves = std::max<uint32_t>(1, codewords_for_level(params, level, subset.size()) / divisor);
-    tp.distortion_threshold = params.distortion_threshold;
-    tp.representative =
-        params.leaf == VQTEX_LEAF_CENTROID ? LeafRepresentative::Centroid : LeafRepresentative::Medoid;
-    tp.threads = threads;
-    tp.entries_per_leaf = params.entries_per_leaf ? params.entries_per_leaf : 1;
-    if (closing) tp.entries_per_leaf = std::min<uint32_t>(tp.entries_per_leaf, 4);
+    TrainParams tp = train_params_for(params, level, subset.size(), closing, threads);
     // Every entry carries its predecessor as its key, whatever
     // params.no_entry_keys says (neighborhood3d.hpp).
     tp.key_offsets = layout.entry_key_offsets();

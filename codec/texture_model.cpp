@@ -59,14 +59,25 @@ uint32_t codewords_for_level(const vqtex_model_params& params, int level,
     return uint32_t(std::clamp<uint64_t>(k, 1, training_vectors));
 }
 
-namespace {
+TrainParams train_params_for(const vqtex_model_params& params, int level, std::size_t training_vectors,
+                             bool closing, int threads) {
+    TrainParams tp;
+    const uint32_t divisor = closing ? std::max<uint32_t>(1, params.closing_divisor) : 1;
+    tp.max_leaves = std::max<uint32_t>(1, codewords_for_level(params, level, training_vectors) / divisor);
+    tp.distortion_threshold = params.distortion_threshold;
+    tp.representative = params.leaf == VQTEX_LEAF_CENTROID ? LeafRepresentative::Centroid
+                                                           : LeafRepresentative::Medoid;
+    tp.threads = threads;
+    // Seam-closing trees keep at most 4 entries: one entry per leaf (the
+    // single best match) makes the band visibly smoother than the texture
+    // around it; a few keep its grain (measured with the seam rank of
+    // tests/test_codec.cpp on the corpus).
+    tp.entries_per_leaf = params.entries_per_leaf ? params.entries_per_leaf : 1;
+    if (closing) tp.entries_per_leaf = std::min<uint32_t>(tp.entries_per_leaf, 4);
+    return tp;
+}
 
-// Exhaustive candidates or a trained codebook for one level's example set.
-struct BuiltMatcher {
-    std::shared_ptr<const Matcher> matcher;
-    std::shared_ptr<const Codebook> codebook;  // TSVQ only
-    std::size_t bytes = 0;
-};
+namespace {
 
 BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout& layout,
                            const vqtex_model_params& params, vqtex_search search, uint32_t backtrack,
@@ -84,19 +95,7 @@ BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout& layout,
     if (params.train_count > 0) subset_size = std::min<std::size_t>(subset_size, params.train_count);
     const std::vector<uint32_t> subset =
         choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level));
-    TrainParams tp;
-    const uint32_t divisor = closing ? std::max<uint32_t>(1, params.closing_divisor) : 1;
-    tp.max_leaves = std::max<uint32_t>(1, codewords_for_level(params, level, subset.size()) / divisor);
-    tp.distortion_threshold = params.distortion_threshold;
-    tp.representative = params.leaf == VQTEX_LEAF_CENTROID ? LeafRepresentative::Centroid
-                                                           : LeafRepresentative::Medoid;
-    tp.threads = threads;
-    // Seam-closing trees keep at most 4 entries: one entry per leaf (the
-    // single best match) makes the band visibly smoother than the texture
-    // around it; a few keep its grain (measured with the seam rank of
-    // tests/test_codec.cpp on the corpus).
-    tp.entries_per_leaf = params.entries_per_leaf ? params.entries_per_leaf : 1;
-    if (closing) tp.entries_per_leaf = std::min<uint32_t>(tp.entries_per_leaf, 4);
+    TrainParams tp = train_params_for(params, level, subset.size(), closing, threads);
     if (!params.no_entry_keys) tp.key_offsets = layout.entry_key_offsets();
     built.codebook = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
     built.bytes = built.codebook->memory_bytes();

@@ -26,6 +26,19 @@ ModelPlan plan_model(const vqtex_model_params& params, int width, int height);
 uint32_t codewords_for_level(const vqtex_model_params& params, int level,
                              std::size_t training_vectors);
 
+// Exhaustive candidates or a trained codebook for one level's example set.
+struct BuiltMatcher {
+    std::shared_ptr<const Matcher> matcher;
+    std::shared_ptr<const Codebook> codebook;  // TSVQ only
+    std::size_t bytes = 0;
+};
+
+// The training settings of a level's tree from the model parameters:
+// leaves (closing trees get fewer), stopping threshold, leaf representative
+// and entries per leaf. Callers add the entry keys their shapes define.
+TrainParams train_params_for(const vqtex_model_params& params, int level, std::size_t training_vectors,
+                             bool closing, int threads);
+
 struct AnalysisResult {
     TextureModel model;
     std::vector<std::shared_ptr<const Codebook>> codebooks;          // TSVQ only; [0] = finest
