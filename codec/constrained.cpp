@@ -58,33 +58,6 @@ struct KnownLevel {
 
 constexpr int kFilterTaps[5] = {1, 4, 6, 4, 1};
 
-std::vector<KnownLevel> known_pyramid(int width, int height, const std::vector<uint8_t>& known0,
-                                      int levels) {
-    std::vector<KnownLevel> out(static_cast<std::size_t>(levels));
-    out[0].width = width;
-    out[0].height = height;
-    out[0].known = known0;
-    out[0].build_sums();
-    for (int l = 1; l < levels; ++l) {
-        const KnownLevel& fine = out[std::size_t(l - 1)];
-        KnownLevel& k = out[std::size_t(l)];
-        k.width = pyramid_level_size(width, l);
-        k.height = pyramid_level_size(height, l);
-        k.known.assign(std::size_t(k.width) * std::size_t(k.height), 0);
-        for (int y = 0; y < k.height; ++y)
-            for (int x = 0; x < k.width; ++x) {
-                bool all = true;
-                for (int t = -2; t <= 2 && all; ++t)
-                    for (int s = -2; s <= 2 && all; ++s)
-                        all = fine.is_known(reflect_index(2 * x + s, fine.width),
-                                            reflect_index(2 * y + t, fine.height));
-                k.known[std::size_t(y) * std::size_t(k.width) + std::size_t(x)] = all ? 1 : 0;
-            }
-        k.build_sums();
-    }
-    return out;
-}
-
 // Context pyramid of the target: which pixels of each coarser level are
 // usable as context, and with which values. A coarser pixel is usable when
 // at least `threshold`/256 of its filter weight falls on usable finer pixels;
@@ -121,6 +94,12 @@ std::vector<KnownLevel> context_known_pyramid(int width, int height, const std::
         k.build_sums();
     }
     return out;
+}
+
+// Known pixels for example windows: a coarser pixel counts only when its
+// whole filter footprint is known (all 256/256 of the weight).
+std::vector<KnownLevel> known_pyramid(int width, int height, const std::vector<uint8_t>& known0, int levels) {
+    return context_known_pyramid(width, height, known0, levels, 256);
 }
 
 // The values of context_known_pyramid: every usable pixel of each coarser
