@@ -367,6 +367,14 @@ const Section& require_section(const Container& c, const char tag[4], int level,
     return *found;
 }
 
+void check_file_complete(const Container& c, bool any_closing, std::size_t used_sections) {
+    if (any_closing != bool(c.header.flags & kFlagSeamClosing))
+        fail(VQTEX_ERROR_CORRUPT, "the header's seam-closing flag disagrees with the closing trees present");
+    if (used_sections != c.sections.size())
+        fail(VQTEX_ERROR_CORRUPT, "file has " + std::to_string(c.sections.size() - used_sections) +
+                                      " sections this decoder does not know");
+}
+
 std::size_t tree_budget_of(const Container& c, std::size_t memory_limit) {
     std::size_t section_total = 0;
     for (const Section& s : c.sections) section_total += s.raw_size;
@@ -516,11 +524,7 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
     }
     bool any_closing = false;
     for (const auto& lv : f.model.levels) any_closing = any_closing || lv.closing != nullptr;
-    if (any_closing != bool(c.header.flags & kFlagSeamClosing))
-        fail(VQTEX_ERROR_CORRUPT, "the header's seam-closing flag disagrees with the closing trees present");
-    if (expected_sections != c.sections.size())
-        fail(VQTEX_ERROR_CORRUPT, "file has " + std::to_string(c.sections.size() - expected_sections) +
-                                      " sections this decoder does not know");
+    check_file_complete(c, any_closing, expected_sections);
     f.model_bytes = tree_budget_start - tree_budget;
     return f;
 }

@@ -90,6 +90,10 @@ const Section& require_section(const Container& c, const char tag[4], int level,
 std::vector<uint8_t> encode_histogram(const LevelHistogram& h);
 LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels, const std::string& where);
 
+// The last checks of a decoded file: the header's seam-closing flag agrees
+// with the closing trees found, and every section was one the decoder used.
+void check_file_complete(const Container& c, bool any_closing, std::size_t used_sections);
+
 // What the decoded trees may take of the memory limit: the trees share it
 // with the sections (counted in full, as read_container checked them).
 std::size_t tree_budget_of(const Container& c, std::size_t memory_limit);

@@ -217,11 +217,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     }
     bool any_closing = false;
     for (const auto& lv : f.model.levels) any_closing = any_closing || lv.closing != nullptr;
-    if (any_closing != bool(c.header.flags & kFlagSeamClosing))
-        fail(VQTEX_ERROR_CORRUPT, "the header's seam-closing flag disagrees with the closing trees present");
-    if (expected_sections != c.sections.size())
-        fail(VQTEX_ERROR_CORRUPT, "file has " + std::to_string(c.sections.size() - expected_sections) +
-                                      " sections this decoder does not know");
+    check_file_complete(c, any_closing, expected_sections);
     return f;
 }
 
