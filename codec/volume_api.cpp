@@ -138,8 +138,8 @@ vqtex_status vqtex_decode_volume(const vqtex_decode_params* p, uint32_t frames, 
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) + "x" +
                                                    std::to_string(n) + " is out of range: give an explicit size");
         // The 3D output pyramid is at most 8/7 of the animation, plus the
-        // copy handed to the caller.
-        const uint64_t needed = uint64_t(w) * h * n * f.header.channels * 15 / 7;
+        // copy handed to the caller, beside what the trees took.
+        const uint64_t needed = uint64_t(w) * h * n * f.header.channels * 15 / 7 + f.model_bytes;
         if (needed > limit)
             fail(VQTEX_ERROR_LIMIT_EXCEEDED, "a " + std::to_string(w) + "x" + std::to_string(h) + " animation of " +
                                                  std::to_string(n) + " frames needs about " + std::to_string(needed >> 20) +

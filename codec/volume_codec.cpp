@@ -110,7 +110,8 @@ bool is_volume_file(const uint8_t* data, std::size_t size) {
 DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     DecodedVolumeFile f;
     const Container c = read_container(data, size, memory_limit);
-    std::size_t tree_budget = tree_budget_of(c, memory_limit);
+    const std::size_t tree_budget_start = tree_budget_of(c, memory_limit);
+    std::size_t tree_budget = tree_budget_start;
     if (!(c.header.flags & kFlagVolume))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "file holds a still texture, not an animation: decode it with vqtex_decode (vqtex-decode without --frames)");
@@ -218,6 +219,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     bool any_closing = false;
     for (const auto& lv : f.model.levels) any_closing = any_closing || lv.closing != nullptr;
     check_file_complete(c, any_closing, expected_sections);
+    f.model_bytes = tree_budget_start - tree_budget;
     return f;
 }
 

@@ -39,6 +39,8 @@ struct DecodedVolumeFile {
     int precision = 0, pixel_precision = 0;
     VolumeModel texture;  // matchers built over the decoded codebooks
     LevelInit init = LevelInit::Parent;
+    // What the decoded trees take of the memory limit (as DecodedFile).
+    std::size_t model_bytes = 0;
 };
 
 // True when the bytes start like a vqtex file whose header announces an
