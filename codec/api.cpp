@@ -77,7 +77,7 @@ void vqtex_synth_params_init(vqtex_synth_params* p) {
     p->struct_size = sizeof(vqtex_synth_params);
     vqtex_model_params_init(&p->model);
     p->search = VQTEX_SEARCH_TSVQ;
-    // Two leaves. One (the plane descent) is faster and on 10 photographed
+    // Two leaves. One (a single descent) is faster and on 10 photographed
     // corpus textures scores as well (sliced Wasserstein 8.8 against 9.2),
     // but breaks exactly periodic textures: the checkerboard of
     // tests/test_synthesis.cpp loses its period with one leaf, keeps it with two.

@@ -211,8 +211,8 @@ std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology
     // against what the trees before it left of the limit.
     {
         const std::size_t entry_size = std::size_t(layout.channels) + (has_keys ? layout.key_offsets.size() : 0);
-        // Codewords, plus the planes the search precomputes (2 bytes a
-        // sample), the decoded entries twice (here and in the tree), and
+        // Codewords with room for the search's per-node data (two more
+        // bytes a sample, an upper bound), the decoded entries twice (here and in the tree), and
         // finalize()'s 64-bit sums along the deepest path.
         const uint64_t depth_bound = std::min<uint64_t>(k, kMaxTreeDepth + 1);
         const uint64_t tree_bytes = uint64_t(nodes) * (3 * layout.stride + 64) + 2 * k * max_entries * entry_size +

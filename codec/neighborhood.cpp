@@ -117,9 +117,6 @@ NeighborhoodGather::NeighborhoodGather(const NeighborhoodLayout& layout,
     : layout_(&layout), pyramid_(&pyramid) {
     const int levels = layout.shape().levels;
     const std::size_t ch = std::size_t(layout.channels());
-    int reach[kMaxLevels] = {};
-    for (const Tap& t : layout.taps())
-        reach[t.depth] = std::max({reach[t.depth], int(std::abs(t.dx)), int(std::abs(t.dy))});
     x_lo_ = y_lo_ = 0;
     x_hi_ = y_hi_ = INT32_MAX;
     for (int d = 0; d < levels; ++d) {
@@ -127,10 +124,11 @@ NeighborhoodGather::NeighborhoodGather(const NeighborhoodLayout& layout,
         base_[d] = img.pixels.data();
         row_bytes_[d] = std::size_t(img.width) * ch;
         // x >> d must keep reach[d] pixels on both sides at depth d.
-        x_lo_ = std::max(x_lo_, reach[d] << d);
-        y_lo_ = std::max(y_lo_, reach[d] << d);
-        x_hi_ = std::min(x_hi_, std::max(0, img.width - reach[d]) << d);
-        y_hi_ = std::min(y_hi_, std::max(0, img.height - reach[d]) << d);
+        const int reach = layout.reach(d);
+        x_lo_ = std::max(x_lo_, reach << d);
+        y_lo_ = std::max(y_lo_, reach << d);
+        x_hi_ = std::min(x_hi_, std::max(0, img.width - reach) << d);
+        y_hi_ = std::min(y_hi_, std::max(0, img.height - reach) << d);
     }
     // Taps are in output order; a tap continues the previous run when it is
     // the next pixel to the right on the same row of the same level.
@@ -196,26 +194,6 @@ void NeighborhoodLayout::gather_wrapped(const std::vector<Image>& pyramid, int x
     std::memset(o, 0, stride_ - dimension_);
 }
 
-bool NeighborhoodLayout::fits_inside(const std::vector<Image>& pyramid, int x, int y) const {
-    for (const Tap& t : taps_) {
-        const Image& img = pyramid[std::size_t(level_ + t.depth)];
-        const int px = (x >> t.depth) + t.dx, py = (y >> t.depth) + t.dy;
-        if (px < 0 || py < 0 || px >= img.width || py >= img.height) return false;
-    }
-    return true;
-}
-
-void NeighborhoodLayout::gather_inside(const std::vector<Image>& pyramid, int x, int y,
-                                       uint8_t* out) const {
-    uint8_t* o = out;
-    for (const Tap& t : taps_) {
-        const uint8_t* p =
-            pyramid[std::size_t(level_ + t.depth)].at((x >> t.depth) + t.dx, (y >> t.depth) + t.dy);
-        for (int c = 0; c < channels_; ++c) *o++ = p[c];
-    }
-    std::memset(o, 0, stride_ - dimension_);
-}
-
 ExampleSet collect_examples(const NeighborhoodLayout& layout, const std::vector<Image>& pyramid,
                             bool tileable) {
     const Image& img = pyramid[std::size_t(layout.level())];
@@ -224,7 +202,7 @@ ExampleSet collect_examples(const NeighborhoodLayout& layout, const std::vector<
     set.stride = layout.stride();
     set.channels = img.channels;
     // The taps' extent per depth: a window fits inside exactly when its
-    // extreme taps do (the same test as fits_inside, without the tap loop).
+    // extreme taps do.
     int min_dx[kMaxLevels], max_dx[kMaxLevels], min_dy[kMaxLevels], max_dy[kMaxLevels];
     std::fill(min_dx, min_dx + kMaxLevels, 0);
     std::fill(max_dx, max_dx + kMaxLevels, 0);

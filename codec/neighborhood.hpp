@@ -88,6 +88,8 @@ public:
     std::size_t dimension() const { return dimension_; }
     std::size_t stride() const { return stride_; }
     const std::vector<Tap>& taps() const { return taps_; }
+    // Largest |dx| or |dy| of the taps `depth` levels down.
+    int reach(int depth) const { return reach_[depth]; }
 
     // Byte offsets of the short key a codebook entry carries: the taps of
     // the current level adjacent to the pixel, in tap order (4 for a causal
@@ -98,9 +100,6 @@ public:
     // Gather the neighbourhood of (x, y) at this level from `pyramid`
     // (toroidal), into `out` (stride() bytes, padding zeroed).
     void gather_wrapped(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const;
-    // True when every tap of (x, y) lies inside its level (no wrap needed).
-    bool fits_inside(const std::vector<Image>& pyramid, int x, int y) const;
-    void gather_inside(const std::vector<Image>& pyramid, int x, int y, uint8_t* out) const;
 
 private:
     Shape shape_;

@@ -44,7 +44,6 @@ TsvqMatcher::TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrac
     depth_ = book_->depth();
     const Codebook& b = *book_;
     const std::size_t n = b.stride();
-    const std::size_t internal = b.node_count() - b.leaf_count();
     // |q - c|^2 = |q|^2 + |c|^2 - 2 q.c, and with q = s + 128 (s signed),
     // q.c = s.c + 128 sum(c): so |q - c|^2 = |q|^2 + bias(c) - 2 s.c with
     // bias(c) = |c|^2 - 256 sum(c). Exact integers: the same distances as
@@ -56,37 +55,6 @@ TsvqMatcher::TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrac
         for (std::size_t d = 0; d < n; ++d) bias += int64_t(c[d]) * c[d] - 256 * int64_t(c[d]);
         node_bias_[node] = bias;
     }
-    plane_of_node_.assign(b.node_count(), -1);
-    plane_normals_.assign(internal * n, 0);
-    plane_offsets_.assign(internal, 0);
-    std::size_t plane = 0;
-    for (std::size_t node = 0; node < b.node_count(); ++node) {
-        if (b.node(node).first_child < 0) continue;
-        const uint8_t* a = b.codeword(std::size_t(b.node(node).first_child));
-        const uint8_t* c = b.codeword(std::size_t(b.node(node).first_child) + 1);
-        int16_t* w = plane_normals_.data() + plane * n;
-        int64_t offset = 0;
-        for (std::size_t d = 0; d < n; ++d) {
-            w[d] = int16_t(int(a[d]) - int(c[d]));
-            offset += int64_t(a[d]) * a[d] - int64_t(c[d]) * c[d];
-        }
-        plane_offsets_[plane] = offset;
-        plane_of_node_[node] = int32_t(plane++);
-    }
-}
-
-std::size_t TsvqMatcher::descend(const uint8_t* query) const {
-    const Codebook& b = *book_;
-    const dsp::Kernels& k = dsp::kernels();
-    const std::size_t n = b.stride();
-    std::size_t node = 0;
-    while (b.node(node).first_child >= 0) {
-        // |q-a|^2 <= |q-c|^2  <=>  2 q.(a-c) >= |a|^2 - |c|^2, in exact integers.
-        const std::size_t plane = std::size_t(plane_of_node_[node]);
-        const int64_t dot = k.dot(query, plane_normals_.data() + plane * n, n);
-        node = std::size_t(b.node(node).first_child) + (2 * dot >= plane_offsets_[plane] ? 0 : 1);
-    }
-    return std::size_t(b.node(node).leaf);
 }
 
 std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
@@ -99,9 +67,7 @@ std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
 
 std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScratch* scratch,
                                 const MatchContext& context) const {
-    // One leaf: the plain descent, which needs no distances at all (a single
-    // visited leaf is the answer whatever the tolerance).
-    if (leaves <= 1) return descend(query);
+    leaves = std::max<uint32_t>(1, leaves);
     const Codebook& b = *book_;
     const dsp::Kernels& k = dsp::kernels();
     const std::size_t n = b.stride();

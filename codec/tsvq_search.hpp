@@ -37,18 +37,10 @@ public:
     static constexpr uint32_t kLinearScanLeaves = 8;
 
 private:
-    // Single-leaf descent: at each internal node, the side of the plane
-    // between its two children. Exactly the same choice as comparing the two
-    // distances (ties to the first child), for the cost of one dot product.
-    std::size_t descend(const uint8_t* query) const;
-
     std::shared_ptr<const Codebook> book_;
     uint32_t backtrack_;
     int depth_ = 0;
-    std::vector<int64_t> node_bias_;      // per node: |c|^2 - 256 sum(c) (see search)
-    std::vector<int32_t> plane_of_node_;  // index into the planes, internal nodes only
-    std::vector<int16_t> plane_normals_;  // per plane: first child - second child (stride values)
-    std::vector<int64_t> plane_offsets_;  // per plane: |first|^2 - |second|^2
+    std::vector<int64_t> node_bias_;  // per node: |c|^2 - 256 sum(c) (see search)
 };
 
 }  // namespace vqtex

@@ -235,9 +235,9 @@ TEST(Tsvq, EntriesKeepRareContinuationsAlive) {
     EXPECT_GT(in_example, 0u);
 }
 
-TEST(Tsvq, PlaneDescentEqualsDistanceDescent) {
-    // Visiting one leaf uses the plane between two children; it must take
-    // exactly the branch the two distances would (ties to the first child).
+TEST(Tsvq, OneLeafSearchEqualsDistanceDescent) {
+    // Visiting one leaf must take exactly the branch the two distances
+    // would at every node (ties to the first child).
     const Fixture f = level0_examples("cellular_128.png", 4);
     TrainParams p;
     p.max_leaves = 500;
