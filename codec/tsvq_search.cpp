@@ -81,8 +81,12 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
     // the heap.
     const bool use_heap = leaves > kLinearScanLeaves;
     std::vector<uint64_t>& heap = work.heap;
-    heap.clear();
-    if (!use_heap) heap.resize(std::size_t(leaves) * std::size_t(depth_ + 1) + 1);
+    // The linear path uses the buffer as a plain array (grown once, never
+    // cleared); the heap path as a heap.
+    if (use_heap)
+        heap.clear();
+    else if (const std::size_t need = std::size_t(leaves) * std::size_t(depth_ + 1) + 1; heap.size() < need)
+        heap.resize(need);
     uint64_t* pending = heap.data();
     std::size_t pending_count = 0;
     const auto later = std::greater<uint64_t>();
