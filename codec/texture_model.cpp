@@ -131,28 +131,27 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
         int level;
         bool closing;
         ExampleSet set;
-        std::unique_ptr<NeighborhoodLayout> layout;
+        NeighborhoodLayout layout;
         BuiltMatcher built;
     };
     std::vector<Task> tasks;
     for (int l = 0; l < plan.levels; ++l) {
-        auto layout = std::make_unique<NeighborhoodLayout>(plan.shapes[std::size_t(l)], example.channels, l,
-                                                           plan.levels);
-        ExampleSet set = collect_examples(*layout, pyramid, tileable);
+        const NeighborhoodLayout layout(plan.shapes[std::size_t(l)], example.channels, l, plan.levels);
+        ExampleSet set = collect_examples(layout, pyramid, tileable);
         if (set.count() == 0) {
             const Image& img = pyramid[std::size_t(l)];
             fail(VQTEX_ERROR_IMAGE_TOO_SMALL,
                  "example " + std::to_string(example.width) + "x" + std::to_string(example.height) +
-                     " is too small for neighbourhood " + shape_to_string(layout->shape()) +
+                     " is too small for neighbourhood " + shape_to_string(layout.shape()) +
                      " at pyramid level " + std::to_string(l) + " (" + std::to_string(img.width) +
                      "x" + std::to_string(img.height) +
                      "): use fewer --levels, smaller --shapes, or --tileable-example");
         }
         result.training_vectors[std::size_t(l)] = set.count();
         LevelModel& lm = result.model.levels[std::size_t(l)];
-        lm.shape = layout->shape();
+        lm.shape = layout.shape();
         lm.histogram = histogram_of(pyramid[std::size_t(l)]);
-        tasks.push_back(Task{l, false, std::move(set), std::move(layout), {}});
+        tasks.push_back(Task{l, false, std::move(set), layout, {}});
         if (params.seam_closing) {
             Shape closing_shape = lm.shape;
             if (params.closing_window) {
@@ -164,12 +163,11 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
             closing_shape.rows = std::max(closing_shape.rows, 3);
             closing_shape.cols = std::max(closing_shape.cols, 3);
             closing_shape.causal = false;
-            auto closing_layout =
-                std::make_unique<NeighborhoodLayout>(closing_shape, example.channels, l, plan.levels);
-            ExampleSet closing_set = collect_examples(*closing_layout, pyramid, tileable);
+            const NeighborhoodLayout closing_layout(closing_shape, example.channels, l, plan.levels);
+            ExampleSet closing_set = collect_examples(closing_layout, pyramid, tileable);
             // A level too small for the symmetric window simply keeps its seam.
             if (closing_set.count() > 0)
-                tasks.push_back(Task{l, true, std::move(closing_set), std::move(closing_layout), {}});
+                tasks.push_back(Task{l, true, std::move(closing_set), closing_layout, {}});
         }
     }
 
@@ -189,7 +187,7 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
             if (i >= tasks.size()) return;
             Task& t = tasks[i];
             try {
-                t.built = build_matcher(t.set, *t.layout, params, search, backtrack, inner_threads, t.level,
+                t.built = build_matcher(t.set, t.layout, params, search, backtrack, inner_threads, t.level,
                                         t.closing);
             } catch (...) {
                 errors[i] = std::current_exception();
@@ -211,7 +209,7 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
         LevelModel& lm = result.model.levels[std::size_t(t.level)];
         result.model_bytes += t.built.bytes;
         if (t.closing) {
-            lm.closing_shape = t.layout->shape();
+            lm.closing_shape = t.layout.shape();
             lm.closing = t.built.matcher;
             result.closing_codebooks[std::size_t(t.level)] = t.built.codebook;
         } else {
