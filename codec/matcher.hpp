@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <memory>
 
+#include "dsp/dsp.hpp"
+
 namespace vqtex {
 
 // Per-pixel inputs of a search besides the query.
@@ -22,12 +24,7 @@ struct MatchContext {
 };
 
 // The winner among qualifying candidates: lowest (hash, key).
-inline uint64_t candidate_rank(uint64_t salt, uint32_t key) {
-    uint64_t z = salt ^ (uint64_t(key) * 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
+inline uint64_t candidate_rank(uint64_t salt, uint32_t key) { return dsp::rank_hash(salt, key); }
 
 inline uint32_t tolerance_threshold(uint32_t best, uint32_t tolerance) {
     const uint64_t t = uint64_t(best) + uint64_t(best) * tolerance / 256;

@@ -18,23 +18,8 @@ struct TsvqScratch final : MatchScratch {
     std::vector<uint64_t> heap;
     std::vector<std::pair<uint32_t, uint32_t>> visited;  // (distance, leaf)
     std::vector<int8_t> signed_query;                    // query bytes - 128
+    std::vector<uint64_t> fresh;                         // one descent's branches (heap path)
 };
-
-// The query minus 128 as signed bytes, and |query|^2. __restrict (the two
-// byte arrays could alias as far as the compiler knows) lets it vectorise.
-int64_t prepare_signed_query(const uint8_t* __restrict query, int8_t* __restrict signed_query,
-                             std::size_t n) {
-    for (std::size_t d = 0; d < n; ++d) signed_query[d] = int8_t(query[d] ^ 0x80);
-    // 32-bit partial sums (4096 * 255^2 < 2^32) vectorise; 64-bit ones do not.
-    uint64_t norm = 0;
-    for (std::size_t start = 0; start < n; start += 4096) {
-        const std::size_t end = std::min(n, start + 4096);
-        uint32_t partial = 0;
-        for (std::size_t d = start; d < end; ++d) partial += uint32_t(query[d]) * uint32_t(query[d]);
-        norm += partial;
-    }
-    return int64_t(norm);
-}
 
 }  // namespace
 
@@ -49,12 +34,15 @@ TsvqMatcher::TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrac
     // bias(c) = |c|^2 - 256 sum(c). Exact integers: the same distances as
     // ssd, from one unsigned-by-signed dot product per codeword.
     node_bias_.assign(b.node_count(), 0);
+    first_child_.assign(b.node_count(), -1);
     for (std::size_t node = 0; node < b.node_count(); ++node) {
         const uint8_t* c = b.codeword(node);
         int64_t bias = 0;
         for (std::size_t d = 0; d < n; ++d) bias += int64_t(c[d]) * c[d] - 256 * int64_t(c[d]);
         node_bias_[node] = bias;
+        first_child_[node] = b.node(node).first_child;
     }
+    tree_ = dsp::DescentTree{first_child_.data(), node_bias_.data(), b.codeword(0), n};
 }
 
 std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
@@ -62,6 +50,7 @@ std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
     // Each descent leaves at most one pending branch per level.
     s->heap.reserve(std::size_t(kLinearScanLeaves) * std::size_t(depth_ + 1));
     s->signed_query.resize(book_->stride());
+    s->fresh.resize(std::size_t(depth_) + 1);
     return s;
 }
 
@@ -71,8 +60,11 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
     const Codebook& b = *book_;
     const dsp::Kernels& k = dsp::kernels();
     const std::size_t n = b.stride();
-    TsvqScratch local;
-    TsvqScratch& work = scratch ? *static_cast<TsvqScratch*>(scratch) : local;
+    // Made only when the caller has none: constructing it per call (four
+    // vectors) showed in profiles of the per-pixel search.
+    std::unique_ptr<MatchScratch> owned;
+    if (!scratch) scratch = (owned = make_scratch()).get();
+    TsvqScratch& work = *static_cast<TsvqScratch*>(scratch);
     work.visited.clear();
     // Pending branches are ordered by (distance, node), a total order, so a
     // heap and a linear scan for the minimum pop them in the same order. For
@@ -93,37 +85,29 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
 
     work.signed_query.resize(n);
     int8_t* signed_query = work.signed_query.data();
-    const int64_t query_norm = prepare_signed_query(query, signed_query, n);
-    const int64_t* bias = node_bias_.data();
+    const int64_t query_norm = k.prepare_query(query, signed_query, n);
+    if (use_heap) work.fresh.resize(std::size_t(depth_) + 1);
 
     uint32_t best_distance = UINT32_MAX, best_key = UINT32_MAX;
     std::size_t best_leaf = 0;
     // The root's own distance only matters when it is a leaf.
     uint64_t next = uint64_t(b.node(0).first_child < 0 ? k.ssd(query, b.codeword(0), n) : 0) << 32;
     for (uint32_t visited = 0;;) {
-        std::size_t node = std::size_t(next & 0xFFFFFFFFu);
-        uint32_t distance = uint32_t(next >> 32);
-        for (int32_t first = b.node(node).first_child; first >= 0; first = b.node(node).first_child) {
-            // Siblings are stored next to each other: one pass over the
-            // query gives both distances (exact; see node_bias_).
-            const std::size_t a = std::size_t(first), c = a + 1;
-            int32_t dots[2];
-            k.dot2(signed_query, b.codeword(a), n, dots);
-            const uint32_t d[2] = {uint32_t(query_norm + bias[a] - 2 * int64_t(dots[0])),
-                                   uint32_t(query_norm + bias[c] - 2 * int64_t(dots[1]))};
-            uint64_t other;
-            if (d[0] <= d[1]) {
-                node = a, distance = d[0], other = uint64_t(d[1]) << 32 | c;
-            } else {
-                node = c, distance = d[1], other = uint64_t(d[0]) << 32 | a;
-            }
-            if (use_heap) {
-                heap.push_back(other);
+        // The linear path collects the branches not taken in place; the heap
+        // path moves them from a side buffer into the heap.
+        std::size_t fresh = use_heap ? 0 : pending_count;
+        const uint64_t reached = k.descend(tree_, signed_query, query_norm, next,
+                                           use_heap ? work.fresh.data() : pending, &fresh);
+        if (use_heap) {
+            for (std::size_t i = 0; i < fresh; ++i) {
+                heap.push_back(work.fresh[i]);
                 std::push_heap(heap.begin(), heap.end(), later);
-            } else {
-                pending[pending_count++] = other;
             }
+        } else {
+            pending_count = fresh;
         }
+        const std::size_t node = std::size_t(reached & 0xFFFFFFFFu);
+        const uint32_t distance = uint32_t(reached >> 32);
         const std::size_t leaf = std::size_t(b.node(node).leaf);
         const uint32_t key = b.leaf_key(leaf);
         if (distance < best_distance || (distance == best_distance && key < best_key))
@@ -137,9 +121,15 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
             heap.pop_back();
         } else {
             if (pending_count == 0) break;
+            // Branch-free minimum (the keys are distinct): which branch is
+            // nearest is unpredictable.
             std::size_t lowest = 0;
-            for (std::size_t i = 1; i < pending_count; ++i)
-                if (pending[i] < pending[lowest]) lowest = i;
+            uint64_t lowest_key = pending[0];
+            for (std::size_t i = 1; i < pending_count; ++i) {
+                const uint64_t lower = 0 - uint64_t(pending[i] < lowest_key);
+                lowest_key = (pending[i] & lower) | (lowest_key & ~lower);
+                lowest = (i & lower) | (lowest & ~lower);
+            }
             next = pending[lowest];
             pending[lowest] = pending[--pending_count];
         }
@@ -188,16 +178,8 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, ui
     // blocks.)
     const auto& offsets = b.key_offsets();
     const std::size_t n = std::min<std::size_t>(count, kMaxEntries);
-    if (offsets.empty()) {
-        // Every entry qualifies (below): the salt alone decides.
-        std::size_t chosen = 0;
-        uint64_t chosen_rank = candidate_rank(salt ^ 0x5EEDull, 0);
-        for (std::size_t i = 1; i < n; ++i) {
-            const uint64_t rank = candidate_rank(salt ^ 0x5EEDull, uint32_t(i));
-            if (rank < chosen_rank) chosen = i, chosen_rank = rank;
-        }
-        return chosen;
-    }
+    const dsp::Kernels& kernels = dsp::kernels();
+    if (offsets.empty()) return kernels.lowest_rank(salt ^ 0x5EEDull, uint32_t(n), ~uint64_t(0));
     const int ch = b.channels();
     uint32_t distance[kMaxEntries];
     uint32_t best = UINT32_MAX;
@@ -212,14 +194,9 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, ui
         best = std::min(best, d);
     }
     const uint32_t threshold = best + best / 4 + uint32_t(4 * offsets.size());
-    std::size_t chosen = 0;
-    uint64_t chosen_rank = UINT64_MAX;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (distance[i] > threshold) continue;
-        const uint64_t rank = candidate_rank(salt ^ 0x5EEDull, uint32_t(i));
-        if (rank < chosen_rank) chosen = i, chosen_rank = rank;
-    }
-    return chosen;
+    uint64_t qualifying = 0;
+    for (std::size_t i = 0; i < n; ++i) qualifying |= uint64_t(distance[i] <= threshold) << i;
+    return kernels.lowest_rank(salt ^ 0x5EEDull, uint32_t(n), qualifying);
 }
 
 const uint8_t* TsvqMatcher::match(const uint8_t* query, const MatchContext& context,

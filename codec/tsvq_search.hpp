@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "dsp/dsp.hpp"
 #include "matcher.hpp"
 #include "tsvq_tree.hpp"
 
@@ -15,6 +16,9 @@ namespace vqtex {
 class TsvqMatcher final : public Matcher {
 public:
     TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrack_leaves);
+    // tree_ points into the matcher's own arrays.
+    TsvqMatcher(const TsvqMatcher&) = delete;
+    TsvqMatcher& operator=(const TsvqMatcher&) = delete;
     std::size_t stride() const override { return book_->stride(); }
     std::unique_ptr<MatchScratch> make_scratch() const override;
     const uint8_t* match(const uint8_t* query, const MatchContext& context,
@@ -40,7 +44,9 @@ private:
     std::shared_ptr<const Codebook> book_;
     uint32_t backtrack_;
     int depth_ = 0;
-    std::vector<int64_t> node_bias_;  // per node: |c|^2 - 256 sum(c) (see search)
+    std::vector<int64_t> node_bias_;    // per node: |c|^2 - 256 sum(c) (see search)
+    std::vector<int32_t> first_child_;  // per node, as the descent kernel reads it
+    dsp::DescentTree tree_{};
 };
 
 }  // namespace vqtex

@@ -149,3 +149,86 @@ TEST(Dsp, EveryKernelSetAgreesWithScalarOnDot) {
         EXPECT_EQ(dsp::available_kernels(k).dot(full.data(), minus.data(), 320), -320 * 255 * 255);
     }
 }
+
+TEST(Dsp, PreparedQueryIsTheSignedBytesAndTheSquaredNormOnEveryKernelSet) {
+    // 8208 crosses the 4096-byte chunks the kernels sum in 32 bits.
+    for (std::size_t n : {16u, 48u, 64u, 112u, 208u, 8208u}) {
+        for (uint64_t seed = 0; seed < 5; ++seed) {
+            auto q = random_bytes(n, seed * 7 + 3);
+            if (seed == 0) std::fill(q.begin(), q.end(), 255);
+            int64_t norm = 0;
+            for (uint8_t v : q) norm += int64_t(v) * v;
+            for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+                std::vector<int8_t> signed_query(n + 64, 7);  // the guard must survive
+                EXPECT_EQ(dsp::available_kernels(k).prepare_query(q.data(), signed_query.data(), n), norm)
+                    << dsp::available_kernels(k).name << " n=" << n;
+                for (std::size_t i = 0; i < n; ++i)
+                    ASSERT_EQ(signed_query[i], int8_t(int(q[i]) - 128)) << dsp::available_kernels(k).name;
+                for (std::size_t i = n; i < n + 64; ++i) ASSERT_EQ(signed_query[i], 7) << "wrote past n";
+            }
+        }
+    }
+}
+
+TEST(Dsp, LowestRankIsTheFirstMinimumAmongAllowedCandidatesOnEveryKernelSet) {
+    Rng rng(11);
+    for (int trial = 0; trial < 3000; ++trial) {
+        const uint32_t n = 1 + uint32_t(rng.below(64));
+        uint64_t allowed = rng.next() | rng.next();  // about three in four allowed
+        if (trial % 3 == 0) allowed = ~uint64_t(0);
+        const uint64_t within = n == 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
+        if ((allowed & within) == 0) allowed |= uint64_t(1) << rng.below(n);
+        const uint64_t salt = rng.next();
+        uint32_t expected = UINT32_MAX;
+        for (uint32_t i = 0; i < n; ++i)
+            if (((allowed >> i) & 1) &&
+                (expected == UINT32_MAX || dsp::rank_hash(salt, i) < dsp::rank_hash(salt, expected)))
+                expected = i;
+        for (int k = 0; k < dsp::available_kernel_count(); ++k)
+            ASSERT_EQ(dsp::available_kernels(k).lowest_rank(salt, n, allowed), expected)
+                << dsp::available_kernels(k).name << " n=" << n << " trial " << trial;
+    }
+}
+
+TEST(Dsp, DescentFollowsTheNearerChildAndQueuesTheOtherOnEveryKernelSet) {
+    // A random complete-ish tree: node 0 splits into 1, 2; node 1 into 3, 4;
+    // node 4 into 5, 6 (so depths differ); every codeword random.
+    const std::size_t n = 112, nodes = 7;
+    const std::vector<int32_t> first_child = {1, 3, -1, -1, 5, -1, -1};
+    for (uint64_t seed = 0; seed < 200; ++seed) {
+        const auto codewords = random_bytes(nodes * n, seed * 13 + 1);
+        auto query = random_bytes(n, seed * 13 + 2);
+        if (seed % 4 == 0) query.assign(codewords.begin() + 3 * n, codewords.begin() + 4 * n);
+        std::vector<int64_t> bias(nodes);
+        for (std::size_t node = 0; node < nodes; ++node)
+            for (std::size_t d = 0; d < n; ++d)
+                bias[node] += int64_t(codewords[node * n + d]) * (int64_t(codewords[node * n + d]) - 256);
+        // The reference: level by level with plain distances.
+        std::vector<uint64_t> expected_pending;
+        std::size_t node = 0;
+        uint32_t distance = 0;
+        while (first_child[node] >= 0) {
+            const std::size_t a = std::size_t(first_child[node]);
+            const uint32_t d0 = dsp::scalar_kernels().ssd(query.data(), codewords.data() + a * n, n);
+            const uint32_t d1 = dsp::scalar_kernels().ssd(query.data(), codewords.data() + (a + 1) * n, n);
+            node = d0 <= d1 ? a : a + 1;
+            distance = d0 <= d1 ? d0 : d1;
+            expected_pending.push_back(d0 <= d1 ? uint64_t(d1) << 32 | (a + 1) : uint64_t(d0) << 32 | a);
+        }
+        const dsp::DescentTree tree{first_child.data(), bias.data(), codewords.data(), n};
+        for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+            const dsp::Kernels& kernels = dsp::available_kernels(k);
+            std::vector<int8_t> signed_query(n);
+            const int64_t norm = kernels.prepare_query(query.data(), signed_query.data(), n);
+            std::vector<uint64_t> pending(8, 0);
+            pending[0] = 99;  // already queued: kept, appended after
+            std::size_t count = 1;
+            const uint64_t leaf = kernels.descend(tree, signed_query.data(), norm, 0, pending.data(), &count);
+            EXPECT_EQ(leaf, uint64_t(distance) << 32 | node) << kernels.name << " seed " << seed;
+            ASSERT_EQ(count, 1 + expected_pending.size()) << kernels.name;
+            EXPECT_EQ(pending[0], 99u);
+            for (std::size_t i = 0; i < expected_pending.size(); ++i)
+                EXPECT_EQ(pending[1 + i], expected_pending[i]) << kernels.name << " seed " << seed;
+        }
+    }
+}

@@ -20,11 +20,12 @@ Available detect() {
     if (const Kernels* k = sse2_kernels(); k && __builtin_cpu_supports("sse2")) a.sets[a.count++] = k;
     if (const Kernels* k = avx2_kernels(); k && __builtin_cpu_supports("avx2")) a.sets[a.count++] = k;
     if (const Kernels* k = avx512_kernels();
-        k && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw"))
+        k && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+        __builtin_cpu_supports("avx512dq"))
         a.sets[a.count++] = k;
     if (const Kernels* k = avx512vnni_kernels();
         k && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-        __builtin_cpu_supports("avx512vnni"))
+        __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vnni"))
         a.sets[a.count++] = k;
 #endif
     return a;

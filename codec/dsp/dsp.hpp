@@ -11,7 +11,25 @@
 #include <cstddef>
 #include <cstdint>
 
+// For the small kernels that other kernels are built from (descent.hpp): a
+// call per tree level would cost more than the arithmetic.
+#if defined(__GNUC__)
+#define VQTEX_DSP_INLINE inline __attribute__((always_inline))
+#else
+#define VQTEX_DSP_INLINE inline
+#endif
+
 namespace vqtex::dsp {
+
+// The per-pixel ranking of near-tie candidates (matcher.hpp): a 64-bit
+// mix of the pixel's salt and the candidate's key. Defined here because the
+// lowest_rank kernels must reproduce it exactly.
+inline uint64_t rank_hash(uint64_t salt, uint32_t key) {
+    uint64_t z = salt ^ (uint64_t(key) * 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
 
 // Vectors handed to the kernels are padded with zeros to a multiple of this
 // many bytes, so kernels never need a scalar tail.
@@ -20,6 +38,17 @@ inline constexpr std::size_t kVectorAlign = 16;
 inline constexpr std::size_t padded_length(std::size_t n) {
     return (n + kVectorAlign - 1) / kVectorAlign * kVectorAlign;
 }
+
+// A TSVQ tree as the descent kernel reads it (see tsvq_search.cpp): per
+// node its first child (-1 for a leaf; children are stored side by side)
+// and bias = |c|^2 - 256 sum(c), and the codewords of `stride` bytes in node
+// order. Then |q - c|^2 = |q|^2 + bias - 2 (q - 128).c exactly.
+struct DescentTree {
+    const int32_t* first_child;
+    const int64_t* bias;
+    const uint8_t* codewords;
+    std::size_t stride;
+};
 
 struct Kernels {
     const char* name;
@@ -48,6 +77,23 @@ struct Kernels {
     // constants this gives exact distances (see tsvq_search.cpp) in the one
     // operation AVX-512 VNNI does natively (unsigned x signed bytes).
     void (*dot2)(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out);
+    // The query's bytes minus 128 into signed_query, and |query|^2 (n a
+    // multiple of kVectorAlign).
+    int64_t (*prepare_query)(const uint8_t* query, int8_t* signed_query, std::size_t n);
+    // One TSVQ descent from node (start & 0xFFFFFFFF, at distance start >> 32)
+    // to a leaf, always into the nearer child (the first on ties). Appends
+    // the child not taken at each level to pending[*pending_count...] as
+    // (distance << 32 | node) and advances *pending_count; returns the leaf
+    // as (distance << 32 | node). signed_query and query_norm come from
+    // prepare_query.
+    uint64_t (*descend)(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+                        uint64_t start, uint64_t* pending, std::size_t* pending_count);
+    // Of the candidates i < n (n <= 64) whose bit is set in `allowed`, the
+    // one with the lowest rank_hash(salt, i), the lowest i on equal ranks.
+    // `allowed` must have a bit set below n. Branch-free: which candidate
+    // wins is random by design, so a compare-and-branch per candidate would
+    // mispredict about every other time.
+    uint32_t (*lowest_rank)(uint64_t salt, uint32_t n, uint64_t allowed);
 };
 
 // The kernels chosen for this CPU, once. The environment variable

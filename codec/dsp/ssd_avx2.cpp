@@ -1,6 +1,7 @@
 // ssd_avx2.cpp - AVX2 distance kernels, compiled with -mavx2 and only called
 // after the dispatcher has seen AVX2 on the CPU. Bit-identical to the scalar
 // kernels.
+#include "descent.hpp"
 #include "dsp.hpp"
 
 #if defined(__AVX2__) && !defined(VQTEX_SCALAR_ONLY)
@@ -88,7 +89,7 @@ void ssd2_avx2(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_
     out[1] = uint32_t(_mm_extract_epi32(t, 1));
 }
 
-void dot2_avx2(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
+VQTEX_DSP_INLINE void dot2_avx2(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
     __m256i acc0 = _mm256_setzero_si256(), acc1 = _mm256_setzero_si256();
     for (std::size_t i = 0; i < n; i += 16) {
         const __m256i q = _mm256_cvtepi8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(query + i)));
@@ -101,7 +102,82 @@ void dot2_avx2(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t*
     out[1] = int32_t(hsum(acc1));
 }
 
-const Kernels kAvx2 = {"avx2", ssd_avx2, nearest_avx2, dot_avx2, ssd2_avx2, dot2_avx2};
+int64_t prepare_query_avx2(const uint8_t* query, int8_t* signed_query, std::size_t n) {
+    // n is a multiple of 16 (kVectorAlign).
+    const __m128i flip = _mm_set1_epi8(char(0x80));
+    uint64_t norm = 0;
+    // 32-bit lane sums are exact for 4096 bytes (4096 * 255^2 < 2^32).
+    for (std::size_t start = 0; start < n; start += 4096) {
+        const std::size_t end = start + 4096 < n ? start + 4096 : n;
+        __m256i acc = _mm256_setzero_si256();
+        for (std::size_t i = start; i < end; i += 16) {
+            const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(query + i));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(signed_query + i), _mm_xor_si128(v, flip));
+            const __m256i wide = _mm256_cvtepu8_epi16(v);
+            acc = _mm256_add_epi32(acc, _mm256_madd_epi16(wide, wide));
+        }
+        norm += hsum(acc);
+    }
+    return int64_t(norm);
+}
+
+uint64_t descend_avx2(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+                    uint64_t start, uint64_t* pending, std::size_t* pending_count) {
+    return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
+                                      dot2_avx2);
+}
+
+// The low 64 bits of a * b per lane (AVX2 has only 32x32->64 multiplies).
+inline __m256i mul64(__m256i a, __m256i b) {
+    const __m256i low = _mm256_mul_epu32(a, b);
+    const __m256i cross = _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(a, 32), b),
+                                           _mm256_mul_epu32(a, _mm256_srli_epi64(b, 32)));
+    return _mm256_add_epi64(low, _mm256_slli_epi64(cross, 32));
+}
+
+// rank_hash of four keys.
+inline __m256i rank_hash4(__m256i salt, __m256i key) {
+    __m256i z = _mm256_xor_si256(salt, mul64(key, _mm256_set1_epi64x(int64_t(0x9E3779B97F4A7C15ull))));
+    z = mul64(_mm256_xor_si256(z, _mm256_srli_epi64(z, 30)), _mm256_set1_epi64x(int64_t(0xBF58476D1CE4E5B9ull)));
+    z = mul64(_mm256_xor_si256(z, _mm256_srli_epi64(z, 27)), _mm256_set1_epi64x(int64_t(0x94D049BB133111EBull)));
+    return _mm256_xor_si256(z, _mm256_srli_epi64(z, 31));
+}
+
+uint32_t lowest_rank_avx2(uint64_t salt, uint32_t n, uint64_t allowed) {
+    if (n < 64) allowed &= (uint64_t(1) << n) - 1;
+    const __m256i none = _mm256_set1_epi64x(-1);
+    const __m256i sign = _mm256_set1_epi64x(INT64_MIN);
+    const __m256i lane_bit = _mm256_set_epi64x(8, 4, 2, 1);
+    const __m256i salt4 = _mm256_set1_epi64x(int64_t(salt));
+    // Per lane: the lowest rank seen and its index (none yet: all ones).
+    __m256i best = none, best_index = none;
+    for (uint32_t base = 0; base < n; base += 4) {
+        const __m256i index = _mm256_add_epi64(_mm256_set1_epi64x(base), _mm256_set_epi64x(3, 2, 1, 0));
+        const __m256i rank = rank_hash4(salt4, index);
+        const __m256i bits = _mm256_set1_epi64x(int64_t((allowed >> base) & 15));
+        const __m256i ok = _mm256_cmpeq_epi64(_mm256_and_si256(bits, lane_bit), lane_bit);
+        // Unsigned rank < best, through the signed compare.
+        const __m256i lower = _mm256_cmpgt_epi64(_mm256_xor_si256(best, sign), _mm256_xor_si256(rank, sign));
+        const __m256i empty = _mm256_cmpeq_epi64(best_index, none);
+        const __m256i take = _mm256_and_si256(ok, _mm256_or_si256(lower, empty));
+        best = _mm256_blendv_epi8(best, rank, take);
+        best_index = _mm256_blendv_epi8(best_index, index, take);
+    }
+    alignas(32) uint64_t ranks[4], indices[4];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(ranks), best);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(indices), best_index);
+    uint64_t chosen = UINT64_MAX, chosen_rank = UINT64_MAX;
+    for (int lane = 0; lane < 4; ++lane) {
+        if (indices[lane] == UINT64_MAX) continue;
+        if (chosen == UINT64_MAX || ranks[lane] < chosen_rank ||
+            (ranks[lane] == chosen_rank && indices[lane] < chosen))
+            chosen = indices[lane], chosen_rank = ranks[lane];
+    }
+    return uint32_t(chosen);
+}
+
+const Kernels kAvx2 = {"avx2", ssd_avx2, nearest_avx2, dot_avx2, ssd2_avx2, dot2_avx2,
+                       prepare_query_avx2, descend_avx2, lowest_rank_avx2};
 
 }  // namespace
 

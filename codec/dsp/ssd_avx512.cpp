@@ -1,9 +1,10 @@
-// ssd_avx512.cpp - AVX-512 (F+BW) distance kernels, compiled with its own
-// flags and only called when the CPU reports AVX-512BW. Bit-identical to the
+// ssd_avx512.cpp - AVX-512 (F+BW+DQ) distance kernels, compiled with its own
+// flags and only called when the CPU reports AVX-512BW and DQ. Bit-identical to the
 // scalar kernels.
+#include "descent.hpp"
 #include "dsp.hpp"
 
-#if defined(__AVX512BW__) && !defined(VQTEX_SCALAR_ONLY)
+#if defined(__AVX512BW__) && defined(__AVX512DQ__) && !defined(VQTEX_SCALAR_ONLY)
 // GCC 12's own AVX-512 reduction helpers trip its uninitialised-value
 // warnings (they start from _mm256_undefined); the code is correct.
 #pragma GCC diagnostic ignored "-Wuninitialized"
@@ -100,7 +101,7 @@ void ssd2_avx512(const uint8_t* query, const uint8_t* pair, std::size_t n, uint3
     out[1] = uint32_t(_mm512_reduce_add_epi32(acc1));
 }
 
-void dot2_avx512(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
+VQTEX_DSP_INLINE void dot2_avx512(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
     __m512i acc0 = _mm512_setzero_si512(), acc1 = _mm512_setzero_si512();
     std::size_t i = 0;
     for (; i + 32 <= n; i += 32) {
@@ -121,7 +122,64 @@ void dot2_avx512(const int8_t* query, const uint8_t* pair, std::size_t n, int32_
     out[1] = _mm512_reduce_add_epi32(acc1);
 }
 
-const Kernels kAvx512 = {"avx512", ssd_avx512, nearest_avx512, dot_avx512, ssd2_avx512, dot2_avx512};
+int64_t prepare_query_avx512(const uint8_t* query, int8_t* signed_query, std::size_t n) {
+    const __m512i flip = _mm512_set1_epi8(char(0x80));
+    uint64_t norm = 0;
+    // 32-bit lane sums are exact for 4096 bytes (4096 * 255^2 < 2^32).
+    for (std::size_t start = 0; start < n; start += 4096) {
+        const std::size_t end = start + 4096 < n ? start + 4096 : n;
+        __m512i acc = _mm512_setzero_si512();
+        for (std::size_t i = start; i < end; i += 64) {
+            const __mmask64 mask = end - i >= 64 ? ~__mmask64(0) : (__mmask64(1) << (end - i)) - 1;
+            const __m512i v = _mm512_maskz_loadu_epi8(mask, query + i);
+            _mm512_mask_storeu_epi8(signed_query + i, mask, _mm512_xor_si512(v, flip));
+            const __m512i low = _mm512_cvtepu8_epi16(_mm512_castsi512_si256(v));
+            const __m512i high = _mm512_cvtepu8_epi16(_mm512_extracti64x4_epi64(v, 1));
+            acc = _mm512_add_epi32(acc, _mm512_add_epi32(_mm512_madd_epi16(low, low), _mm512_madd_epi16(high, high)));
+        }
+        norm += uint32_t(_mm512_reduce_add_epi32(acc));
+    }
+    return int64_t(norm);
+}
+
+uint64_t descend_avx512(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+                    uint64_t start, uint64_t* pending, std::size_t* pending_count) {
+    return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
+                                      dot2_avx512);
+}
+
+// rank_hash of eight keys.
+inline __m512i rank_hash8(__m512i salt, __m512i key) {
+    __m512i z = _mm512_xor_si512(salt, _mm512_mullo_epi64(key, _mm512_set1_epi64(int64_t(0x9E3779B97F4A7C15ull))));
+    z = _mm512_mullo_epi64(_mm512_xor_si512(z, _mm512_srli_epi64(z, 30)),
+                           _mm512_set1_epi64(int64_t(0xBF58476D1CE4E5B9ull)));
+    z = _mm512_mullo_epi64(_mm512_xor_si512(z, _mm512_srli_epi64(z, 27)),
+                           _mm512_set1_epi64(int64_t(0x94D049BB133111EBull)));
+    return _mm512_xor_si512(z, _mm512_srli_epi64(z, 31));
+}
+
+uint32_t lowest_rank_avx512(uint64_t salt, uint32_t n, uint64_t allowed) {
+    if (n < 64) allowed &= (uint64_t(1) << n) - 1;
+    const __m512i none = _mm512_set1_epi64(-1);
+    const __m512i salt8 = _mm512_set1_epi64(int64_t(salt));
+    // Per lane: the lowest rank seen and its index (none yet: all ones).
+    __m512i best = none, best_index = none;
+    for (uint32_t base = 0; base < n; base += 8) {
+        const __m512i index = _mm512_add_epi64(_mm512_set1_epi64(base), _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0));
+        const __m512i rank = rank_hash8(salt8, index);
+        const __mmask8 take = __mmask8((allowed >> base) & 0xFF) &
+                              (_mm512_cmplt_epu64_mask(rank, best) | _mm512_cmpeq_epi64_mask(best_index, none));
+        best = _mm512_mask_mov_epi64(best, take, rank);
+        best_index = _mm512_mask_mov_epi64(best_index, take, index);
+    }
+    const __mmask8 valid = _mm512_cmpneq_epi64_mask(best_index, none);
+    const uint64_t lowest = _mm512_mask_reduce_min_epu64(valid, best);
+    const __mmask8 at_lowest = valid & _mm512_cmpeq_epi64_mask(best, _mm512_set1_epi64(int64_t(lowest)));
+    return uint32_t(_mm512_mask_reduce_min_epu64(at_lowest, best_index));
+}
+
+const Kernels kAvx512 = {"avx512", ssd_avx512, nearest_avx512, dot_avx512, ssd2_avx512, dot2_avx512,
+                         prepare_query_avx512, descend_avx512, lowest_rank_avx512};
 
 }  // namespace
 

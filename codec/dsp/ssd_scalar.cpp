@@ -1,5 +1,6 @@
 // ssd_scalar.cpp - the reference distance kernels: plain C++, the definition
 // of what every SIMD version must reproduce bit for bit.
+#include "descent.hpp"
 #include "dsp.hpp"
 
 namespace vqtex::dsp {
@@ -50,7 +51,7 @@ void ssd2_scalar(const uint8_t* query, const uint8_t* pair, std::size_t n, uint3
     out[1] = ssd_scalar(query, pair + n, n);
 }
 
-void dot2_scalar(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
+VQTEX_DSP_INLINE void dot2_scalar(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
     int32_t first = 0, second = 0;
     for (std::size_t i = 0; i < n; ++i) {
         first += int32_t(query[i]) * int32_t(pair[i]);
@@ -60,7 +61,22 @@ void dot2_scalar(const int8_t* query, const uint8_t* pair, std::size_t n, int32_
     out[1] = second;
 }
 
-const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar, dot_scalar, ssd2_scalar, dot2_scalar};
+uint32_t lowest_rank_scalar(uint64_t salt, uint32_t n, uint64_t allowed) {
+    return detail::lowest_rank_portable(salt, n, allowed);
+}
+
+int64_t prepare_query_scalar(const uint8_t* query, int8_t* signed_query, std::size_t n) {
+    return detail::prepare_query_portable(query, signed_query, n);
+}
+
+uint64_t descend_scalar(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+                    uint64_t start, uint64_t* pending, std::size_t* pending_count) {
+    return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
+                                      dot2_scalar);
+}
+
+const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar, dot_scalar, ssd2_scalar, dot2_scalar,
+                         prepare_query_scalar, descend_scalar, lowest_rank_scalar};
 
 }  // namespace
 

@@ -1,5 +1,6 @@
 // ssd_sse2.cpp - SSE2 distance kernels (every x86-64 CPU has them).
 // Bit-identical to ssd_scalar.cpp: exact 32-bit integer sums.
+#include "descent.hpp"
 #include "dsp.hpp"
 
 #if defined(__SSE2__) && !defined(VQTEX_SCALAR_ONLY)
@@ -87,7 +88,7 @@ void ssd2_sse2(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_
     out[1] = hsum(acc1);
 }
 
-void dot2_sse2(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
+VQTEX_DSP_INLINE void dot2_sse2(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
     const __m128i zero = _mm_setzero_si128();
     __m128i acc0 = _mm_setzero_si128(), acc1 = _mm_setzero_si128();
     for (std::size_t i = 0; i < n; i += 16) {
@@ -107,7 +108,22 @@ void dot2_sse2(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t*
     out[1] = int32_t(hsum(acc1));
 }
 
-const Kernels kSse2 = {"sse2", ssd_sse2, nearest_sse2, dot_sse2, ssd2_sse2, dot2_sse2};
+uint32_t lowest_rank_sse2(uint64_t salt, uint32_t n, uint64_t allowed) {
+    return detail::lowest_rank_portable(salt, n, allowed);
+}
+
+int64_t prepare_query_sse2(const uint8_t* query, int8_t* signed_query, std::size_t n) {
+    return detail::prepare_query_portable(query, signed_query, n);
+}
+
+uint64_t descend_sse2(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+                    uint64_t start, uint64_t* pending, std::size_t* pending_count) {
+    return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
+                                      dot2_sse2);
+}
+
+const Kernels kSse2 = {"sse2", ssd_sse2, nearest_sse2, dot_sse2, ssd2_sse2, dot2_sse2,
+                       prepare_query_sse2, descend_sse2, lowest_rank_sse2};
 
 }  // namespace
 

@@ -1,0 +1,85 @@
+// descent.hpp - the TSVQ descent (paper section 4, search) and the other
+// per-pixel helpers as kernel templates. Each instruction-set file
+// instantiates them with its own inline dot2, so the per-level step has no
+// indirect call, and every set gives the same answer (the arithmetic is exact
+// integers, the decisions identical).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "dsp.hpp"
+
+namespace vqtex::dsp::detail {
+
+// Distance from the query to a codeword, from its dot product with the
+// signed query (see DescentTree::bias). Wraps to 32 bits as the callers'
+// formula does.
+inline uint32_t descent_distance(int64_t query_norm, int64_t bias, int32_t dot) {
+    return uint32_t(query_norm + bias - 2 * int64_t(dot));
+}
+
+// Dot2(query, pair, n, out) must be the set's exact dot2. The choice is
+// written with selects, not branches: which child is nearer is close to a
+// coin toss, and a mispredicted branch per level costs more than the step.
+// (Computing two levels per step, the pair under each child alongside the
+// children, to halve the chain of dependent loads was measured: no faster.)
+template <class Dot2>
+inline uint64_t descend_tree(const DescentTree& tree, const int8_t* signed_query,
+                                  int64_t query_norm, uint64_t start, uint64_t* pending,
+                                  std::size_t* pending_count, Dot2 dot2) {
+    const int32_t* first_child = tree.first_child;
+    const int64_t* bias = tree.bias;
+    const std::size_t n = tree.stride;
+    std::size_t count = *pending_count;
+    std::size_t node = std::size_t(start & 0xFFFFFFFFu);
+    uint32_t distance = uint32_t(start >> 32);
+    for (int32_t first = first_child[node]; first >= 0; first = first_child[node]) {
+        const std::size_t a = std::size_t(first);
+        int32_t dots[2];
+        dot2(signed_query, tree.codewords + a * n, n, dots);
+        const uint32_t d0 = descent_distance(query_norm, bias[a], dots[0]);
+        const uint32_t d1 = descent_distance(query_norm, bias[a + 1], dots[1]);
+        const bool take_first = d0 <= d1;
+        node = take_first ? a : a + 1;
+        distance = take_first ? d0 : d1;
+        pending[count++] = take_first ? (uint64_t(d1) << 32 | (a + 1)) : (uint64_t(d0) << 32 | a);
+    }
+    *pending_count = count;
+    return uint64_t(distance) << 32 | node;
+}
+
+// The signed query (bytes - 128) and |query|^2; the portable form, which
+// compilers vectorise for the set the file is compiled for.
+inline int64_t prepare_query_portable(const uint8_t* __restrict query, int8_t* __restrict signed_query,
+                                      std::size_t n) {
+    for (std::size_t d = 0; d < n; ++d) signed_query[d] = int8_t(query[d] ^ 0x80);
+    // 32-bit partial sums (4096 * 255^2 < 2^32) vectorise; 64-bit ones do not.
+    uint64_t norm = 0;
+    for (std::size_t start = 0; start < n; start += 4096) {
+        const std::size_t end = start + 4096 < n ? start + 4096 : n;
+        uint32_t partial = 0;
+        for (std::size_t d = start; d < end; ++d) partial += uint32_t(query[d]) * uint32_t(query[d]);
+        norm += partial;
+    }
+    return int64_t(norm);
+}
+
+// lowest_rank without vectors: every candidate is ranked, and the running
+// minimum is kept with masks rather than branches.
+inline uint32_t lowest_rank_portable(uint64_t salt, uint32_t n, uint64_t allowed) {
+    uint64_t best = UINT64_MAX;
+    uint32_t chosen = UINT32_MAX;
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint64_t rank = rank_hash(salt, i);
+        // Take i if allowed and strictly lower, or if nothing is chosen yet
+        // (a rank of UINT64_MAX is still a candidate).
+        const bool take = ((allowed >> i) & 1) && (rank < best || chosen == UINT32_MAX);
+        const uint64_t mask = 0 - uint64_t(take);
+        best = (rank & mask) | (best & ~mask);
+        chosen = uint32_t((i & mask) | (chosen & ~mask));
+    }
+    return chosen;
+}
+
+}  // namespace vqtex::dsp::detail
