@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <thread>
 
 #include "error.hpp"
@@ -31,7 +32,7 @@ namespace {
 void upsample_parent(const Image& parent, Image& img) {
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x)
-            std::copy(parent.at(x >> 1, y >> 1), parent.at(x >> 1, y >> 1) + img.channels, img.at(x, y));
+            copy_pixel(img.at(x, y), parent.at(x >> 1, y >> 1), img.channels);
 }
 
 // A row's count of finished pixels, alone on its cache line: the thread
@@ -97,7 +98,7 @@ void run_row(const LevelRun& r, int y, bool parallel, std::vector<uint8_t>& quer
         r.gather->gather(x, y, query.data());
         const MatchContext context{pixel_salt(r.seed, r.level, 0, x, y), r.tolerance};
         const uint8_t* pixel = r.matcher->match(query.data(), context, scratch);
-        std::copy(pixel, pixel + out.channels, out.at(x, y));
+        copy_pixel(out.at(x, y), pixel, out.channels);
         if (r.trace) (*r.trace)[std::size_t(y) * w + x] = r.trace_counter->fetch_add(1);
         if (parallel && (((i + 1) & (kPublishEvery - 1)) == 0 || i + 1 == w))
             mine.store(i + 1, std::memory_order_release);
@@ -110,30 +111,67 @@ void run_row(const LevelRun& r, int y, bool parallel, std::vector<uint8_t>& quer
 // through the wrap, so the bottom and the top rows do not quite meet. Once
 // the level is complete, the rows on both sides of that line are matched
 // again with a symmetric neighbourhood, which sees the finished pixels above
-// and below, from the upper side of the band down across the wrap.
+// and below, from the upper side of the band down across the wrap. Two
+// sweeps: the second sees the first's results on both sides.
+//
+// With two threads the sweeps overlap. The second sweep may rewrite band row
+// k once the first has finished row k + reach: by then every read of row k
+// by the first sweep is done, and the rows below k that the second sweep
+// reads hold their final first-sweep values. So the bytes are those of the
+// sequential order; only the waiting differs.
 void close_seam(const LevelModel& lm, std::vector<Image>& pyramid, int level, int levels,
-                int channels, const SynthesisOptions& options) {
+                int channels, const SynthesisOptions& options, int threads) {
     Image& img = pyramid[std::size_t(level)];
     const NeighborhoodLayout layout(lm.closing_shape, channels, level, levels);
     if (layout.stride() != lm.closing->stride())
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "seam matcher and shape disagree at level " +
                                                std::to_string(level));
     const int band = std::min(closing_band_rows(lm.shape), (img.height + 1) / 2);
+    const int rows = 2 * band;
+    const int reach = layout.reach(0);
     const NeighborhoodGather gather(layout, pyramid);
-    std::vector<uint8_t> query(layout.stride());
-    std::unique_ptr<MatchScratch> scratch = lm.closing->make_scratch();
-    // Two sweeps: the second sees the first's results on both sides.
-    for (int sweep = 0; sweep < 2; ++sweep) {
-        for (int k = 0; k < 2 * band; ++k) {
+    std::atomic<int> first_sweep_rows{0};
+    auto sweep = [&](int pass, bool wait_for_first) {
+        std::vector<uint8_t> query(layout.stride());
+        std::unique_ptr<MatchScratch> scratch = lm.closing->make_scratch();
+        for (int k = 0; k < rows; ++k) {
+            if (wait_for_first) {
+                const int needed = std::min(rows, k + reach + 1);
+                for (int spins = 0; first_sweep_rows.load(std::memory_order_acquire) < needed;)
+                    if (++spins > 64) std::this_thread::yield();
+            }
             const int y = Image::wrap(img.height - band + k, img.height);
             for (int x = 0; x < img.width; ++x) {
                 gather.gather(x, y, query.data());
-                const MatchContext context{pixel_salt(options.seed, level, 1 + sweep, x, y),
-                                           options.tolerance};
-                const uint8_t* pixel = lm.closing->match(query.data(), context, scratch.get());
-                std::copy(pixel, pixel + img.channels, img.at(x, y));
+                const MatchContext context{pixel_salt(options.seed, level, 1 + pass, x, y), options.tolerance};
+                copy_pixel(img.at(x, y), lm.closing->match(query.data(), context, scratch.get()), img.channels);
             }
+            if (pass == 0) first_sweep_rows.store(k + 1, std::memory_order_release);
         }
+    };
+    // Overlap only when the band and the windows around it do not meet
+    // themselves across the torus (every band row a distinct image row).
+    if (threads > 1 && rows + 2 * reach + 2 <= img.height) {
+        std::exception_ptr second_failed;
+        std::thread second([&] {
+            try {
+                sweep(1, true);
+            } catch (...) {
+                second_failed = std::current_exception();
+            }
+        });
+        try {
+            sweep(0, false);
+        } catch (...) {
+            first_sweep_rows.store(rows);  // release the second sweep
+            second.join();
+            throw;
+        }
+        second.join();
+        if (second_failed) std::rethrow_exception(second_failed);
+    } else {
+        sweep(0, false);
+        sweep(1, false);
     }
 }
 
@@ -204,7 +242,7 @@ std::vector<Image> synthesize_pyramid(const TextureModel& model, const Synthesis
         for (int t = 1; t < workers; ++t) pool.emplace_back(worker, t);
         worker(0);
         for (auto& t : pool) t.join();
-        if (lm.closing && !stop.load()) close_seam(lm, pyramid, l, levels, model.channels, options);
+        if (lm.closing && !stop.load()) close_seam(lm, pyramid, l, levels, model.channels, options, threads);
         if (stop.load()) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     }
     return pyramid;

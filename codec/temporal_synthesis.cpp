@@ -82,7 +82,7 @@ void run_row(const FrameRun& r, int y, bool parallel, std::vector<uint8_t>& quer
         const MatchContext context{voxel_salt(r.seed, r.level, 0, x, y), r.tolerance};
         const uint8_t* pixel = r.matcher->match(query.data(), context, scratch);
         if (r.keep_still && still_in_example(pixel, v.channels)) pixel = v.wrapped(x, y, r.t - 1);
-        std::copy(pixel, pixel + v.channels, v.at(x, y, r.t));
+        copy_pixel(v.at(x, y, r.t), pixel, v.channels);
         if (r.trace)
             (*r.trace)[(std::size_t(r.t) * std::size_t(v.height) + std::size_t(y)) * std::size_t(w) + std::size_t(x)] =
                 r.trace_counter->fetch_add(1);
