@@ -193,42 +193,45 @@ TEST(Dsp, LowestRankIsTheFirstMinimumAmongAllowedCandidatesOnEveryKernelSet) {
 TEST(Dsp, DescentFollowsTheNearerChildAndQueuesTheOtherOnEveryKernelSet) {
     // A random complete-ish tree: node 0 splits into 1, 2; node 1 into 3, 4;
     // node 4 into 5, 6 (so depths differ); every codeword random.
-    const std::size_t n = 112, nodes = 7;
+    // Strides of one to five 64-byte chunks (the VNNI set specialises up to four).
+    const std::size_t nodes = 7;
     const std::vector<int32_t> first_child = {1, 3, -1, -1, 5, -1, -1};
-    for (uint64_t seed = 0; seed < 200; ++seed) {
-        const auto codewords = random_bytes(nodes * n, seed * 13 + 1);
-        auto query = random_bytes(n, seed * 13 + 2);
-        if (seed % 4 == 0) query.assign(codewords.begin() + 3 * n, codewords.begin() + 4 * n);
-        std::vector<int64_t> bias(nodes);
-        for (std::size_t node = 0; node < nodes; ++node)
-            for (std::size_t d = 0; d < n; ++d)
-                bias[node] += int64_t(codewords[node * n + d]) * (int64_t(codewords[node * n + d]) - 256);
-        // The reference: level by level with plain distances.
-        std::vector<uint64_t> expected_pending;
-        std::size_t node = 0;
-        uint32_t distance = 0;
-        while (first_child[node] >= 0) {
-            const std::size_t a = std::size_t(first_child[node]);
-            const uint32_t d0 = dsp::scalar_kernels().ssd(query.data(), codewords.data() + a * n, n);
-            const uint32_t d1 = dsp::scalar_kernels().ssd(query.data(), codewords.data() + (a + 1) * n, n);
-            node = d0 <= d1 ? a : a + 1;
-            distance = d0 <= d1 ? d0 : d1;
-            expected_pending.push_back(d0 <= d1 ? uint64_t(d1) << 32 | (a + 1) : uint64_t(d0) << 32 | a);
-        }
-        const dsp::DescentTree tree{first_child.data(), bias.data(), codewords.data(), n};
-        for (int k = 0; k < dsp::available_kernel_count(); ++k) {
-            const dsp::Kernels& kernels = dsp::available_kernels(k);
-            std::vector<int8_t> signed_query(n);
-            const int64_t norm = kernels.prepare_query(query.data(), signed_query.data(), n);
-            std::vector<uint64_t> pending(8, 0);
-            pending[0] = 99;  // already queued: kept, appended after
-            std::size_t count = 1;
-            const uint64_t leaf = kernels.descend(tree, signed_query.data(), norm, 0, pending.data(), &count);
-            EXPECT_EQ(leaf, uint64_t(distance) << 32 | node) << kernels.name << " seed " << seed;
-            ASSERT_EQ(count, 1 + expected_pending.size()) << kernels.name;
-            EXPECT_EQ(pending[0], 99u);
-            for (std::size_t i = 0; i < expected_pending.size(); ++i)
-                EXPECT_EQ(pending[1 + i], expected_pending[i]) << kernels.name << " seed " << seed;
+    for (std::size_t n : {16u, 64u, 112u, 128u, 160u, 208u, 256u, 272u}) {
+        for (uint64_t seed = 0; seed < 60; ++seed) {
+            const auto codewords = random_bytes(nodes * n, seed * 13 + 1);
+            auto query = random_bytes(n, seed * 13 + 2);
+            if (seed % 4 == 0) query.assign(codewords.begin() + 3 * n, codewords.begin() + 4 * n);
+            std::vector<int64_t> bias(nodes);
+            for (std::size_t node = 0; node < nodes; ++node)
+                for (std::size_t d = 0; d < n; ++d)
+                    bias[node] += int64_t(codewords[node * n + d]) * (int64_t(codewords[node * n + d]) - 256);
+            // The reference: level by level with plain distances.
+            std::vector<uint64_t> expected_pending;
+            std::size_t node = 0;
+            uint32_t distance = 0;
+            while (first_child[node] >= 0) {
+                const std::size_t a = std::size_t(first_child[node]);
+                const uint32_t d0 = dsp::scalar_kernels().ssd(query.data(), codewords.data() + a * n, n);
+                const uint32_t d1 = dsp::scalar_kernels().ssd(query.data(), codewords.data() + (a + 1) * n, n);
+                node = d0 <= d1 ? a : a + 1;
+                distance = d0 <= d1 ? d0 : d1;
+                expected_pending.push_back(d0 <= d1 ? uint64_t(d1) << 32 | (a + 1) : uint64_t(d0) << 32 | a);
+            }
+            const dsp::DescentTree tree{first_child.data(), bias.data(), codewords.data(), n};
+            for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+                const dsp::Kernels& kernels = dsp::available_kernels(k);
+                std::vector<int8_t> signed_query(n);
+                const int64_t norm = kernels.prepare_query(query.data(), signed_query.data(), n);
+                std::vector<uint64_t> pending(8, 0);
+                pending[0] = 99;  // already queued: kept, appended after
+                std::size_t count = 1;
+                const uint64_t leaf = kernels.descend(tree, signed_query.data(), norm, 0, pending.data(), &count);
+                EXPECT_EQ(leaf, uint64_t(distance) << 32 | node) << kernels.name << " n=" << n << " seed " << seed;
+                ASSERT_EQ(count, 1 + expected_pending.size()) << kernels.name;
+                EXPECT_EQ(pending[0], 99u);
+                for (std::size_t i = 0; i < expected_pending.size(); ++i)
+                    EXPECT_EQ(pending[1 + i], expected_pending[i]) << kernels.name << " seed " << seed;
+            }
         }
     }
 }

@@ -36,10 +36,76 @@ VQTEX_DSP_INLINE void dot2_avx512vnni(const int8_t* query, const uint8_t* pair, 
     out[1] = _mm512_reduce_add_epi32(acc1);
 }
 
+// The sums of the 16 lanes of a and of b, reduced together.
+VQTEX_DSP_INLINE void reduce_pair(__m512i a, __m512i b, int32_t* out) {
+    const __m256i half_a = _mm256_add_epi32(_mm512_castsi512_si256(a), _mm512_extracti64x4_epi64(a, 1));
+    const __m256i half_b = _mm256_add_epi32(_mm512_castsi512_si256(b), _mm512_extracti64x4_epi64(b, 1));
+    __m256i h = _mm256_hadd_epi32(half_a, half_b);  // per 128-bit lane: a a b b
+    h = _mm256_hadd_epi32(h, h);                    // per 128-bit lane: a b a b
+    const __m128i sum = _mm_add_epi32(_mm256_castsi256_si128(h), _mm256_extracti128_si256(h, 1));
+    out[0] = _mm_cvtsi128_si32(sum);
+    out[1] = _mm_extract_epi32(sum, 1);
+}
+
+// The descent for codewords of at most 64 * Chunks bytes (and more than
+// 64 * (Chunks - 1)): the query stays in registers for the whole walk, the
+// chunks' products are summed as a tree rather than a chain, and the two
+// children's sums are reduced together. Same decisions as descend_tree.
+template <int Chunks>
+uint64_t descend_in_registers(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+                              uint64_t start, uint64_t* pending, std::size_t* pending_count) {
+    const std::size_t n = tree.stride;
+    const __mmask64 tail = ~uint64_t(0) >> (64 * Chunks - n);
+    __m512i q[Chunks];
+    for (int c = 0; c + 1 < Chunks; ++c) q[c] = _mm512_loadu_si512(signed_query + 64 * c);
+    q[Chunks - 1] = _mm512_maskz_loadu_epi8(tail, signed_query + 64 * (Chunks - 1));
+    const int32_t* first_child = tree.first_child;
+    const int64_t* bias = tree.bias;
+    std::size_t count = *pending_count;
+    std::size_t node = std::size_t(start & 0xFFFFFFFFu);
+    uint32_t distance = uint32_t(start >> 32);
+    for (int32_t first = first_child[node]; first >= 0; first = first_child[node]) {
+        const std::size_t a = std::size_t(first);
+        const uint8_t* pa = tree.codewords + a * n;
+        const uint8_t* pb = pa + n;
+        __m512i sum_a[Chunks], sum_b[Chunks];
+        for (int c = 0; c + 1 < Chunks; ++c) {
+            sum_a[c] = _mm512_dpbusd_epi32(_mm512_setzero_si512(), _mm512_loadu_si512(pa + 64 * c), q[c]);
+            sum_b[c] = _mm512_dpbusd_epi32(_mm512_setzero_si512(), _mm512_loadu_si512(pb + 64 * c), q[c]);
+        }
+        sum_a[Chunks - 1] = _mm512_dpbusd_epi32(_mm512_setzero_si512(),
+                                                _mm512_maskz_loadu_epi8(tail, pa + 64 * (Chunks - 1)), q[Chunks - 1]);
+        sum_b[Chunks - 1] = _mm512_dpbusd_epi32(_mm512_setzero_si512(),
+                                                _mm512_maskz_loadu_epi8(tail, pb + 64 * (Chunks - 1)), q[Chunks - 1]);
+        for (int step = 1; step < Chunks; step *= 2)
+            for (int c = 0; c + step < Chunks; c += 2 * step) {
+                sum_a[c] = _mm512_add_epi32(sum_a[c], sum_a[c + step]);
+                sum_b[c] = _mm512_add_epi32(sum_b[c], sum_b[c + step]);
+            }
+        int32_t dots[2];
+        reduce_pair(sum_a[0], sum_b[0], dots);
+        const uint32_t d0 = detail::descent_distance(query_norm, bias[a], dots[0]);
+        const uint32_t d1 = detail::descent_distance(query_norm, bias[a + 1], dots[1]);
+        const bool take_first = d0 <= d1;
+        node = take_first ? a : a + 1;
+        distance = take_first ? d0 : d1;
+        pending[count++] = take_first ? (uint64_t(d1) << 32 | (a + 1)) : (uint64_t(d0) << 32 | a);
+    }
+    *pending_count = count;
+    return uint64_t(distance) << 32 | node;
+}
+
 uint64_t descend_avx512vnni(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
                             uint64_t start, uint64_t* pending, std::size_t* pending_count) {
-    return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
-                                      dot2_avx512vnni);
+    switch ((tree.stride + 63) / 64) {
+    case 1: return descend_in_registers<1>(tree, signed_query, query_norm, start, pending, pending_count);
+    case 2: return descend_in_registers<2>(tree, signed_query, query_norm, start, pending, pending_count);
+    case 3: return descend_in_registers<3>(tree, signed_query, query_norm, start, pending, pending_count);
+    case 4: return descend_in_registers<4>(tree, signed_query, query_norm, start, pending, pending_count);
+    default:
+        return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
+                                    dot2_avx512vnni);
+    }
 }
 
 Kernels make_vnni() {
