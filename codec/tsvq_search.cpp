@@ -85,7 +85,6 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
 
     work.signed_query.resize(n);
     int8_t* signed_query = work.signed_query.data();
-    const int64_t query_norm = k.prepare_query(query, signed_query, n);
     if (use_heap) work.fresh.resize(std::size_t(depth_) + 1);
 
     uint32_t best_distance = UINT32_MAX, best_key = UINT32_MAX;
@@ -96,7 +95,7 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
         // The linear path collects the branches not taken in place; the heap
         // path moves them from a side buffer into the heap.
         std::size_t fresh = use_heap ? 0 : pending_count;
-        const uint64_t reached = k.descend(tree_, signed_query, query_norm, next,
+        const uint64_t reached = k.descend(tree_, query, signed_query, next,
                                            use_heap ? work.fresh.data() : pending, &fresh);
         if (use_heap) {
             for (std::size_t i = 0; i < fresh; ++i) {

@@ -220,12 +220,11 @@ TEST(Dsp, DescentFollowsTheNearerChildAndQueuesTheOtherOnEveryKernelSet) {
             const dsp::DescentTree tree{first_child.data(), bias.data(), codewords.data(), n};
             for (int k = 0; k < dsp::available_kernel_count(); ++k) {
                 const dsp::Kernels& kernels = dsp::available_kernels(k);
-                std::vector<int8_t> signed_query(n);
-                const int64_t norm = kernels.prepare_query(query.data(), signed_query.data(), n);
+                std::vector<int8_t> signed_scratch(n);
                 std::vector<uint64_t> pending(8, 0);
                 pending[0] = 99;  // already queued: kept, appended after
                 std::size_t count = 1;
-                const uint64_t leaf = kernels.descend(tree, signed_query.data(), norm, 0, pending.data(), &count);
+                const uint64_t leaf = kernels.descend(tree, query.data(), signed_scratch.data(), 0, pending.data(), &count);
                 EXPECT_EQ(leaf, uint64_t(distance) << 32 | node) << kernels.name << " n=" << n << " seed " << seed;
                 ASSERT_EQ(count, 1 + expected_pending.size()) << kernels.name;
                 EXPECT_EQ(pending[0], 99u);

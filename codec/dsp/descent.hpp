@@ -19,15 +19,17 @@ inline uint32_t descent_distance(int64_t query_norm, int64_t bias, int32_t dot) 
     return uint32_t(query_norm + bias - 2 * int64_t(dot));
 }
 
-// Dot2(query, pair, n, out) must be the set's exact dot2. The choice is
+// Dot2(query, pair, n, out) and Prepare(query, signed_query, n) must be the
+// set's exact dot2 and prepare_query. The choice is
 // written with selects, not branches: which child is nearer is close to a
 // coin toss, and a mispredicted branch per level costs more than the step.
 // (Computing two levels per step, the pair under each child alongside the
 // children, to halve the chain of dependent loads was measured: no faster.)
-template <class Dot2>
-inline uint64_t descend_tree(const DescentTree& tree, const int8_t* signed_query,
-                                  int64_t query_norm, uint64_t start, uint64_t* pending,
-                                  std::size_t* pending_count, Dot2 dot2) {
+template <class Dot2, class Prepare>
+inline uint64_t descend_tree(const DescentTree& tree, const uint8_t* query, int8_t* signed_query,
+                             uint64_t start, uint64_t* pending, std::size_t* pending_count, Dot2 dot2,
+                             Prepare prepare_query) {
+    const int64_t query_norm = prepare_query(query, signed_query, tree.stride);
     const int32_t* first_child = tree.first_child;
     const int64_t* bias = tree.bias;
     const std::size_t n = tree.stride;

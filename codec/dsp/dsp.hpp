@@ -80,13 +80,15 @@ struct Kernels {
     // The query's bytes minus 128 into signed_query, and |query|^2 (n a
     // multiple of kVectorAlign).
     int64_t (*prepare_query)(const uint8_t* query, int8_t* signed_query, std::size_t n);
-    // One TSVQ descent from node (start & 0xFFFFFFFF, at distance start >> 32)
-    // to a leaf, always into the nearer child (the first on ties). Appends
-    // the child not taken at each level to pending[*pending_count...] as
-    // (distance << 32 | node) and advances *pending_count; returns the leaf
-    // as (distance << 32 | node). signed_query and query_norm come from
-    // prepare_query.
-    uint64_t (*descend)(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+    // One TSVQ descent for `query` (n = tree.stride bytes) from node (start &
+    // 0xFFFFFFFF, at distance start >> 32) to a leaf, always into the nearer
+    // child (the first on ties). Appends the child not taken at each level to
+    // pending[*pending_count...] as (distance << 32 | node) and advances
+    // *pending_count; returns the leaf as (distance << 32 | node).
+    // signed_scratch (n bytes) is working memory for sets that need the
+    // signed query in memory; sets that keep it in registers avoid storing
+    // and reloading it at every call.
+    uint64_t (*descend)(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
                         uint64_t start, uint64_t* pending, std::size_t* pending_count);
     // Of the candidates i < n (n <= 64) whose bit is set in `allowed`, the
     // one with the lowest rank_hash(salt, i), the lowest i on equal ranks.

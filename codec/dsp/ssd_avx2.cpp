@@ -121,10 +121,10 @@ int64_t prepare_query_avx2(const uint8_t* query, int8_t* signed_query, std::size
     return int64_t(norm);
 }
 
-uint64_t descend_avx2(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+uint64_t descend_avx2(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
                     uint64_t start, uint64_t* pending, std::size_t* pending_count) {
-    return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
-                                      dot2_avx2);
+    return detail::descend_tree(tree, query, signed_scratch, start, pending, pending_count, dot2_avx2,
+                                prepare_query_avx2);
 }
 
 // The low 64 bits of a * b per lane (AVX2 has only 32x32->64 multiplies).

@@ -142,10 +142,10 @@ int64_t prepare_query_avx512(const uint8_t* query, int8_t* signed_query, std::si
     return int64_t(norm);
 }
 
-uint64_t descend_avx512(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+uint64_t descend_avx512(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
                     uint64_t start, uint64_t* pending, std::size_t* pending_count) {
-    return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
-                                      dot2_avx512);
+    return detail::descend_tree(tree, query, signed_scratch, start, pending, pending_count, dot2_avx512,
+                                prepare_query_avx512);
 }
 
 // rank_hash of eight keys.

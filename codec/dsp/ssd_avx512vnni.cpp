@@ -52,13 +52,25 @@ VQTEX_DSP_INLINE void reduce_pair(__m512i a, __m512i b, int32_t* out) {
 // chunks' products are summed as a tree rather than a chain, and the two
 // children's sums are reduced together. Same decisions as descend_tree.
 template <int Chunks>
-uint64_t descend_in_registers(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
-                              uint64_t start, uint64_t* pending, std::size_t* pending_count) {
+uint64_t descend_in_registers(const DescentTree& tree, const uint8_t* query, uint64_t start, uint64_t* pending,
+                              std::size_t* pending_count) {
     const std::size_t n = tree.stride;
     const __mmask64 tail = ~uint64_t(0) >> (64 * Chunks - n);
+    // The signed query and |query|^2 computed here, in registers: storing
+    // them for the walk to reload costs a store-forwarding stall per call.
+    const __m512i flip = _mm512_set1_epi8(char(0x80));
     __m512i q[Chunks];
-    for (int c = 0; c + 1 < Chunks; ++c) q[c] = _mm512_loadu_si512(signed_query + 64 * c);
-    q[Chunks - 1] = _mm512_maskz_loadu_epi8(tail, signed_query + 64 * (Chunks - 1));
+    __m512i squares = _mm512_setzero_si512();
+    for (int c = 0; c < Chunks; ++c) {
+        const __mmask64 mask = c + 1 < Chunks ? ~__mmask64(0) : tail;
+        const __m512i raw = _mm512_maskz_loadu_epi8(mask, query + 64 * c);
+        q[c] = _mm512_maskz_mov_epi8(mask, _mm512_xor_si512(raw, flip));
+        const __m512i low = _mm512_cvtepu8_epi16(_mm512_castsi512_si256(raw));
+        const __m512i high = _mm512_cvtepu8_epi16(_mm512_extracti64x4_epi64(raw, 1));
+        squares = _mm512_add_epi32(squares, _mm512_add_epi32(_mm512_madd_epi16(low, low), _mm512_madd_epi16(high, high)));
+    }
+    // At most 256 * 255^2: exact in 32 bits.
+    const int64_t query_norm = uint32_t(_mm512_reduce_add_epi32(squares));
     const int32_t* first_child = tree.first_child;
     const int64_t* bias = tree.bias;
     std::size_t count = *pending_count;
@@ -95,16 +107,16 @@ uint64_t descend_in_registers(const DescentTree& tree, const int8_t* signed_quer
     return uint64_t(distance) << 32 | node;
 }
 
-uint64_t descend_avx512vnni(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
-                            uint64_t start, uint64_t* pending, std::size_t* pending_count) {
+uint64_t descend_avx512vnni(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
+                    uint64_t start, uint64_t* pending, std::size_t* pending_count) {
     switch ((tree.stride + 63) / 64) {
-    case 1: return descend_in_registers<1>(tree, signed_query, query_norm, start, pending, pending_count);
-    case 2: return descend_in_registers<2>(tree, signed_query, query_norm, start, pending, pending_count);
-    case 3: return descend_in_registers<3>(tree, signed_query, query_norm, start, pending, pending_count);
-    case 4: return descend_in_registers<4>(tree, signed_query, query_norm, start, pending, pending_count);
+    case 1: return descend_in_registers<1>(tree, query, start, pending, pending_count);
+    case 2: return descend_in_registers<2>(tree, query, start, pending, pending_count);
+    case 3: return descend_in_registers<3>(tree, query, start, pending, pending_count);
+    case 4: return descend_in_registers<4>(tree, query, start, pending, pending_count);
     default:
-        return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
-                                    dot2_avx512vnni);
+        return detail::descend_tree(tree, query, signed_scratch, start, pending, pending_count, dot2_avx512vnni,
+                                    detail::prepare_query_portable);
     }
 }
 

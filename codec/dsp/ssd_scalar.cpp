@@ -69,10 +69,10 @@ int64_t prepare_query_scalar(const uint8_t* query, int8_t* signed_query, std::si
     return detail::prepare_query_portable(query, signed_query, n);
 }
 
-uint64_t descend_scalar(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+uint64_t descend_scalar(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
                     uint64_t start, uint64_t* pending, std::size_t* pending_count) {
-    return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
-                                      dot2_scalar);
+    return detail::descend_tree(tree, query, signed_scratch, start, pending, pending_count, dot2_scalar,
+                                prepare_query_scalar);
 }
 
 const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar, dot_scalar, ssd2_scalar, dot2_scalar,

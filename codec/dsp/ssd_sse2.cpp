@@ -116,10 +116,10 @@ int64_t prepare_query_sse2(const uint8_t* query, int8_t* signed_query, std::size
     return detail::prepare_query_portable(query, signed_query, n);
 }
 
-uint64_t descend_sse2(const DescentTree& tree, const int8_t* signed_query, int64_t query_norm,
+uint64_t descend_sse2(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
                     uint64_t start, uint64_t* pending, std::size_t* pending_count) {
-    return detail::descend_tree(tree, signed_query, query_norm, start, pending, pending_count,
-                                      dot2_sse2);
+    return detail::descend_tree(tree, query, signed_scratch, start, pending, pending_count, dot2_sse2,
+                                prepare_query_sse2);
 }
 
 const Kernels kSse2 = {"sse2", ssd_sse2, nearest_sse2, dot_sse2, ssd2_sse2, dot2_sse2,
