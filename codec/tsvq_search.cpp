@@ -35,12 +35,20 @@ TsvqMatcher::TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrac
     // ssd, from one unsigned-by-signed dot product per codeword.
     node_bias_.assign(b.node_count(), 0);
     first_child_.assign(b.node_count(), -1);
+    node_key_.assign(b.node_count(), UINT32_MAX);
     for (std::size_t node = 0; node < b.node_count(); ++node) {
         const uint8_t* c = b.codeword(node);
         int64_t bias = 0;
         for (std::size_t d = 0; d < n; ++d) bias += int64_t(c[d]) * c[d] - 256 * int64_t(c[d]);
         node_bias_[node] = bias;
         first_child_[node] = b.node(node).first_child;
+        node_key_[node] = b.node(node).leaf >= 0 ? b.leaf_key(std::size_t(b.node(node).leaf)) : UINT32_MAX;
+    }
+    leaf_entries_.resize(b.leaf_count());
+    leaf_entry_count_.resize(b.leaf_count());
+    for (std::size_t leaf = 0; leaf < b.leaf_count(); ++leaf) {
+        leaf_entries_[leaf] = b.entry(leaf, 0);
+        leaf_entry_count_[leaf] = uint32_t(std::min<std::size_t>(b.entry_count(leaf), kMaxEntries));
     }
     tree_ = dsp::DescentTree{first_child_.data(), node_bias_.data(), b.codeword(0), n};
 }
@@ -108,7 +116,7 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
         const std::size_t node = std::size_t(reached & 0xFFFFFFFFu);
         const uint32_t distance = uint32_t(reached >> 32);
         const std::size_t leaf = std::size_t(b.node(node).leaf);
-        const uint32_t key = b.leaf_key(leaf);
+        const uint32_t key = node_key_[node];
         if (distance < best_distance || (distance == best_distance && key < best_key))
             best_distance = distance, best_key = key, best_leaf = leaf;
         if (context.tolerance) work.visited.emplace_back(distance, uint32_t(leaf));
@@ -163,8 +171,8 @@ std::size_t TsvqMatcher::nearest_leaf_exhaustive(const uint8_t* query) const {
 
 std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, uint64_t salt) const {
     const Codebook& b = *book_;
-    const std::size_t count = b.entry_count(leaf);
-    if (count == 1) return 0;
+    const std::size_t n = leaf_entry_count_[leaf];
+    if (n == 1) return 0;
     // The entry whose short key is nearest the query's adjacent pixels; among
     // near-ties (within a quarter of the best plus a small absolute slack,
     // so exact local copies do not always win) the one the pixel's salt ranks
@@ -176,14 +184,13 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, ui
     // favours smooth continuations and the texture collapses into flat
     // blocks.)
     const auto& offsets = b.key_offsets();
-    const std::size_t n = std::min<std::size_t>(count, kMaxEntries);
     const dsp::Kernels& kernels = dsp::kernels();
     if (offsets.empty()) return kernels.lowest_rank(salt ^ 0x5EEDull, uint32_t(n), ~uint64_t(0));
-    const int ch = b.channels();
+    const std::size_t ch = std::size_t(b.channels()), entry_size = b.entry_size();
     uint32_t distance[kMaxEntries];
     uint32_t best = UINT32_MAX;
     for (std::size_t i = 0; i < n; ++i) {
-        const uint8_t* key = b.entry(leaf, i) + ch;
+        const uint8_t* key = leaf_entries_[leaf] + i * entry_size + ch;
         uint32_t d = 0;
         for (std::size_t k = 0; k < offsets.size(); ++k) {
             const int diff = int(key[k]) - int(query[offsets[k]]);
@@ -201,7 +208,7 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, ui
 const uint8_t* TsvqMatcher::match(const uint8_t* query, const MatchContext& context,
                                   MatchScratch* scratch) const {
     const std::size_t leaf = search(query, backtrack_, scratch, context);
-    return book_->entry(leaf, choose_entry(leaf, query, context.salt));
+    return leaf_entries_[leaf] + choose_entry(leaf, query, context.salt) * book_->entry_size();
 }
 
 }  // namespace vqtex

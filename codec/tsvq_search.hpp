@@ -46,6 +46,11 @@ private:
     int depth_ = 0;
     std::vector<int64_t> node_bias_;    // per node: |c|^2 - 256 sum(c) (see search)
     std::vector<int32_t> first_child_;  // per node, as the descent kernel reads it
+    // Leaf data the per-pixel path reads, without the codebook's indirections
+    // (and the division entry_count() does).
+    std::vector<uint32_t> node_key_;            // per node: the leaf's tie key
+    std::vector<const uint8_t*> leaf_entries_;  // per leaf: its first entry
+    std::vector<uint32_t> leaf_entry_count_;    // per leaf: entries considered (<= kMaxEntries)
     dsp::DescentTree tree_{};
 };
 
