@@ -123,6 +123,9 @@ NeighborhoodGather::NeighborhoodGather(const NeighborhoodLayout& layout,
         const Image& img = pyramid[std::size_t(layout.level() + d)];
         base_[d] = img.pixels.data();
         row_bytes_[d] = std::size_t(img.width) * ch;
+        width_[d] = img.width;
+        height_[d] = img.height;
+        if (layout.reach(d) >= img.width || layout.reach(d) >= img.height) wraps_once_ = false;
         // x >> d must keep reach[d] pixels on both sides at depth d.
         const int reach = layout.reach(d);
         x_lo_ = std::max(x_lo_, reach << d);
@@ -146,7 +149,7 @@ NeighborhoodGather::NeighborhoodGather(const NeighborhoodLayout& layout,
 
 void NeighborhoodGather::gather(int x, int y, uint8_t* out) const {
     if (!interior(x, y)) {
-        layout_->gather_wrapped(*pyramid_, x, y, out);
+        gather_border(x, y, out);
         return;
     }
     const std::size_t ch = std::size_t(layout_->channels());
@@ -157,6 +160,26 @@ void NeighborhoodGather::gather(int x, int y, uint8_t* out) const {
     for (const Run& run : runs_) {
         copy_short(o, anchor[run.depth] + run.offset, run.bytes);
         o += run.bytes;
+    }
+    for (uint8_t* end = out + layout_->stride(); o < end; ++o) *o = 0;
+}
+
+void NeighborhoodGather::gather_border(int x, int y, uint8_t* out) const {
+    if (!wraps_once_) {
+        layout_->gather_wrapped(*pyramid_, x, y, out);
+        return;
+    }
+    const int ch = layout_->channels();
+    uint8_t* o = out;
+    for (const Tap& t : layout_->taps()) {
+        const int w = width_[t.depth], h = height_[t.depth];
+        int tx = (x >> t.depth) + t.dx, ty = (y >> t.depth) + t.dy;
+        tx += tx < 0 ? w : 0;
+        tx -= tx >= w ? w : 0;
+        ty += ty < 0 ? h : 0;
+        ty -= ty >= h ? h : 0;
+        const uint8_t* p = base_[t.depth] + std::size_t(ty) * row_bytes_[t.depth] + std::size_t(tx) * std::size_t(ch);
+        for (int c = 0; c < ch; ++c) *o++ = p[c];
     }
     for (uint8_t* end = out + layout_->stride(); o < end; ++o) *o = 0;
 }

@@ -134,8 +134,15 @@ private:
     const NeighborhoodLayout* layout_;
     const std::vector<Image>* pyramid_;
     std::vector<Run> runs_;
+    // Pixels whose window crosses an edge of some level: wrapped per tap.
+    void gather_border(int x, int y, uint8_t* out) const;
+
     const uint8_t* base_[kMaxLevels] = {};
     std::size_t row_bytes_[kMaxLevels] = {};
+    int width_[kMaxLevels] = {}, height_[kMaxLevels] = {};
+    // Every level is wider and taller than the window's reach there, so a
+    // tap wraps at most once (one compare per coordinate, no division).
+    bool wraps_once_ = true;
     int x_lo_ = 0, x_hi_ = 0, y_lo_ = 0, y_hi_ = 0;
 };
 
