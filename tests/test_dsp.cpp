@@ -193,7 +193,7 @@ TEST(Dsp, LowestRankIsTheFirstMinimumAmongAllowedCandidatesOnEveryKernelSet) {
 TEST(Dsp, DescentFollowsTheNearerChildAndQueuesTheOtherOnEveryKernelSet) {
     // A random complete-ish tree: node 0 splits into 1, 2; node 1 into 3, 4;
     // node 4 into 5, 6 (so depths differ); every codeword random.
-    // Strides of one to five 64-byte chunks (the VNNI set specialises up to four).
+    // Strides of one to five 64-byte chunks (the VNNI set specialises up to two).
     const std::size_t nodes = 7;
     const std::vector<int32_t> first_child = {1, 3, -1, -1, 5, -1, -1};
     for (std::size_t n : {16u, 64u, 112u, 128u, 160u, 208u, 256u, 272u}) {

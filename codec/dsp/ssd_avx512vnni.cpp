@@ -48,7 +48,7 @@ VQTEX_DSP_INLINE void reduce_pair(__m512i a, __m512i b, int32_t* out) {
 }
 
 // The descent for codewords of at most 64 * Chunks bytes (and more than
-// 64 * (Chunks - 1)): the query stays in registers for the whole walk, the
+// 64 * (Chunks - 1)), Chunks 1 or 2: the query stays in registers for the whole walk, the
 // chunks' products are summed as a tree rather than a chain, and the two
 // children's sums are reduced together. Same decisions as descend_tree.
 template <int Chunks>
@@ -109,11 +109,12 @@ uint64_t descend_in_registers(const DescentTree& tree, const uint8_t* query, uin
 
 uint64_t descend_avx512vnni(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
                     uint64_t start, uint64_t* pending, std::size_t* pending_count) {
+    // Measured in-process against the generic walk: 8% faster for the
+    // decoder's 112-byte codewords, but 18-21% slower for the synthesiser's
+    // 208-byte ones in deep trees, so only up to two chunks.
     switch ((tree.stride + 63) / 64) {
     case 1: return descend_in_registers<1>(tree, query, start, pending, pending_count);
     case 2: return descend_in_registers<2>(tree, query, start, pending, pending_count);
-    case 3: return descend_in_registers<3>(tree, query, start, pending, pending_count);
-    case 4: return descend_in_registers<4>(tree, query, start, pending, pending_count);
     default:
         return detail::descend_tree(tree, query, signed_scratch, start, pending, pending_count, dot2_avx512vnni,
                                     detail::prepare_query_portable);
