@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
     std::string folder = "../shared/corpus", pattern = "_128.png", tsv, fig11;
     uint32_t size = 256, threads = 1, limit = 0;
     bool skip_exhaustive = false;
+    unsigned runs = 3;
     app.add_option("folder", folder, "folder of example images")->capture_default_str();
     app.add_option("--pattern", pattern, "only files whose name contains this")->capture_default_str();
     app.add_option("--size", size, "output side")->capture_default_str();
@@ -63,6 +64,11 @@ int main(int argc, char** argv) {
     app.add_option("--tsv", tsv, "write per-texture rows here");
     app.add_option("--fig11", fig11, "write K = 64/512/4096/all contact sheets into this folder");
     app.add_flag("--skip-exhaustive", skip_exhaustive, "time TSVQ only");
+    app.add_option("--runs", runs,
+                   "TSVQ runs per texture; their median times are reported (one exhaustive run lasts seconds "
+                   "and averages itself; one TSVQ run is a snapshot of a machine whose speed drifts)")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 99u));
     CLI11_PARSE(app, argc, argv);
 
     std::vector<fs::path> files;
@@ -98,10 +104,15 @@ int main(int argc, char** argv) {
             vqtex_image_free(&out);
         }
         p.search = VQTEX_SEARCH_TSVQ;
-        if (!synth(p, ex, out, st)) return 1;
-        vqtex_image_free(&out);
-        r.train = st.analyse_seconds;
-        r.synth = st.synthesise_seconds;
+        std::vector<double> train_runs, synth_runs;
+        for (unsigned run = 0; run < runs; ++run) {
+            if (!synth(p, ex, out, st)) return 1;
+            vqtex_image_free(&out);
+            train_runs.push_back(st.analyse_seconds);
+            synth_runs.push_back(st.synthesise_seconds);
+        }
+        r.train = median(train_runs);
+        r.synth = median(synth_runs);
         r.model_bytes = st.model_bytes;
         r.codewords = st.codewords[0];
         results.push_back(r);
