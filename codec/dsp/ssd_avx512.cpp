@@ -175,8 +175,9 @@ uint32_t lowest_rank_avx512(uint64_t salt, uint32_t n, uint64_t allowed) {
     const __mmask8 valid = _mm512_cmpneq_epi64_mask(best_index, none);
     const uint64_t lowest = _mm512_mask_reduce_min_epu64(valid, best);
     const __mmask8 at_lowest = valid & _mm512_cmpeq_epi64_mask(best, _mm512_set1_epi64(int64_t(lowest)));
-    // One lane at the minimum (all but always): its index, without a second
-    // reduction. Several lanes tie only when 64-bit ranks are equal.
+    // One lane at the minimum: its index, without a second reduction. (Ranks
+    // of distinct indices never tie, since rank_hash mixes salt ^ key * odd
+    // constant with a bijection; the reduction stays as the definition.)
     if (__builtin_expect((at_lowest & (at_lowest - 1)) == 0, 1))
         return uint32_t(_mm_cvtsi128_si64(_mm512_castsi512_si128(_mm512_maskz_compress_epi64(at_lowest, best_index))));
     return uint32_t(_mm512_mask_reduce_min_epu64(at_lowest, best_index));
