@@ -94,7 +94,8 @@ if [[ $have_gmic == 1 ]]; then
         echo "G'MIC: \`OMP_NUM_THREADS=1 gmic -v -1 IN syntexturize_matchpatch 512,512 o OUT.png\` (whole command)."
         echo "vqtex command: \`vqtex-decode FILE OUT.png --size 512x512\` (whole command: OpenImageIO start-up, decode, PNG write)."
         echo "Start-up of each program alone: \`gmic -v -1 IN o OUT.png\` and \`vqtex-info FILE\`."
-        echo "vqtex library: \`vqtex_decode\` alone (bench_scaling, all cores), what a program linking the library pays."
+        echo "vqtex library: \`vqtex_decode\` alone (bench_scaling, all cores), what a program linking the library pays;"
+        echo "its runs alternate with G'MIC's, so both medians come from the same stretch of time."
         echo
         echo "| texture | G'MIC s | G'MIC start-up s | vqtex-decode command s | vqtex start-up s | vqtex library s | command ratio | library ratio |"
         echo "|---|---|---|---|---|---|---|---|"
@@ -104,12 +105,23 @@ if [[ $have_gmic == 1 ]]; then
         [[ -f "$example" ]] || continue
         file="$out/$name.vqt"
         "$build/vqtex-encode" "$example" "$file" >/dev/null
-        g=$(median_time env OMP_NUM_THREADS=1 gmic -v -1 "$example" syntexturize_matchpatch 512,512 o "$out/${name}_gmic_512.png")
+        # G'MIC and the library decode alternate run by run, so that both
+        # medians come from the same stretch of time on a machine whose
+        # speed drifts.
+        gmic_times=() lib_times=()
+        for ((i = 0; i < runs; i++)); do
+            start=$(date +%s.%N)
+            OMP_NUM_THREADS=1 gmic -v -1 "$example" syntexturize_matchpatch 512,512 o "$out/${name}_gmic_512.png" >/dev/null 2>&1
+            end=$(date +%s.%N)
+            gmic_times+=("$(awk -v a="$start" -v b="$end" 'BEGIN {print b - a}')")
+            "$build/bench/bench_scaling" "$example" --sizes 512 --runs 1 --tsv "$out/lib_512.tsv" >/dev/null
+            lib_times+=("$(awk -F'\t' '$1==512 {print $3}' "$out/lib_512.tsv")")
+        done
+        g=$(printf '%s\n' "${gmic_times[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')
+        lib=$(printf '%s\n' "${lib_times[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')
         g0=$(median_time gmic -v -1 "$example" o "$out/${name}_gmic_noop.png")
         v=$(median_time "$build/vqtex-decode" "$file" "$out/${name}_vqtex_512.png" --size 512x512)
         v0=$(median_time "$build/vqtex-info" "$file")
-        lib=$(awk -F'\t' '$1==512 {print $3}' "$out/scaling_${name}_j0.tsv" 2>/dev/null || echo "")
-        [[ -n "$lib" ]] || lib=$("$build/bench/bench_scaling" "$example" --sizes 512 --runs "$runs" | tail -1 | awk '{print $2}')
         printf '| %s | %.3f | %.3f | %.3f | %.3f | %.4f | %.1fx | %.1fx |\n' "$name" "$g" "$g0" "$v" "$v0" "$lib" \
             "$(awk -v a="$g" -v b="$v" 'BEGIN {print a / b}')" "$(awk -v a="$g" -v b="$lib" 'BEGIN {print a / b}')" >>"$out/perf.md"
     done
