@@ -3,6 +3,12 @@
 // instantiates them with its own inline dot2, so the per-level step has no
 // indirect call, and every set gives the same answer (the arithmetic is exact
 // integers, the decisions identical).
+//
+// Everything here has internal linkage (an unnamed namespace): each file
+// compiles its own copy with its own instruction-set flags. An inline
+// function with external linkage would be emitted by every file, and the
+// linker would keep one of them, possibly one with AVX-512 instructions, for
+// the scalar set too.
 #pragma once
 
 #include <cstddef>
@@ -11,6 +17,7 @@
 #include "dsp.hpp"
 
 namespace vqtex::dsp::detail {
+namespace {
 
 // Distance from the query to a codeword, from its dot product with the
 // signed query (see DescentTree::bias). Wraps to 32 bits as the callers'
@@ -85,4 +92,12 @@ inline uint32_t lowest_rank_portable(uint64_t salt, uint32_t n, uint64_t allowed
     return chosen;
 }
 
+// The descend kernel of a set, from its dot2 and prepare_query.
+template <auto Dot2, auto Prepare>
+uint64_t descend_with(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch, uint64_t start,
+                      uint64_t* pending, std::size_t* pending_count) {
+    return descend_tree(tree, query, signed_scratch, start, pending, pending_count, Dot2, Prepare);
+}
+
+}  // namespace
 }  // namespace vqtex::dsp::detail

@@ -121,12 +121,6 @@ int64_t prepare_query_avx2(const uint8_t* query, int8_t* signed_query, std::size
     return int64_t(norm);
 }
 
-uint64_t descend_avx2(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
-                    uint64_t start, uint64_t* pending, std::size_t* pending_count) {
-    return detail::descend_tree(tree, query, signed_scratch, start, pending, pending_count, dot2_avx2,
-                                prepare_query_avx2);
-}
-
 // The low 64 bits of a * b per lane (AVX2 has only 32x32->64 multiplies).
 inline __m256i mul64(__m256i a, __m256i b) {
     const __m256i low = _mm256_mul_epu32(a, b);
@@ -176,8 +170,17 @@ uint32_t lowest_rank_avx2(uint64_t salt, uint32_t n, uint64_t allowed) {
     return uint32_t(chosen);
 }
 
-const Kernels kAvx2 = {"avx2", ssd_avx2, nearest_avx2, dot_avx2, ssd2_avx2, dot2_avx2,
-                       prepare_query_avx2, descend_avx2, lowest_rank_avx2};
+const Kernels kAvx2 = {
+    "avx2",
+    ssd_avx2,
+    nearest_avx2,
+    dot_avx2,
+    ssd2_avx2,
+    dot2_avx2,
+    prepare_query_avx2,
+    detail::descend_with<dot2_avx2, prepare_query_avx2>,
+    lowest_rank_avx2,
+};
 
 }  // namespace
 

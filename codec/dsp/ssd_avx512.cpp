@@ -142,12 +142,6 @@ int64_t prepare_query_avx512(const uint8_t* query, int8_t* signed_query, std::si
     return int64_t(norm);
 }
 
-uint64_t descend_avx512(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
-                    uint64_t start, uint64_t* pending, std::size_t* pending_count) {
-    return detail::descend_tree(tree, query, signed_scratch, start, pending, pending_count, dot2_avx512,
-                                prepare_query_avx512);
-}
-
 // rank_hash of eight keys.
 inline __m512i rank_hash8(__m512i salt, __m512i key) {
     __m512i z = _mm512_xor_si512(salt, _mm512_mullo_epi64(key, _mm512_set1_epi64(int64_t(0x9E3779B97F4A7C15ull))));
@@ -183,8 +177,17 @@ uint32_t lowest_rank_avx512(uint64_t salt, uint32_t n, uint64_t allowed) {
     return uint32_t(_mm512_mask_reduce_min_epu64(at_lowest, best_index));
 }
 
-const Kernels kAvx512 = {"avx512", ssd_avx512, nearest_avx512, dot_avx512, ssd2_avx512, dot2_avx512,
-                         prepare_query_avx512, descend_avx512, lowest_rank_avx512};
+const Kernels kAvx512 = {
+    "avx512",
+    ssd_avx512,
+    nearest_avx512,
+    dot_avx512,
+    ssd2_avx512,
+    dot2_avx512,
+    prepare_query_avx512,
+    detail::descend_with<dot2_avx512, prepare_query_avx512>,
+    lowest_rank_avx512,
+};
 
 }  // namespace
 

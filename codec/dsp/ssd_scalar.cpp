@@ -61,22 +61,17 @@ VQTEX_DSP_INLINE void dot2_scalar(const int8_t* query, const uint8_t* pair, std:
     out[1] = second;
 }
 
-uint32_t lowest_rank_scalar(uint64_t salt, uint32_t n, uint64_t allowed) {
-    return detail::lowest_rank_portable(salt, n, allowed);
-}
-
-int64_t prepare_query_scalar(const uint8_t* query, int8_t* signed_query, std::size_t n) {
-    return detail::prepare_query_portable(query, signed_query, n);
-}
-
-uint64_t descend_scalar(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
-                    uint64_t start, uint64_t* pending, std::size_t* pending_count) {
-    return detail::descend_tree(tree, query, signed_scratch, start, pending, pending_count, dot2_scalar,
-                                prepare_query_scalar);
-}
-
-const Kernels kScalar = {"scalar", ssd_scalar, nearest_scalar, dot_scalar, ssd2_scalar, dot2_scalar,
-                         prepare_query_scalar, descend_scalar, lowest_rank_scalar};
+const Kernels kScalar = {
+    "scalar",
+    ssd_scalar,
+    nearest_scalar,
+    dot_scalar,
+    ssd2_scalar,
+    dot2_scalar,
+    detail::prepare_query_portable,
+    detail::descend_with<dot2_scalar, detail::prepare_query_portable>,
+    detail::lowest_rank_portable,
+};
 
 }  // namespace
 

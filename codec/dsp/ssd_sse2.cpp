@@ -108,22 +108,17 @@ VQTEX_DSP_INLINE void dot2_sse2(const int8_t* query, const uint8_t* pair, std::s
     out[1] = int32_t(hsum(acc1));
 }
 
-uint32_t lowest_rank_sse2(uint64_t salt, uint32_t n, uint64_t allowed) {
-    return detail::lowest_rank_portable(salt, n, allowed);
-}
-
-int64_t prepare_query_sse2(const uint8_t* query, int8_t* signed_query, std::size_t n) {
-    return detail::prepare_query_portable(query, signed_query, n);
-}
-
-uint64_t descend_sse2(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
-                    uint64_t start, uint64_t* pending, std::size_t* pending_count) {
-    return detail::descend_tree(tree, query, signed_scratch, start, pending, pending_count, dot2_sse2,
-                                prepare_query_sse2);
-}
-
-const Kernels kSse2 = {"sse2", ssd_sse2, nearest_sse2, dot_sse2, ssd2_sse2, dot2_sse2,
-                       prepare_query_sse2, descend_sse2, lowest_rank_sse2};
+const Kernels kSse2 = {
+    "sse2",
+    ssd_sse2,
+    nearest_sse2,
+    dot_sse2,
+    ssd2_sse2,
+    dot2_sse2,
+    detail::prepare_query_portable,
+    detail::descend_with<dot2_sse2, detail::prepare_query_portable>,
+    detail::lowest_rank_portable,
+};
 
 }  // namespace
 
