@@ -367,6 +367,23 @@ const Section& require_section(const Container& c, const char tag[4], int level,
     return *found;
 }
 
+void write_tree(ContainerWriter& writer, int level, int kind, const Codebook& book, const TreeLayout& layout,
+                const EncodeSettings& settings) {
+    TreeSections t = encode_tree(book, layout, settings);
+    writer.add(kTagTopology, uint8_t(level), uint8_t(kind), std::move(t.topology));
+    writer.add(kTagCodewords, uint8_t(level), uint8_t(kind), std::move(t.codewords));
+    writer.add(kTagEntries, uint8_t(level), uint8_t(kind), std::move(t.entries));
+}
+
+std::shared_ptr<const Codebook> read_tree(const Container& c, const uint8_t* file, int level, int kind,
+                                          const std::string& kind_name, const TreeLayout& layout, int precision,
+                                          int pixel_precision, const std::string& where, std::size_t& memory_budget) {
+    const auto topology = section_bytes(file, require_section(c, kTagTopology, level, kind, kind_name));
+    const auto codewords = section_bytes(file, require_section(c, kTagCodewords, level, kind, kind_name));
+    const auto entries = section_bytes(file, require_section(c, kTagEntries, level, kind, kind_name));
+    return decode_tree(topology, codewords, entries, layout, precision, pixel_precision, where, memory_budget);
+}
+
 void check_file_complete(const Container& c, bool any_closing, std::size_t used_sections) {
     if (any_closing != bool(c.header.flags & kFlagSeamClosing))
         fail(VQTEX_ERROR_CORRUPT, "the header's seam-closing flag disagrees with the closing trees present");
@@ -419,10 +436,7 @@ std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings&
             Shape shape = kind == 0 ? lv.shape : lv.closing_shape;
             shape.causal = kind == 0;
             const NeighborhoodLayout layout(shape, model.channels, l, levels);
-            TreeSections t = encode_tree(*book, tree_layout_of(layout), s);
-            writer.add(kTagTopology, uint8_t(l), uint8_t(kind), std::move(t.topology));
-            writer.add(kTagCodewords, uint8_t(l), uint8_t(kind), std::move(t.codewords));
-            writer.add(kTagEntries, uint8_t(l), uint8_t(kind), std::move(t.entries));
+            write_tree(writer, l, kind, *book, tree_layout_of(layout), s);
         }
     }
     return writer.write();
@@ -504,12 +518,9 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
             s.causal = kind == 0;
             const NeighborhoodLayout layout(s, ch, l, levels);
             const std::string where = std::string(kind ? "closing" : "causal") + " tree of level " + std::to_string(l);
-            const auto topo = section_bytes(data, require(kTagTopology, l, kind));
-            const auto code = section_bytes(data, require(kTagCodewords, l, kind));
-            const auto entr = section_bytes(data, require(kTagEntries, l, kind));
-            expected_sections += 3;
-            auto book = decode_tree(topo, code, entr, tree_layout_of(layout), precision, pixel_precision, where,
-                                    tree_budget);
+            auto book = read_tree(c, data, l, kind, kind ? "closing" : "", tree_layout_of(layout), precision,
+                                  pixel_precision, where, tree_budget);
+            expected_sections += kSectionsPerTree;
             auto matcher = std::make_shared<TsvqMatcher>(book, c.header.backtrack);
             if (kind == 0) {
                 lv.causal = book;

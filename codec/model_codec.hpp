@@ -86,6 +86,15 @@ inline constexpr char kTagEntries[4] = {'E', 'N', 'T', 'R'};
 const Section& require_section(const Container& c, const char tag[4], int level, int kind,
                                const std::string& kind_name);
 
+// A tree of a level and kind as its three sections: encode_tree into the
+// writer, and require_section + decode_tree out of a read container.
+void write_tree(ContainerWriter& writer, int level, int kind, const Codebook& book, const TreeLayout& layout,
+                const EncodeSettings& settings);
+std::shared_ptr<const Codebook> read_tree(const Container& c, const uint8_t* file, int level, int kind,
+                                          const std::string& kind_name, const TreeLayout& layout, int precision,
+                                          int pixel_precision, const std::string& where, std::size_t& memory_budget);
+inline constexpr std::size_t kSectionsPerTree = 3;
+
 // A HIST payload: 256 counts per channel, as varints.
 std::vector<uint8_t> encode_histogram(const LevelHistogram& h);
 LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels, const std::string& where);

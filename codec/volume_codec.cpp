@@ -93,10 +93,7 @@ std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const En
             Shape3 shape = kind == 0 ? lv.shape : kind == 1 ? lv.closing_shape : lv.seam_shape;
             shape.causal = kind != 1;
             const NeighborhoodLayout3 layout(shape, model.channels, l, levels);
-            TreeSections t = encode_tree(*book, tree_layout_of(layout), s);
-            writer.add(kTagTopology, uint8_t(l), uint8_t(kind), std::move(t.topology));
-            writer.add(kTagCodewords, uint8_t(l), uint8_t(kind), std::move(t.codewords));
-            writer.add(kTagEntries, uint8_t(l), uint8_t(kind), std::move(t.entries));
+            write_tree(writer, l, kind, *book, tree_layout_of(layout), s);
         }
     }
     return writer.write();
@@ -187,12 +184,9 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
             const NeighborhoodLayout3 layout(s, ch, l, levels);
             const std::string where =
                 std::string(kind == 0 ? "causal" : kind == 1 ? "closing" : "frame-seam") + " tree of " + where_level;
-            const auto topo = section_bytes(data, require(kTagTopology, l, kind));
-            const auto code = section_bytes(data, require(kTagCodewords, l, kind));
-            const auto entr = section_bytes(data, require(kTagEntries, l, kind));
-            expected_sections += 3;
-            auto book = decode_tree(topo, code, entr, tree_layout_of(layout), precision, pixel_precision, where,
-                                    tree_budget);
+            auto book = read_tree(c, data, l, kind, kind == 1 ? "closing" : kind == 2 ? "frame seam" : "",
+                                  tree_layout_of(layout), precision, pixel_precision, where, tree_budget);
+            expected_sections += kSectionsPerTree;
             // The synthesis reads every entry's predecessor (its key) when
             // the shape has one (temporal_synthesis.cpp).
             if (book->key_length() != layout.entry_key_offsets().size())
