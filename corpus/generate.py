@@ -407,65 +407,66 @@ TEXTURES = (
 ANIMATION_FRAMES = 32
 
 
-def make_waves_anim():
-    """Water: two crossing travelling waves over a fixed grain, blue-green."""
-    w = h = 48
+def animation(w, h, channels, pixel):
+    """Frames of `pixel(x, y, t, n)`, which gives one pixel's channel values."""
     n = ANIMATION_FRAMES
     frames = []
     for t in range(n):
         px = []
         for y in range(h):
             for x in range(w):
-                # Whole cycles per frame size and per loop keep it periodic.
-                a = math.sin(2.0 * math.pi * ((3 * x + 1 * y) / w - 2 * t / n))
-                b = math.sin(2.0 * math.pi * ((-1 * x + 2 * y) / w - 3 * t / n))
-                g = hash_unit(x, y, 31) - 0.5
-                v = 0.5 + 0.22 * a + 0.16 * b + 0.12 * g
-                px += [u8(255 * clamp01(0.15 + 0.35 * v)),
-                       u8(255 * clamp01(0.35 + 0.45 * v)),
-                       u8(255 * clamp01(0.55 + 0.45 * v))]
+                px += pixel(x, y, t, n)
         frames.append(px)
-    return w, h, 3, n, frames
+    return w, h, channels, n, frames
+
+
+def make_waves_anim():
+    """Water: two crossing travelling waves over a fixed grain, blue-green."""
+    w = 48
+
+    def pixel(x, y, t, n):
+        # Whole cycles per frame size and per loop keep it periodic.
+        a = math.sin(2.0 * math.pi * ((3 * x + 1 * y) / w - 2 * t / n))
+        b = math.sin(2.0 * math.pi * ((-1 * x + 2 * y) / w - 3 * t / n))
+        g = hash_unit(x, y, 31) - 0.5
+        v = 0.5 + 0.22 * a + 0.16 * b + 0.12 * g
+        return [u8(255 * clamp01(0.15 + 0.35 * v)),
+                u8(255 * clamp01(0.35 + 0.45 * v)),
+                u8(255 * clamp01(0.55 + 0.45 * v))]
+
+    return animation(w, w, 3, pixel)
 
 
 def make_advected_anim():
     """Two noise layers drifting one pixel per frame, one along x, one along y."""
     w = h = 32
-    n = ANIMATION_FRAMES
-    frames = []
-    for t in range(n):
-        px = []
-        for y in range(h):
-            for x in range(w):
-                a = fbm((x - t) % w, y, (8, 4, 2), w, h, 11)
-                b = fbm(x, (y - t) % h, (8, 4), w, h, 23)
-                px.append(u8(255 * clamp01(0.6 * a + 0.6 * b - 0.1)))
-        frames.append(px)
-    return w, h, 1, n, frames
+
+    def pixel(x, y, t, n):
+        a = fbm((x - t) % w, y, (8, 4, 2), w, h, 11)
+        b = fbm(x, (y - t) % h, (8, 4), w, h, 23)
+        return [u8(255 * clamp01(0.6 * a + 0.6 * b - 0.1))]
+
+    return animation(w, h, 1, pixel)
 
 
 def make_flicker_anim():
     """Candle-like flicker: warm blotches whose brightness pulses, each cell
     with its own phase and rate (1 or 2 cycles per loop)."""
     w = h = 32
-    n = ANIMATION_FRAMES
     cell = 8
-    frames = []
-    for t in range(n):
-        px = []
-        for y in range(h):
-            for x in range(w):
-                base = fbm(x, y, (8, 4), w, h, 41)
-                cx, cy = x // cell, y // cell
-                phase = hash_unit(cx, cy, 43)
-                rate = 1 + (hash2(cx, cy, 47) & 1)
-                pulse = 0.5 + 0.5 * math.sin(2.0 * math.pi * (rate * t / n + phase))
-                v = clamp01(base * (0.35 + 0.65 * pulse))
-                px += [u8(255 * clamp01(0.1 + 1.0 * v)),
-                       u8(255 * clamp01(0.05 + 0.7 * v)),
-                       u8(255 * clamp01(0.02 + 0.3 * v))]
-        frames.append(px)
-    return w, h, 3, n, frames
+
+    def pixel(x, y, t, n):
+        base = fbm(x, y, (8, 4), w, h, 41)
+        cx, cy = x // cell, y // cell
+        phase = hash_unit(cx, cy, 43)
+        rate = 1 + (hash2(cx, cy, 47) & 1)
+        pulse = 0.5 + 0.5 * math.sin(2.0 * math.pi * (rate * t / n + phase))
+        v = clamp01(base * (0.35 + 0.65 * pulse))
+        return [u8(255 * clamp01(0.1 + 1.0 * v)),
+                u8(255 * clamp01(0.05 + 0.7 * v)),
+                u8(255 * clamp01(0.02 + 0.3 * v))]
+
+    return animation(w, h, 3, pixel)
 
 
 ANIMATIONS = (
