@@ -26,6 +26,16 @@ inline uint32_t descent_distance(int64_t query_norm, int64_t bias, int32_t dot) 
     return uint32_t(query_norm + bias - 2 * int64_t(dot));
 }
 
+// One level of a descent: into the nearer of siblings a and a + 1 (the first
+// on ties), with the other queued as pending (distance << 32 | node).
+inline void take_nearer(std::size_t a, uint32_t d0, uint32_t d1, std::size_t& node, uint32_t& distance,
+                        uint64_t* pending, std::size_t& count) {
+    const bool take_first = d0 <= d1;
+    node = take_first ? a : a + 1;
+    distance = take_first ? d0 : d1;
+    pending[count++] = take_first ? (uint64_t(d1) << 32 | (a + 1)) : (uint64_t(d0) << 32 | a);
+}
+
 // Dot2(query, pair, n, out) and Prepare(query, signed_query, n) must be the
 // set's exact dot2 and prepare_query. GCC compiles the choice of child to a
 // branch, and that is the fast form: the core starts on the predicted
@@ -50,10 +60,7 @@ inline uint64_t descend_tree(const DescentTree& tree, const uint8_t* query, int8
         dot2(signed_query, tree.codewords + a * n, n, dots);
         const uint32_t d0 = descent_distance(query_norm, bias[a], dots[0]);
         const uint32_t d1 = descent_distance(query_norm, bias[a + 1], dots[1]);
-        const bool take_first = d0 <= d1;
-        node = take_first ? a : a + 1;
-        distance = take_first ? d0 : d1;
-        pending[count++] = take_first ? (uint64_t(d1) << 32 | (a + 1)) : (uint64_t(d0) << 32 | a);
+        take_nearer(a, d0, d1, node, distance, pending, count);
     }
     *pending_count = count;
     return uint64_t(distance) << 32 | node;

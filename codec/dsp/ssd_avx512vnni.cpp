@@ -92,10 +92,7 @@ uint64_t descend_in_registers(const DescentTree& tree, const uint8_t* query, uin
         reduce_pair(sum_a, sum_b, dots);
         const uint32_t d0 = detail::descent_distance(query_norm, bias[a], dots[0]);
         const uint32_t d1 = detail::descent_distance(query_norm, bias[a + 1], dots[1]);
-        const bool take_first = d0 <= d1;
-        node = take_first ? a : a + 1;
-        distance = take_first ? d0 : d1;
-        pending[count++] = take_first ? (uint64_t(d1) << 32 | (a + 1)) : (uint64_t(d0) << 32 | a);
+        detail::take_nearer(a, d0, d1, node, distance, pending, count);
     }
     *pending_count = count;
     return uint64_t(distance) << 32 | node;
