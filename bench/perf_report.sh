@@ -23,17 +23,23 @@ done
 have_gmic=1
 command -v gmic >/dev/null || { have_gmic=0; echo "perf_report: gmic not found (bash scripts/setup-bench.sh); skipping the comparison" >&2; }
 
+# Median of the arguments.
+median_of() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+
+# Wall time of one run of a command, in seconds.
+wall_time() {
+    local start end
+    start=$(date +%s.%N)
+    "$@" >/dev/null 2>&1
+    end=$(date +%s.%N)
+    awk -v a="$start" -v b="$end" 'BEGIN {print b - a}'
+}
+
 # Median wall time of a command, in seconds.
 median_time() {
     local times=() i
-    for ((i = 0; i < runs; i++)); do
-        local start end
-        start=$(date +%s.%N)
-        "$@" >/dev/null 2>&1
-        end=$(date +%s.%N)
-        times+=("$(awk -v a="$start" -v b="$end" 'BEGIN {print b - a}')")
-    done
-    printf '%s\n' "${times[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'
+    for ((i = 0; i < runs; i++)); do times+=("$(wall_time "$@")"); done
+    median_of "${times[@]}"
 }
 
 cores=$(nproc)
@@ -110,15 +116,13 @@ if [[ $have_gmic == 1 ]]; then
         # speed drifts.
         gmic_times=() lib_times=()
         for ((i = 0; i < runs; i++)); do
-            start=$(date +%s.%N)
-            OMP_NUM_THREADS=1 gmic -v -1 "$example" syntexturize_matchpatch 512,512 o "$out/${name}_gmic_512.png" >/dev/null 2>&1
-            end=$(date +%s.%N)
-            gmic_times+=("$(awk -v a="$start" -v b="$end" 'BEGIN {print b - a}')")
+            gmic_times+=("$(wall_time env OMP_NUM_THREADS=1 gmic -v -1 "$example" syntexturize_matchpatch 512,512 \
+                o "$out/${name}_gmic_512.png")")
             "$build/bench/bench_scaling" "$example" --sizes 512 --runs 1 --tsv "$out/lib_512.tsv" >/dev/null
             lib_times+=("$(awk -F'\t' '$1==512 {print $3}' "$out/lib_512.tsv")")
         done
-        g=$(printf '%s\n' "${gmic_times[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')
-        lib=$(printf '%s\n' "${lib_times[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')
+        g=$(median_of "${gmic_times[@]}")
+        lib=$(median_of "${lib_times[@]}")
         g0=$(median_time gmic -v -1 "$example" o "$out/${name}_gmic_noop.png")
         v=$(median_time "$build/vqtex-decode" "$file" "$out/${name}_vqtex_512.png" --size 512x512)
         v0=$(median_time "$build/vqtex-info" "$file")
