@@ -23,7 +23,10 @@ namespace vqtex::dsp {
 
 // The per-pixel ranking of near-tie candidates (matcher.hpp): a 64-bit
 // mix of the pixel's salt and the candidate's key. Defined here because the
-// lowest_rank kernels must reproduce it exactly.
+// lowest_rank kernels must reproduce it exactly. Only files compiled for the
+// baseline instruction set may call it (the AVX files have their own vector
+// forms): a copy of an inline function compiled with AVX flags could be the
+// one the linker keeps.
 inline uint64_t rank_hash(uint64_t salt, uint32_t key) {
     uint64_t z = salt ^ (uint64_t(key) * 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
