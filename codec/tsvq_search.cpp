@@ -49,6 +49,7 @@ TsvqMatcher::TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrac
     for (std::size_t leaf = 0; leaf < b.leaf_count(); ++leaf) {
         leaf_entries_[leaf] = b.entry(leaf, 0);
         leaf_entry_count_[leaf] = uint32_t(std::min<std::size_t>(b.entry_count(leaf), kMaxEntries));
+        ranked_entries_ = std::max(ranked_entries_, leaf_entry_count_[leaf]);
     }
     tree_ = dsp::DescentTree{first_child_.data(), node_bias_.data(), b.codeword(0), n};
 }
@@ -99,12 +100,30 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
     std::size_t best_leaf = 0;
     // The root's own distance only matters when it is a leaf.
     uint64_t next = uint64_t(b.node(0).first_child < 0 ? k.ssd(query, b.codeword(0), n) : 0) << 32;
+    if (leaves == 2 && context.tolerance == 0) {
+        // The default budget, in short: one walk, then one more from the
+        // nearest branch it passed, which the walk tracked as it went. The
+        // same leaves and the same choice as the loop below.
+        std::size_t count = 0;
+        uint64_t lowest = UINT64_MAX;
+        const uint64_t first = k.descend(tree_, query, signed_query, next, pending, &count, &lowest);
+        const std::size_t first_node = std::size_t(first & 0xFFFFFFFFu);
+        if (count == 0) return std::size_t(b.node(first_node).leaf);  // the root is the only leaf
+        uint64_t unused = UINT64_MAX;
+        const uint64_t second = k.descend(tree_, query, signed_query, lowest, pending, &count, &unused);
+        const std::size_t second_node = std::size_t(second & 0xFFFFFFFFu);
+        const uint32_t first_distance = uint32_t(first >> 32), second_distance = uint32_t(second >> 32);
+        const bool take_second = second_distance < first_distance ||
+                                 (second_distance == first_distance && node_key_[second_node] < node_key_[first_node]);
+        return std::size_t(b.node(take_second ? second_node : first_node).leaf);
+    }
     for (uint32_t visited = 0;;) {
         // The linear path collects the branches not taken in place; the heap
         // path moves them from a side buffer into the heap.
         std::size_t fresh = use_heap ? 0 : pending_count;
+        uint64_t lowest_unused = UINT64_MAX;  // the minimum is scanned for below: later pops need it too
         const uint64_t reached = k.descend(tree_, query, signed_query, next,
-                                           use_heap ? work.fresh.data() : pending, &fresh);
+                                           use_heap ? work.fresh.data() : pending, &fresh, &lowest_unused);
         if (use_heap) {
             for (std::size_t i = 0; i < fresh; ++i) {
                 heap.push_back(work.fresh[i]);
@@ -169,7 +188,7 @@ std::size_t TsvqMatcher::nearest_leaf_exhaustive(const uint8_t* query) const {
     return best_leaf;
 }
 
-std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, uint64_t salt) const {
+std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, const uint64_t* ranks) const {
     const Codebook& b = *book_;
     const std::size_t n = leaf_entry_count_[leaf];
     if (n == 1) return 0;
@@ -185,7 +204,7 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, ui
     // blocks.)
     const auto& offsets = b.key_offsets();
     const dsp::Kernels& kernels = dsp::kernels();
-    if (offsets.empty()) return kernels.lowest_rank(salt ^ 0x5EEDull, uint32_t(n), ~uint64_t(0));
+    if (offsets.empty()) return kernels.lowest_ranked(ranks, uint32_t(n), ~uint64_t(0));
     const std::size_t ch = std::size_t(b.channels()), entry_size = b.entry_size();
     uint32_t distance[kMaxEntries];
     uint32_t best = UINT32_MAX;
@@ -202,13 +221,18 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, ui
     const uint32_t threshold = best + best / 4 + uint32_t(4 * offsets.size());
     uint64_t qualifying = 0;
     for (std::size_t i = 0; i < n; ++i) qualifying |= uint64_t(distance[i] <= threshold) << i;
-    return kernels.lowest_rank(salt ^ 0x5EEDull, uint32_t(n), qualifying);
+    return kernels.lowest_ranked(ranks, uint32_t(n), qualifying);
 }
 
 const uint8_t* TsvqMatcher::match(const uint8_t* query, const MatchContext& context,
                                   MatchScratch* scratch) const {
+    // Ranked before the search, which does not need them: the hashes then
+    // run alongside the descent rather than after it, on the path from this
+    // pixel to the next (whose query reads this one).
+    alignas(64) uint64_t ranks[dsp::kMaxRanked];
+    if (ranked_entries_ > 1) dsp::kernels().rank_candidates(context.salt ^ kEntrySalt, ranked_entries_, ranks);
     const std::size_t leaf = search(query, backtrack_, scratch, context);
-    return leaf_entries_[leaf] + choose_entry(leaf, query, context.salt) * book_->entry_size();
+    return leaf_entries_[leaf] + choose_entry(leaf, query, ranks) * book_->entry_size();
 }
 
 }  // namespace vqtex

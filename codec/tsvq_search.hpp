@@ -31,12 +31,17 @@ public:
                        const MatchContext& context = {}) const;
     // The exactly nearest leaf by brute force over all leaves (the oracle).
     std::size_t nearest_leaf_exhaustive(const uint8_t* query) const;
-    // Which entry of `leaf` to output for this query (see tsvq_tree.hpp).
-    std::size_t choose_entry(std::size_t leaf, const uint8_t* query, uint64_t salt) const;
+    // Which entry of `leaf` to output for this query (see tsvq_tree.hpp),
+    // given the pixel's candidate ranks (ranked_entries() of them, from
+    // Kernels::rank_candidates with the pixel's salt ^ kEntrySalt).
+    std::size_t choose_entry(std::size_t leaf, const uint8_t* query, const uint64_t* ranks) const;
+    uint32_t ranked_entries() const { return ranked_entries_; }
+    static constexpr uint64_t kEntrySalt = 0x5EED;
     const Codebook& codebook() const { return *book_; }
 
     // Entries per leaf the search considers; more are never stored.
     static constexpr std::size_t kMaxEntries = 64;
+    static_assert(kMaxEntries <= dsp::kMaxRanked, "every entry of a leaf must be rankable");
     // Up to this many leaves, pending branches are kept unsorted (see search).
     static constexpr uint32_t kLinearScanLeaves = 8;
 
@@ -51,6 +56,7 @@ private:
     std::vector<uint32_t> node_key_;            // per node: the leaf's tie key
     std::vector<const uint8_t*> leaf_entries_;  // per leaf: its first entry
     std::vector<uint32_t> leaf_entry_count_;    // per leaf: entries considered (<= kMaxEntries)
+    uint32_t ranked_entries_ = 1;               // the most entries of any leaf
     dsp::DescentTree tree_{};
 };
 

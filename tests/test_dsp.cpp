@@ -170,7 +170,21 @@ TEST(Dsp, PreparedQueryIsTheSignedBytesAndTheSquaredNormOnEveryKernelSet) {
     }
 }
 
-TEST(Dsp, LowestRankIsTheFirstMinimumAmongAllowedCandidatesOnEveryKernelSet) {
+TEST(Dsp, RankCandidatesIsRankHashOnEveryKernelSet) {
+    Rng rng(12);
+    for (int trial = 0; trial < 200; ++trial) {
+        const uint32_t count = 1 + uint32_t(rng.below(dsp::kMaxRanked));
+        const uint64_t salt = rng.next();
+        for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+            std::vector<uint64_t> ranks(dsp::kMaxRanked, 0);
+            dsp::available_kernels(k).rank_candidates(salt, count, ranks.data());
+            for (uint32_t i = 0; i < count; ++i)
+                ASSERT_EQ(ranks[i], dsp::rank_hash(salt, i)) << dsp::available_kernels(k).name << " count " << count;
+        }
+    }
+}
+
+TEST(Dsp, LowestRankedIsTheFirstMinimumAmongAllowedCandidatesOnEveryKernelSet) {
     Rng rng(11);
     for (int trial = 0; trial < 3000; ++trial) {
         const uint32_t n = 1 + uint32_t(rng.below(64));
@@ -178,15 +192,19 @@ TEST(Dsp, LowestRankIsTheFirstMinimumAmongAllowedCandidatesOnEveryKernelSet) {
         if (trial % 3 == 0) allowed = ~uint64_t(0);
         const uint64_t within = n == 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1;
         if ((allowed & within) == 0) allowed |= uint64_t(1) << rng.below(n);
-        const uint64_t salt = rng.next();
+        // Real ranks, or a few values with many ties (lowest index wins), or
+        // all-ones ranks (still candidates). Past n the ranks are zero, which
+        // would win if a kernel looked there.
+        std::vector<uint64_t> ranks(dsp::kMaxRanked, 0);
+        const int kind = trial % 4;
+        for (uint32_t i = 0; i < n; ++i)
+            ranks[i] = kind < 2 ? dsp::rank_hash(rng.next(), i) : kind == 2 ? rng.below(3) : UINT64_MAX - rng.below(2);
         uint32_t expected = UINT32_MAX;
         for (uint32_t i = 0; i < n; ++i)
-            if (((allowed >> i) & 1) &&
-                (expected == UINT32_MAX || dsp::rank_hash(salt, i) < dsp::rank_hash(salt, expected)))
-                expected = i;
+            if (((allowed >> i) & 1) && (expected == UINT32_MAX || ranks[i] < ranks[expected])) expected = i;
         for (int k = 0; k < dsp::available_kernel_count(); ++k)
-            ASSERT_EQ(dsp::available_kernels(k).lowest_rank(salt, n, allowed), expected)
-                << dsp::available_kernels(k).name << " n=" << n << " trial " << trial;
+            ASSERT_EQ(dsp::available_kernels(k).lowest_ranked(ranks.data(), n, allowed), expected)
+                << dsp::available_kernels(k).name << " n=" << n << " trial " << trial << " kind " << kind;
     }
 }
 
@@ -224,12 +242,18 @@ TEST(Dsp, DescentFollowsTheNearerChildAndQueuesTheOtherOnEveryKernelSet) {
                 std::vector<uint64_t> pending(8, 0);
                 pending[0] = 99;  // already queued: kept, appended after
                 std::size_t count = 1;
-                const uint64_t leaf = kernels.descend(tree, query.data(), signed_scratch.data(), 0, pending.data(), &count);
+                uint64_t lowest = uint64_t(seed) << 40;  // sometimes below what the walk queues
+                const uint64_t leaf =
+                    kernels.descend(tree, query.data(), signed_scratch.data(), 0, pending.data(), &count, &lowest);
                 EXPECT_EQ(leaf, uint64_t(distance) << 32 | node) << kernels.name << " n=" << n << " seed " << seed;
                 ASSERT_EQ(count, 1 + expected_pending.size()) << kernels.name;
                 EXPECT_EQ(pending[0], 99u);
-                for (std::size_t i = 0; i < expected_pending.size(); ++i)
+                uint64_t expected_lowest = uint64_t(seed) << 40;
+                for (std::size_t i = 0; i < expected_pending.size(); ++i) {
                     EXPECT_EQ(pending[1 + i], expected_pending[i]) << kernels.name << " seed " << seed;
+                    expected_lowest = std::min(expected_lowest, expected_pending[i]);
+                }
+                EXPECT_EQ(lowest, expected_lowest) << kernels.name << " seed " << seed;
             }
         }
     }

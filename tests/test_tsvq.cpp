@@ -4,6 +4,7 @@
 // exhaustive synthesis bit for bit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "dsp/dsp.hpp"
@@ -255,4 +256,47 @@ TEST(Tsvq, OneLeafSearchEqualsDistanceDescent) {
         }
         EXPECT_EQ(matcher.search(q, 1, nullptr), std::size_t(book->node(node).leaf));
     }
+}
+
+TEST(Tsvq, TwoLeafSearchVisitsTheNearestPassedBranchSecond) {
+    // L = 2, the decoder's default, has its own short path in search: one
+    // walk, then one from the nearest branch it passed (by distance, then
+    // node), and the nearer leaf (by distance, then key). The reference here
+    // is that definition with plain distances. The periodic texture has
+    // leaves with equal codewords, so that ties between the two leaves occur.
+    std::size_t second_won = 0, ties = 0;
+    for (const char* name : {"cellular_128.png", "checks_p16_64.png"}) {
+        SCOPED_TRACE(name);
+        const Fixture f = level0_examples(name, 4);
+        TrainParams p;
+        p.max_leaves = 400;
+        auto book = std::make_shared<const Codebook>(train_codebook(f.set, all_indices(f.set), p));
+        const TsvqMatcher matcher(book, 2);
+        auto scratch = matcher.make_scratch();
+        const dsp::Kernels& k = dsp::kernels();
+        const std::size_t n = book->stride();
+        auto walk = [&](const uint8_t* q, std::size_t node, std::vector<std::pair<uint32_t, std::size_t>>* passed) {
+            while (book->node(node).first_child >= 0) {
+                const std::size_t a = std::size_t(book->node(node).first_child);
+                const uint32_t d0 = k.ssd(q, book->codeword(a), n), d1 = k.ssd(q, book->codeword(a + 1), n);
+                if (passed) passed->emplace_back(d0 <= d1 ? d1 : d0, d0 <= d1 ? a + 1 : a);
+                node = d0 <= d1 ? a : a + 1;
+            }
+            return node;
+        };
+        for (std::size_t i = 0; i < f.set.count(); i += 3) {
+            const uint8_t* q = f.set.vector(i);
+            std::vector<std::pair<uint32_t, std::size_t>> passed;
+            const std::size_t first = walk(q, 0, &passed);
+            const std::size_t second = walk(q, std::min_element(passed.begin(), passed.end())->second, nullptr);
+            const uint32_t d1 = k.ssd(q, book->codeword(first), n), d2 = k.ssd(q, book->codeword(second), n);
+            const std::size_t leaf1 = std::size_t(book->node(first).leaf), leaf2 = std::size_t(book->node(second).leaf);
+            const bool take_second = d2 < d1 || (d2 == d1 && book->leaf_key(leaf2) < book->leaf_key(leaf1));
+            second_won += take_second;
+            ties += d1 == d2 && leaf1 != leaf2;
+            ASSERT_EQ(matcher.search(q, 2, scratch.get()), take_second ? leaf2 : leaf1) << "vector " << i;
+        }
+    }
+    EXPECT_GT(second_won, 0u);  // the second walk matters
+    EXPECT_GT(ties, 0u);        // and ties between the two leaves are covered
 }

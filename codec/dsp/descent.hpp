@@ -27,13 +27,16 @@ inline uint32_t descent_distance(int64_t query_norm, int64_t bias, int32_t dot) 
 }
 
 // One level of a descent: into the nearer of siblings a and a + 1 (the first
-// on ties), with the other queued as pending (distance << 32 | node).
+// on ties), with the other queued as pending (distance << 32 | node) and
+// `lowest` lowered to it if it is less.
 inline void take_nearer(std::size_t a, uint32_t d0, uint32_t d1, std::size_t& node, uint32_t& distance,
-                        uint64_t* pending, std::size_t& count) {
+                        uint64_t* pending, std::size_t& count, uint64_t& lowest) {
     const bool take_first = d0 <= d1;
     node = take_first ? a : a + 1;
     distance = take_first ? d0 : d1;
-    pending[count++] = take_first ? (uint64_t(d1) << 32 | (a + 1)) : (uint64_t(d0) << 32 | a);
+    const uint64_t other = take_first ? (uint64_t(d1) << 32 | (a + 1)) : (uint64_t(d0) << 32 | a);
+    pending[count++] = other;
+    lowest = other < lowest ? other : lowest;
 }
 
 // Dot2(query, pair, n, out) and Prepare(query, signed_query, n) must be the
@@ -45,13 +48,15 @@ inline void take_nearer(std::size_t a, uint32_t d0, uint32_t d1, std::size_t& no
 // per step (the pairs under both children alongside the children) no faster.
 template <class Dot2, class Prepare>
 inline uint64_t descend_tree(const DescentTree& tree, const uint8_t* query, int8_t* signed_query,
-                             uint64_t start, uint64_t* pending, std::size_t* pending_count, Dot2 dot2,
+                             uint64_t start, uint64_t* pending, std::size_t* pending_count,
+                             uint64_t* lowest_pending, Dot2 dot2,
                              Prepare prepare_query) {
     const int64_t query_norm = prepare_query(query, signed_query, tree.stride);
     const int32_t* first_child = tree.first_child;
     const int64_t* bias = tree.bias;
     const std::size_t n = tree.stride;
     std::size_t count = *pending_count;
+    uint64_t lowest = *lowest_pending;
     std::size_t node = std::size_t(start & 0xFFFFFFFFu);
     uint32_t distance = uint32_t(start >> 32);
     for (int32_t first = first_child[node]; first >= 0; first = first_child[node]) {
@@ -60,9 +65,10 @@ inline uint64_t descend_tree(const DescentTree& tree, const uint8_t* query, int8
         dot2(signed_query, tree.codewords + a * n, n, dots);
         const uint32_t d0 = descent_distance(query_norm, bias[a], dots[0]);
         const uint32_t d1 = descent_distance(query_norm, bias[a + 1], dots[1]);
-        take_nearer(a, d0, d1, node, distance, pending, count);
+        take_nearer(a, d0, d1, node, distance, pending, count, lowest);
     }
     *pending_count = count;
+    *lowest_pending = lowest;
     return uint64_t(distance) << 32 | node;
 }
 
@@ -82,13 +88,19 @@ inline int64_t prepare_query_portable(const uint8_t* __restrict query, int8_t* _
     return int64_t(norm);
 }
 
-// lowest_rank without vectors: every candidate is ranked, and the running
-// minimum is kept with masks rather than branches.
-inline uint32_t lowest_rank_portable(uint64_t salt, uint32_t n, uint64_t allowed) {
+// rank_candidates without vectors. Only the baseline-compiled sets may use
+// it (it calls rank_hash; see dsp.hpp).
+inline void rank_candidates_portable(uint64_t salt, uint32_t count, uint64_t* ranks) {
+    for (uint32_t i = 0; i < count; ++i) ranks[i] = rank_hash(salt, i);
+}
+
+// lowest_ranked without vectors: the running minimum is kept with masks
+// rather than branches.
+inline uint32_t lowest_ranked_portable(const uint64_t* ranks, uint32_t n, uint64_t allowed) {
     uint64_t best = UINT64_MAX;
     uint32_t chosen = UINT32_MAX;
     for (uint32_t i = 0; i < n; ++i) {
-        const uint64_t rank = rank_hash(salt, i);
+        const uint64_t rank = ranks[i];
         // Take i if allowed and strictly lower, or if nothing is chosen yet
         // (a rank of UINT64_MAX is still a candidate).
         const bool take = ((allowed >> i) & 1) && (rank < best || chosen == UINT32_MAX);
@@ -102,8 +114,8 @@ inline uint32_t lowest_rank_portable(uint64_t salt, uint32_t n, uint64_t allowed
 // The descend kernel of a set, from its dot2 and prepare_query.
 template <auto Dot2, auto Prepare>
 uint64_t descend_with(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch, uint64_t start,
-                      uint64_t* pending, std::size_t* pending_count) {
-    return descend_tree(tree, query, signed_scratch, start, pending, pending_count, Dot2, Prepare);
+                      uint64_t* pending, std::size_t* pending_count, uint64_t* lowest_pending) {
+    return descend_tree(tree, query, signed_scratch, start, pending, pending_count, lowest_pending, Dot2, Prepare);
 }
 
 }  // namespace

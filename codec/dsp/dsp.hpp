@@ -23,7 +23,7 @@ namespace vqtex::dsp {
 
 // The per-pixel ranking of near-tie candidates (matcher.hpp): a 64-bit
 // mix of the pixel's salt and the candidate's key. Defined here because the
-// lowest_rank kernels must reproduce it exactly. Only files compiled for the
+// rank_candidates kernels must reproduce it exactly. Only files compiled for the
 // baseline instruction set may call it (the AVX files have their own vector
 // forms): a copy of an inline function compiled with AVX flags could be the
 // one the linker keeps.
@@ -37,6 +37,9 @@ inline uint64_t rank_hash(uint64_t salt, uint32_t key) {
 // Vectors handed to the kernels are padded with zeros to a multiple of this
 // many bytes, so kernels never need a scalar tail.
 inline constexpr std::size_t kVectorAlign = 16;
+
+// Candidates one ranking covers at most (the bits of its `allowed` mask).
+inline constexpr uint32_t kMaxRanked = 64;
 
 inline constexpr std::size_t padded_length(std::size_t n) {
     return (n + kVectorAlign - 1) / kVectorAlign * kVectorAlign;
@@ -86,19 +89,31 @@ struct Kernels {
     // One TSVQ descent for `query` (n = tree.stride bytes) from node (start &
     // 0xFFFFFFFF, at distance start >> 32) to a leaf, always into the nearer
     // child (the first on ties). Appends the child not taken at each level to
-    // pending[*pending_count...] as (distance << 32 | node) and advances
-    // *pending_count; returns the leaf as (distance << 32 | node).
+    // pending[*pending_count...] as (distance << 32 | node), advances
+    // *pending_count and lowers *lowest_pending to the least key appended;
+    // returns the leaf as (distance << 32 | node). The running minimum is
+    // kept as the walk goes, off the path of its decisions, so that a
+    // search that pops one branch (L = 2, the default) need not scan the
+    // pending list after the walk.
     // signed_scratch (n bytes) is working memory for sets that need the
     // signed query in memory; sets that keep it in registers avoid storing
     // and reloading it at every call.
     uint64_t (*descend)(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
-                        uint64_t start, uint64_t* pending, std::size_t* pending_count);
-    // Of the candidates i < n (n <= 64) whose bit is set in `allowed`, the
-    // one with the lowest rank_hash(salt, i), the lowest i on equal ranks.
-    // `allowed` must have a bit set below n. Branch-free: which candidate
-    // wins is random by design, so a compare-and-branch per candidate would
+                        uint64_t start, uint64_t* pending, std::size_t* pending_count, uint64_t* lowest_pending);
+    // ranks[i] = rank_hash(salt, i) for i < count (count <= kMaxRanked).
+    // Sets may fill the array up to the next multiple of 8, so it must have
+    // room for kMaxRanked. The ranking is split from the choice below so that
+    // the per-pixel path can rank while it searches: the salt is known before
+    // the search starts, and the hashes' multiplies then run alongside the
+    // descent instead of after it, on the path from one pixel to the next.
+    void (*rank_candidates)(uint64_t salt, uint32_t count, uint64_t* ranks);
+    // Of the candidates i < n (n <= kMaxRanked) whose bit is set in
+    // `allowed`, the one with the lowest ranks[i], the lowest i on equal
+    // ranks. `allowed` must have a bit set below n, and ranks[0 .. n) must
+    // be set (ranks at or above n are never read). Branch-free: which candidate wins is
+    // random by design, so a compare-and-branch per candidate would
     // mispredict about every other time.
-    uint32_t (*lowest_rank)(uint64_t salt, uint32_t n, uint64_t allowed);
+    uint32_t (*lowest_ranked)(const uint64_t* ranks, uint32_t n, uint64_t allowed);
 };
 
 // The kernels chosen for this CPU, once. The environment variable

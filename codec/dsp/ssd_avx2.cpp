@@ -137,37 +137,48 @@ inline __m256i rank_hash4(__m256i salt, __m256i key) {
     return _mm256_xor_si256(z, _mm256_srli_epi64(z, 31));
 }
 
-uint32_t lowest_rank_avx2(uint64_t salt, uint32_t n, uint64_t allowed) {
+void rank_candidates_avx2(uint64_t salt, uint32_t count, uint64_t* ranks) {
+    const __m256i salt4 = _mm256_set1_epi64x(int64_t(salt));
+    const __m256i lanes = _mm256_set_epi64x(3, 2, 1, 0);
+    for (uint32_t base = 0; base < count; base += 4)
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(ranks + base),
+                            rank_hash4(salt4, _mm256_add_epi64(_mm256_set1_epi64x(base), lanes)));
+}
+
+uint32_t lowest_ranked_avx2(const uint64_t* ranks, uint32_t n, uint64_t allowed) {
     if (n < 64) allowed &= (uint64_t(1) << n) - 1;
     const __m256i none = _mm256_set1_epi64x(-1);
     const __m256i sign = _mm256_set1_epi64x(INT64_MIN);
     const __m256i lane_bit = _mm256_set_epi64x(8, 4, 2, 1);
-    const __m256i salt4 = _mm256_set1_epi64x(int64_t(salt));
-    // Per lane: the lowest rank seen and its index (none yet: all ones).
-    __m256i best = none, best_index = none;
-    for (uint32_t base = 0; base < n; base += 4) {
-        const __m256i index = _mm256_add_epi64(_mm256_set1_epi64x(base), _mm256_set_epi64x(3, 2, 1, 0));
-        const __m256i rank = rank_hash4(salt4, index);
+    // The allowed lanes of four candidates as a vector mask, and their ranks
+    // with the others as all ones (masked loads read nothing else).
+    auto lanes_at = [&](uint32_t base) {
         const __m256i bits = _mm256_set1_epi64x(int64_t((allowed >> base) & 15));
-        const __m256i ok = _mm256_cmpeq_epi64(_mm256_and_si256(bits, lane_bit), lane_bit);
-        // Unsigned rank < best, through the signed compare.
-        const __m256i lower = _mm256_cmpgt_epi64(_mm256_xor_si256(best, sign), _mm256_xor_si256(rank, sign));
-        const __m256i empty = _mm256_cmpeq_epi64(best_index, none);
-        const __m256i take = _mm256_and_si256(ok, _mm256_or_si256(lower, empty));
-        best = _mm256_blendv_epi8(best, rank, take);
-        best_index = _mm256_blendv_epi8(best_index, index, take);
+        return _mm256_cmpeq_epi64(_mm256_and_si256(bits, lane_bit), lane_bit);
+    };
+    auto ranks_at = [&](uint32_t base, __m256i ok) {
+        const __m256i loaded = _mm256_maskload_epi64(reinterpret_cast<const long long*>(ranks + base), ok);
+        return _mm256_blendv_epi8(none, loaded, ok);
+    };
+    __m256i low = none;
+    for (uint32_t base = 0; base < n; base += 4) {
+        const __m256i rank = ranks_at(base, lanes_at(base));
+        // Unsigned rank < low, through the signed compare.
+        const __m256i lower = _mm256_cmpgt_epi64(_mm256_xor_si256(low, sign), _mm256_xor_si256(rank, sign));
+        low = _mm256_blendv_epi8(low, rank, lower);
     }
-    alignas(32) uint64_t ranks[4], indices[4];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(ranks), best);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(indices), best_index);
-    uint64_t chosen = UINT64_MAX, chosen_rank = UINT64_MAX;
-    for (int lane = 0; lane < 4; ++lane) {
-        if (indices[lane] == UINT64_MAX) continue;
-        if (chosen == UINT64_MAX || ranks[lane] < chosen_rank ||
-            (ranks[lane] == chosen_rank && indices[lane] < chosen))
-            chosen = indices[lane], chosen_rank = ranks[lane];
+    alignas(32) uint64_t lane_low[4];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(lane_low), low);
+    uint64_t lowest = lane_low[0];
+    for (int lane = 1; lane < 4; ++lane) lowest = lane_low[lane] < lowest ? lane_low[lane] : lowest;
+    const __m256i target = _mm256_set1_epi64x(int64_t(lowest));
+    uint64_t at_lowest = 0;
+    for (uint32_t base = 0; base < n; base += 4) {
+        const __m256i ok = lanes_at(base);
+        const __m256i hit = _mm256_and_si256(ok, _mm256_cmpeq_epi64(ranks_at(base, ok), target));
+        at_lowest |= uint64_t(_mm256_movemask_pd(_mm256_castsi256_pd(hit))) << base;
     }
-    return uint32_t(chosen);
+    return uint32_t(__builtin_ctzll(at_lowest));
 }
 
 const Kernels kAvx2 = {
@@ -179,7 +190,8 @@ const Kernels kAvx2 = {
     dot2_avx2,
     prepare_query_avx2,
     detail::descend_with<dot2_avx2, prepare_query_avx2>,
-    lowest_rank_avx2,
+    rank_candidates_avx2,
+    lowest_ranked_avx2,
 };
 
 }  // namespace

@@ -152,29 +152,29 @@ inline __m512i rank_hash8(__m512i salt, __m512i key) {
     return _mm512_xor_si512(z, _mm512_srli_epi64(z, 31));
 }
 
-uint32_t lowest_rank_avx512(uint64_t salt, uint32_t n, uint64_t allowed) {
-    if (n < 64) allowed &= (uint64_t(1) << n) - 1;
-    const __m512i none = _mm512_set1_epi64(-1);
+void rank_candidates_avx512(uint64_t salt, uint32_t count, uint64_t* ranks) {
     const __m512i salt8 = _mm512_set1_epi64(int64_t(salt));
-    // Per lane: the lowest rank seen and its index (none yet: all ones).
-    __m512i best = none, best_index = none;
+    const __m512i lanes = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
+    for (uint32_t base = 0; base < count; base += 8)
+        _mm512_storeu_si512(ranks + base, rank_hash8(salt8, _mm512_add_epi64(_mm512_set1_epi64(base), lanes)));
+}
+
+uint32_t lowest_ranked_avx512(const uint64_t* ranks, uint32_t n, uint64_t allowed) {
+    if (n < 64) allowed &= (uint64_t(1) << n) - 1;
+    // Candidates not allowed read as all ones, and masked loads read nothing
+    // else: the lowest rank, then the first allowed index holding it.
+    const __m512i none = _mm512_set1_epi64(-1);
+    __m512i low = none;
+    for (uint32_t base = 0; base < n; base += 8)
+        low = _mm512_min_epu64(low, _mm512_mask_loadu_epi64(none, __mmask8(allowed >> base), ranks + base));
+    const __m512i lowest = _mm512_set1_epi64(int64_t(_mm512_reduce_min_epu64(low)));
+    uint64_t at_lowest = 0;
     for (uint32_t base = 0; base < n; base += 8) {
-        const __m512i index = _mm512_add_epi64(_mm512_set1_epi64(base), _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0));
-        const __m512i rank = rank_hash8(salt8, index);
-        const __mmask8 take = __mmask8((allowed >> base) & 0xFF) &
-                              (_mm512_cmplt_epu64_mask(rank, best) | _mm512_cmpeq_epi64_mask(best_index, none));
-        best = _mm512_mask_mov_epi64(best, take, rank);
-        best_index = _mm512_mask_mov_epi64(best_index, take, index);
+        const __mmask8 lanes = __mmask8(allowed >> base);
+        at_lowest |= uint64_t(_mm512_mask_cmpeq_epu64_mask(lanes, _mm512_maskz_loadu_epi64(lanes, ranks + base), lowest))
+                     << base;
     }
-    const __mmask8 valid = _mm512_cmpneq_epi64_mask(best_index, none);
-    const uint64_t lowest = _mm512_mask_reduce_min_epu64(valid, best);
-    const __mmask8 at_lowest = valid & _mm512_cmpeq_epi64_mask(best, _mm512_set1_epi64(int64_t(lowest)));
-    // One lane at the minimum: its index, without a second reduction. (Ranks
-    // of distinct indices never tie, since rank_hash mixes salt ^ key * odd
-    // constant with a bijection; the reduction stays as the definition.)
-    if (__builtin_expect((at_lowest & (at_lowest - 1)) == 0, 1))
-        return uint32_t(_mm_cvtsi128_si64(_mm512_castsi512_si128(_mm512_maskz_compress_epi64(at_lowest, best_index))));
-    return uint32_t(_mm512_mask_reduce_min_epu64(at_lowest, best_index));
+    return uint32_t(__builtin_ctzll(at_lowest));
 }
 
 const Kernels kAvx512 = {
@@ -186,7 +186,8 @@ const Kernels kAvx512 = {
     dot2_avx512,
     prepare_query_avx512,
     detail::descend_with<dot2_avx512, prepare_query_avx512>,
-    lowest_rank_avx512,
+    rank_candidates_avx512,
+    lowest_ranked_avx512,
 };
 
 }  // namespace

@@ -70,7 +70,8 @@ const Kernels kScalar = {
     dot2_scalar,
     detail::prepare_query_portable,
     detail::descend_with<dot2_scalar, detail::prepare_query_portable>,
-    detail::lowest_rank_portable,
+    detail::rank_candidates_portable,
+    detail::lowest_ranked_portable,
 };
 
 }  // namespace

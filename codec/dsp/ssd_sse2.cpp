@@ -117,7 +117,8 @@ const Kernels kSse2 = {
     dot2_sse2,
     detail::prepare_query_portable,
     detail::descend_with<dot2_sse2, detail::prepare_query_portable>,
-    detail::lowest_rank_portable,
+    detail::rank_candidates_portable,
+    detail::lowest_ranked_portable,
 };
 
 }  // namespace
