@@ -188,7 +188,22 @@ std::size_t TsvqMatcher::nearest_leaf_exhaustive(const uint8_t* query) const {
     return best_leaf;
 }
 
-std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, const uint64_t* ranks) const {
+void TsvqMatcher::rank_entries(uint64_t salt, EntryRanking& ranking) const {
+    if (ranked_entries_ < 2) return;
+    dsp::kernels().rank_candidates(salt ^ kEntrySalt, ranked_entries_, ranking.rank);
+    // The running minimum, without branches (which entry wins is random).
+    uint64_t lowest = ranking.rank[0];
+    uint32_t index = 0;
+    ranking.first_lowest[0] = 0;
+    for (uint32_t i = 1; i < ranked_entries_; ++i) {
+        const uint64_t lower = 0 - uint64_t(ranking.rank[i] < lowest);
+        lowest = (ranking.rank[i] & lower) | (lowest & ~lower);
+        index = (i & uint32_t(lower)) | (index & ~uint32_t(lower));
+        ranking.first_lowest[i] = uint8_t(index);
+    }
+}
+
+std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, const EntryRanking& ranking) const {
     const Codebook& b = *book_;
     const std::size_t n = leaf_entry_count_[leaf];
     if (n == 1) return 0;
@@ -203,8 +218,8 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, co
     // favours smooth continuations and the texture collapses into flat
     // blocks.)
     const auto& offsets = b.key_offsets();
+    if (offsets.empty()) return ranking.first_lowest[n - 1];
     const dsp::Kernels& kernels = dsp::kernels();
-    if (offsets.empty()) return kernels.lowest_ranked(ranks, uint32_t(n), ~uint64_t(0));
     const std::size_t ch = std::size_t(b.channels()), entry_size = b.entry_size();
     uint32_t distance[kMaxEntries];
     uint32_t best = UINT32_MAX;
@@ -221,7 +236,7 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, co
     const uint32_t threshold = best + best / 4 + uint32_t(4 * offsets.size());
     uint64_t qualifying = 0;
     for (std::size_t i = 0; i < n; ++i) qualifying |= uint64_t(distance[i] <= threshold) << i;
-    return kernels.lowest_ranked(ranks, uint32_t(n), qualifying);
+    return kernels.lowest_ranked(ranking.rank, uint32_t(n), qualifying);
 }
 
 const uint8_t* TsvqMatcher::match(const uint8_t* query, const MatchContext& context,
@@ -229,10 +244,10 @@ const uint8_t* TsvqMatcher::match(const uint8_t* query, const MatchContext& cont
     // Ranked before the search, which does not need them: the hashes then
     // run alongside the descent rather than after it, on the path from this
     // pixel to the next (whose query reads this one).
-    alignas(64) uint64_t ranks[dsp::kMaxRanked];
-    if (ranked_entries_ > 1) dsp::kernels().rank_candidates(context.salt ^ kEntrySalt, ranked_entries_, ranks);
+    EntryRanking ranking;
+    rank_entries(context.salt, ranking);
     const std::size_t leaf = search(query, backtrack_, scratch, context);
-    return leaf_entries_[leaf] + choose_entry(leaf, query, ranks) * book_->entry_size();
+    return leaf_entries_[leaf] + choose_entry(leaf, query, ranking) * book_->entry_size();
 }
 
 }  // namespace vqtex

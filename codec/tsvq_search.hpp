@@ -31,11 +31,17 @@ public:
                        const MatchContext& context = {}) const;
     // The exactly nearest leaf by brute force over all leaves (the oracle).
     std::size_t nearest_leaf_exhaustive(const uint8_t* query) const;
-    // Which entry of `leaf` to output for this query (see tsvq_tree.hpp),
-    // given the pixel's candidate ranks (ranked_entries() of them, from
-    // Kernels::rank_candidates with the pixel's salt ^ kEntrySalt).
-    std::size_t choose_entry(std::size_t leaf, const uint8_t* query, const uint64_t* ranks) const;
-    uint32_t ranked_entries() const { return ranked_entries_; }
+    // A pixel's ranking of entry indices, made from its salt before its
+    // search: rank[i] = rank_hash(salt ^ kEntrySalt, i), and first_lowest[m]
+    // the index of the lowest of rank[0 .. m] (the lowest index on ties),
+    // which is the choice among m + 1 entries that all qualify.
+    struct EntryRanking {
+        alignas(64) uint64_t rank[dsp::kMaxRanked];
+        uint8_t first_lowest[dsp::kMaxRanked];
+    };
+    void rank_entries(uint64_t salt, EntryRanking& ranking) const;
+    // Which entry of `leaf` to output for this query (see tsvq_tree.hpp).
+    std::size_t choose_entry(std::size_t leaf, const uint8_t* query, const EntryRanking& ranking) const;
     static constexpr uint64_t kEntrySalt = 0x5EED;
     const Codebook& codebook() const { return *book_; }
 

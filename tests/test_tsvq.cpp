@@ -9,6 +9,7 @@
 
 #include "dsp/dsp.hpp"
 #include "pyramid.hpp"
+#include "rng.hpp"
 #include "search_exhaustive.hpp"
 #include "texture_model.hpp"
 #include "tsvq_search.hpp"
@@ -299,4 +300,38 @@ TEST(Tsvq, TwoLeafSearchVisitsTheNearestPassedBranchSecond) {
     }
     EXPECT_GT(second_won, 0u);  // the second walk matters
     EXPECT_GT(ties, 0u);        // and ties between the two leaves are covered
+}
+
+TEST(Tsvq, KeylessEntryChoiceIsTheLowestRankedEntry) {
+    // Without keys every entry of a leaf qualifies, and the pixel's salt
+    // alone chooses: the entry i < n with the lowest rank_hash(salt ^
+    // kEntrySalt, i). The matcher answers from a running minimum made before
+    // the search; the reference is the definition.
+    const Fixture f = level0_examples("cellular_128.png", 4);
+    TrainParams p;
+    p.max_leaves = 3000;  // small leaves too, with fewer members than entries
+    p.entries_per_leaf = 12;
+    auto book = std::make_shared<const Codebook>(train_codebook(f.set, all_indices(f.set), p));
+    ASSERT_TRUE(book->key_offsets().empty());
+    const TsvqMatcher matcher(book, 2);
+    Rng rng(5);
+    std::set<std::size_t> counts, chosen;
+    for (int trial = 0; trial < 40; ++trial) {
+        const uint64_t salt = rng.next();
+        TsvqMatcher::EntryRanking ranking;
+        matcher.rank_entries(salt, ranking);
+        for (std::size_t leaf = 0; leaf < book->leaf_count(); ++leaf) {
+            const std::size_t n = std::min(book->entry_count(leaf), TsvqMatcher::kMaxEntries);
+            std::size_t expected = 0;
+            for (std::size_t i = 1; i < n; ++i)
+                if (dsp::rank_hash(salt ^ TsvqMatcher::kEntrySalt, uint32_t(i)) <
+                    dsp::rank_hash(salt ^ TsvqMatcher::kEntrySalt, uint32_t(expected)))
+                    expected = i;
+            ASSERT_EQ(matcher.choose_entry(leaf, f.set.vector(0), ranking), expected) << "leaf " << leaf;
+            counts.insert(n);
+            chosen.insert(expected);
+        }
+    }
+    EXPECT_GT(counts.size(), 2u);   // leaves of several sizes
+    EXPECT_GT(chosen.size(), 8u);   // and many different winners
 }
