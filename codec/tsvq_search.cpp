@@ -189,18 +189,8 @@ std::size_t TsvqMatcher::nearest_leaf_exhaustive(const uint8_t* query) const {
 }
 
 void TsvqMatcher::rank_entries(uint64_t salt, EntryRanking& ranking) const {
-    if (ranked_entries_ < 2) return;
-    dsp::kernels().rank_candidates(salt ^ kEntrySalt, ranked_entries_, ranking.rank);
-    // The running minimum, without branches (which entry wins is random).
-    uint64_t lowest = ranking.rank[0];
-    uint32_t index = 0;
-    ranking.first_lowest[0] = 0;
-    for (uint32_t i = 1; i < ranked_entries_; ++i) {
-        const uint64_t lower = 0 - uint64_t(ranking.rank[i] < lowest);
-        lowest = (ranking.rank[i] & lower) | (lowest & ~lower);
-        index = (i & uint32_t(lower)) | (index & ~uint32_t(lower));
-        ranking.first_lowest[i] = uint8_t(index);
-    }
+    ranking.records = 1;
+    if (ranked_entries_ > 1) ranking.records = dsp::kernels().rank_candidates(salt ^ kEntrySalt, ranked_entries_, ranking.rank);
 }
 
 std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, const EntryRanking& ranking) const {
@@ -218,7 +208,10 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, co
     // favours smooth continuations and the texture collapses into flat
     // blocks.)
     const auto& offsets = b.key_offsets();
-    if (offsets.empty()) return ranking.first_lowest[n - 1];
+    if (offsets.empty()) {
+        const uint64_t below_n = ranking.records & (n < 64 ? (uint64_t(1) << n) - 1 : ~uint64_t(0));
+        return std::size_t(63 - __builtin_clzll(below_n));
+    }
     const dsp::Kernels& kernels = dsp::kernels();
     const std::size_t ch = std::size_t(b.channels()), entry_size = b.entry_size();
     uint32_t distance[kMaxEntries];

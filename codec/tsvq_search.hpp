@@ -32,12 +32,12 @@ public:
     // The exactly nearest leaf by brute force over all leaves (the oracle).
     std::size_t nearest_leaf_exhaustive(const uint8_t* query) const;
     // A pixel's ranking of entry indices, made from its salt before its
-    // search: rank[i] = rank_hash(salt ^ kEntrySalt, i), and first_lowest[m]
-    // the index of the lowest of rank[0 .. m] (the lowest index on ties),
-    // which is the choice among m + 1 entries that all qualify.
+    // search: rank[i] = rank_hash(salt ^ kEntrySalt, i), and the record mask
+    // (Kernels::rank_candidates), whose highest bit below n is the choice
+    // among n entries that all qualify.
     struct EntryRanking {
         alignas(64) uint64_t rank[dsp::kMaxRanked];
-        uint8_t first_lowest[dsp::kMaxRanked];
+        uint64_t records;
     };
     void rank_entries(uint64_t salt, EntryRanking& ranking) const;
     // Which entry of `leaf` to output for this query (see tsvq_tree.hpp).

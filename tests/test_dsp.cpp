@@ -170,14 +170,19 @@ TEST(Dsp, PreparedQueryIsTheSignedBytesAndTheSquaredNormOnEveryKernelSet) {
     }
 }
 
-TEST(Dsp, RankCandidatesIsRankHashOnEveryKernelSet) {
+TEST(Dsp, RankCandidatesIsRankHashWithItsRecordsOnEveryKernelSet) {
     Rng rng(12);
-    for (int trial = 0; trial < 200; ++trial) {
-        const uint32_t count = 1 + uint32_t(rng.below(dsp::kMaxRanked));
+    for (int trial = 0; trial < 400; ++trial) {
+        const uint32_t count = trial < 2 ? (trial ? dsp::kMaxRanked : 1) : 1 + uint32_t(rng.below(dsp::kMaxRanked));
         const uint64_t salt = rng.next();
+        // Records: each rank below every earlier one (the first always).
+        uint64_t records = 0, lowest = 0;
+        for (uint32_t i = 0; i < count; ++i)
+            if (i == 0 || dsp::rank_hash(salt, i) < lowest) records |= uint64_t(1) << i, lowest = dsp::rank_hash(salt, i);
         for (int k = 0; k < dsp::available_kernel_count(); ++k) {
             std::vector<uint64_t> ranks(dsp::kMaxRanked, 0);
-            dsp::available_kernels(k).rank_candidates(salt, count, ranks.data());
+            EXPECT_EQ(dsp::available_kernels(k).rank_candidates(salt, count, ranks.data()), records)
+                << dsp::available_kernels(k).name << " count " << count;
             for (uint32_t i = 0; i < count; ++i)
                 ASSERT_EQ(ranks[i], dsp::rank_hash(salt, i)) << dsp::available_kernels(k).name << " count " << count;
         }

@@ -88,10 +88,23 @@ inline int64_t prepare_query_portable(const uint8_t* __restrict query, int8_t* _
     return int64_t(norm);
 }
 
+// The record mask of rank_candidates (see dsp.hpp), without branches: which
+// candidate sets a record is random.
+inline uint64_t record_mask_portable(const uint64_t* ranks, uint32_t count) {
+    uint64_t records = 1, lowest = ranks[0];
+    for (uint32_t i = 1; i < count; ++i) {
+        const uint64_t lower = 0 - uint64_t(ranks[i] < lowest);
+        records |= (uint64_t(1) << i) & lower;
+        lowest = (ranks[i] & lower) | (lowest & ~lower);
+    }
+    return records;
+}
+
 // rank_candidates without vectors. Only the baseline-compiled sets may use
 // it (it calls rank_hash; see dsp.hpp).
-inline void rank_candidates_portable(uint64_t salt, uint32_t count, uint64_t* ranks) {
+inline uint64_t rank_candidates_portable(uint64_t salt, uint32_t count, uint64_t* ranks) {
     for (uint32_t i = 0; i < count; ++i) ranks[i] = rank_hash(salt, i);
+    return record_mask_portable(ranks, count);
 }
 
 // lowest_ranked without vectors: the running minimum is kept with masks

@@ -100,13 +100,16 @@ struct Kernels {
     // and reloading it at every call.
     uint64_t (*descend)(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
                         uint64_t start, uint64_t* pending, std::size_t* pending_count, uint64_t* lowest_pending);
-    // ranks[i] = rank_hash(salt, i) for i < count (count <= kMaxRanked).
-    // Sets may fill the array up to the next multiple of 8, so it must have
-    // room for kMaxRanked. The ranking is split from the choice below so that
-    // the per-pixel path can rank while it searches: the salt is known before
-    // the search starts, and the hashes' multiplies then run alongside the
+    // ranks[i] = rank_hash(salt, i) for i < count (1 <= count <=
+    // kMaxRanked). Sets may fill the array up to the next multiple of 8, so
+    // it must have room for kMaxRanked. Returns the record mask: bit i set
+    // when ranks[i] is lower than every rank before it (bit 0 always), so
+    // that the choice among the first n candidates, all allowed, is the
+    // highest record below n. The ranking is split from the choice below so
+    // that the per-pixel path can rank while it searches: the salt is known
+    // before the search starts, and the hashes then run alongside the
     // descent instead of after it, on the path from one pixel to the next.
-    void (*rank_candidates)(uint64_t salt, uint32_t count, uint64_t* ranks);
+    uint64_t (*rank_candidates)(uint64_t salt, uint32_t count, uint64_t* ranks);
     // Of the candidates i < n (n <= kMaxRanked) whose bit is set in
     // `allowed`, the one with the lowest ranks[i], the lowest i on equal
     // ranks. `allowed` must have a bit set below n, and ranks[0 .. n) must

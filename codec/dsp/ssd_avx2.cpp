@@ -137,12 +137,13 @@ inline __m256i rank_hash4(__m256i salt, __m256i key) {
     return _mm256_xor_si256(z, _mm256_srli_epi64(z, 31));
 }
 
-void rank_candidates_avx2(uint64_t salt, uint32_t count, uint64_t* ranks) {
+uint64_t rank_candidates_avx2(uint64_t salt, uint32_t count, uint64_t* ranks) {
     const __m256i salt4 = _mm256_set1_epi64x(int64_t(salt));
     const __m256i lanes = _mm256_set_epi64x(3, 2, 1, 0);
     for (uint32_t base = 0; base < count; base += 4)
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(ranks + base),
                             rank_hash4(salt4, _mm256_add_epi64(_mm256_set1_epi64x(base), lanes)));
+    return detail::record_mask_portable(ranks, count);
 }
 
 uint32_t lowest_ranked_avx2(const uint64_t* ranks, uint32_t n, uint64_t allowed) {

@@ -152,11 +152,27 @@ inline __m512i rank_hash8(__m512i salt, __m512i key) {
     return _mm512_xor_si512(z, _mm512_srli_epi64(z, 31));
 }
 
-void rank_candidates_avx512(uint64_t salt, uint32_t count, uint64_t* ranks) {
+uint64_t rank_candidates_avx512(uint64_t salt, uint32_t count, uint64_t* ranks) {
     const __m512i salt8 = _mm512_set1_epi64(int64_t(salt));
     const __m512i lanes = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
-    for (uint32_t base = 0; base < count; base += 8)
-        _mm512_storeu_si512(ranks + base, rank_hash8(salt8, _mm512_add_epi64(_mm512_set1_epi64(base), lanes)));
+    const __m512i none = _mm512_set1_epi64(-1);
+    // Records from prefix minima: three shift-and-min steps per vector, the
+    // minimum so far carried across vectors. A rank is a record when it is
+    // below the minimum of everything before it (ties keep the earlier).
+    __m512i carry = none;
+    uint64_t records = 1;
+    for (uint32_t base = 0; base < count; base += 8) {
+        const __m512i rank = rank_hash8(salt8, _mm512_add_epi64(_mm512_set1_epi64(base), lanes));
+        _mm512_storeu_si512(ranks + base, rank);
+        __m512i prefix = _mm512_min_epu64(rank, _mm512_alignr_epi64(rank, none, 7));
+        prefix = _mm512_min_epu64(prefix, _mm512_alignr_epi64(prefix, none, 6));
+        prefix = _mm512_min_epu64(prefix, _mm512_alignr_epi64(prefix, none, 4));
+        prefix = _mm512_min_epu64(prefix, carry);
+        const __m512i before = _mm512_alignr_epi64(prefix, carry, 7);  // minimum of all earlier ranks
+        records |= uint64_t(_mm512_cmplt_epu64_mask(rank, before)) << base;
+        carry = _mm512_permutexvar_epi64(_mm512_set1_epi64(7), prefix);
+    }
+    return records & (count < 64 ? (uint64_t(1) << count) - 1 : ~uint64_t(0));
 }
 
 uint32_t lowest_ranked_avx512(const uint64_t* ranks, uint32_t n, uint64_t allowed) {
