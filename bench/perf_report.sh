@@ -7,8 +7,10 @@
 #
 # Needs a build with the benchmarks (bench_scaling) and tools, and gmic
 # (scripts/setup-bench.sh). Textures: the 128x128 examples of the shared
-# corpus named in $VQTEX_PERF_TEXTURES (default: five of them). Times are
-# wall clock, medians of several runs; run it on a quiet machine.
+# corpus named in $VQTEX_PERF_TEXTURES (default: five of them). Sections:
+# $VQTEX_PERF_SECTIONS, any of "scaling gmic" (default both; the scaling
+# runs take most of the time). Times are wall clock, medians of
+# $VQTEX_PERF_RUNS runs (default 5); run it on a quiet machine.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 corpus="${1:-$root/../shared/corpus}"
@@ -16,6 +18,7 @@ build="${2:-$root/build}"
 out="${3:-$root/out/perf}"
 textures="${VQTEX_PERF_TEXTURES:-stk_granite mate_grass ps_text tux_rocks stk_woodplanks}"
 runs="${VQTEX_PERF_RUNS:-5}"
+sections=" ${VQTEX_PERF_SECTIONS:-scaling gmic} "
 mkdir -p "$out"
 for tool in "$build/bench/bench_scaling" "$build/vqtex-encode" "$build/vqtex-decode"; do
     [[ -x "$tool" ]] || { echo "perf_report: $tool is missing: build with benchmarks (scripts/build.sh)" >&2; exit 1; }
@@ -53,7 +56,7 @@ cores=$(nproc)
 } >"$out/perf.md"
 
 first=1
-for name in $textures; do
+[[ $sections == *" scaling "* ]] && for name in $textures; do
     example="$corpus/${name}_128.png"
     [[ -f "$example" ]] || { echo "perf_report: $example not found, skipped" >&2; continue; }
     for threads in 1 0; do
@@ -77,13 +80,13 @@ for name in $textures; do
     first=0
 done
 
-{
+[[ $sections == *" scaling "* ]] && {
     echo "## Decode 512x512 and encode, per texture (library calls, no file I/O)"
     echo
     echo "| texture | encode 128 s (all cores) | decode 512 s, 1 thread | decode 512 s, all cores | decode 2048 s, all cores |"
     echo "|---|---|---|---|---|"
 } >>"$out/perf.md"
-for name in $textures; do
+[[ $sections == *" scaling "* ]] && for name in $textures; do
     [[ -f "$out/scaling_${name}_j1.tsv" ]] || continue
     enc=$(head -1 "$out/scaling_${name}_j0.txt" | sed -E 's/.*encode ([0-9.]+) s.*/\1/')
     d1=$(awk -F'\t' '$1==512 {print $3}' "$out/scaling_${name}_j1.tsv")
@@ -93,7 +96,7 @@ for name in $textures; do
 done
 echo >>"$out/perf.md"
 
-if [[ $have_gmic == 1 ]]; then
+if [[ $have_gmic == 1 && $sections == *" gmic "* ]]; then
     {
         echo "## Against G'MIC: 128x128 -> 512x512"
         echo

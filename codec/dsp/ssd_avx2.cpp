@@ -129,9 +129,10 @@ inline __m256i mul64(__m256i a, __m256i b) {
     return _mm256_add_epi64(low, _mm256_slli_epi64(cross, 32));
 }
 
-// rank_hash of four keys.
-inline __m256i rank_hash4(__m256i salt, __m256i key) {
-    __m256i z = _mm256_xor_si256(salt, mul64(key, _mm256_set1_epi64x(int64_t(0x9E3779B97F4A7C15ull))));
+// rank_hash of four keys, given key * 0x9E3779B97F4A7C15 for each (a
+// running sum over consecutive keys: one multiply fewer).
+inline __m256i rank_hash4_mixed(__m256i salt, __m256i key_times_golden) {
+    __m256i z = _mm256_xor_si256(salt, key_times_golden);
     z = mul64(_mm256_xor_si256(z, _mm256_srli_epi64(z, 30)), _mm256_set1_epi64x(int64_t(0xBF58476D1CE4E5B9ull)));
     z = mul64(_mm256_xor_si256(z, _mm256_srli_epi64(z, 27)), _mm256_set1_epi64x(int64_t(0x94D049BB133111EBull)));
     return _mm256_xor_si256(z, _mm256_srli_epi64(z, 31));
@@ -139,10 +140,13 @@ inline __m256i rank_hash4(__m256i salt, __m256i key) {
 
 uint64_t rank_candidates_avx2(uint64_t salt, uint32_t count, uint64_t* ranks) {
     const __m256i salt4 = _mm256_set1_epi64x(int64_t(salt));
-    const __m256i lanes = _mm256_set_epi64x(3, 2, 1, 0);
-    for (uint32_t base = 0; base < count; base += 4)
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(ranks + base),
-                            rank_hash4(salt4, _mm256_add_epi64(_mm256_set1_epi64x(base), lanes)));
+    constexpr uint64_t kGolden = 0x9E3779B97F4A7C15ull;
+    __m256i mixed = _mm256_set_epi64x(int64_t(3 * kGolden), int64_t(2 * kGolden), int64_t(kGolden), 0);
+    const __m256i step = _mm256_set1_epi64x(int64_t(4 * kGolden));
+    for (uint32_t base = 0; base < count; base += 4) {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(ranks + base), rank_hash4_mixed(salt4, mixed));
+        mixed = _mm256_add_epi64(mixed, step);
+    }
     return detail::record_mask_portable(ranks, count);
 }
 
