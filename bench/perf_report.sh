@@ -103,11 +103,13 @@ if [[ $have_gmic == 1 && $sections == *" gmic "* ]]; then
         echo "G'MIC: \`OMP_NUM_THREADS=1 gmic -v -1 IN syntexturize_matchpatch 512,512 o OUT.png\` (whole command)."
         echo "vqtex command: \`vqtex-decode FILE OUT.png --size 512x512\` (whole command: OpenImageIO start-up, decode, PNG write)."
         echo "Start-up of each program alone: \`gmic -v -1 IN o OUT.png\` and \`vqtex-info FILE\`."
-        echo "vqtex library: \`vqtex_decode\` alone (bench_scaling, all cores), what a program linking the library pays;"
-        echo "its runs alternate with G'MIC's, so both medians come from the same stretch of time."
+        echo "vqtex library: \`vqtex_decode\` alone (bench_scaling, all cores, median of 3 in one process), what a program"
+        echo "linking the library pays. Its runs alternate with G'MIC's, so both medians come from the same stretch of time;"
+        echo "the last column is the ratio of each alternated pair (median, then lowest and highest), which cancels most"
+        echo "of the machine's drift."
         echo
-        echo "| texture | G'MIC s | G'MIC start-up s | vqtex-decode command s | vqtex start-up s | vqtex library s | command ratio | library ratio |"
-        echo "|---|---|---|---|---|---|---|---|"
+        echo "| texture | G'MIC s | G'MIC start-up s | vqtex-decode command s | vqtex start-up s | vqtex library s | command ratio | library ratio | per pair |"
+        echo "|---|---|---|---|---|---|---|---|---|"
     } >>"$out/perf.md"
     for name in $textures; do
         example="$corpus/${name}_128.png"
@@ -117,20 +119,24 @@ if [[ $have_gmic == 1 && $sections == *" gmic "* ]]; then
         # G'MIC and the library decode alternate run by run, so that both
         # medians come from the same stretch of time on a machine whose
         # speed drifts.
-        gmic_times=() lib_times=()
+        gmic_times=() lib_times=() pair_ratios=()
         for ((i = 0; i < runs; i++)); do
             gmic_times+=("$(wall_time env OMP_NUM_THREADS=1 gmic -v -1 "$example" syntexturize_matchpatch 512,512 \
                 o "$out/${name}_gmic_512.png")")
-            "$build/bench/bench_scaling" "$example" --sizes 512 --runs 1 --tsv "$out/lib_512.tsv" >/dev/null
+            "$build/bench/bench_scaling" "$example" --sizes 512 --runs 3 --tsv "$out/lib_512.tsv" >/dev/null
             lib_times+=("$(awk -F'\t' '$1==512 {print $3}' "$out/lib_512.tsv")")
+            pair_ratios+=("$(awk -v a="${gmic_times[i]}" -v b="${lib_times[i]}" 'BEGIN {print a / b}')")
         done
+        pairs=$(printf '%s\n' "${pair_ratios[@]}" | sort -g |
+            awk '{a[NR]=$1} END {printf "%.1fx (%.1f-%.1f)", a[int((NR+1)/2)], a[1], a[NR]}')
         g=$(median_of "${gmic_times[@]}")
         lib=$(median_of "${lib_times[@]}")
         g0=$(median_time gmic -v -1 "$example" o "$out/${name}_gmic_noop.png")
         v=$(median_time "$build/vqtex-decode" "$file" "$out/${name}_vqtex_512.png" --size 512x512)
         v0=$(median_time "$build/vqtex-info" "$file")
-        printf '| %s | %.3f | %.3f | %.3f | %.3f | %.4f | %.1fx | %.1fx |\n' "$name" "$g" "$g0" "$v" "$v0" "$lib" \
-            "$(awk -v a="$g" -v b="$v" 'BEGIN {print a / b}')" "$(awk -v a="$g" -v b="$lib" 'BEGIN {print a / b}')" >>"$out/perf.md"
+        printf '| %s | %.3f | %.3f | %.3f | %.3f | %.4f | %.1fx | %.1fx | %s |\n' "$name" "$g" "$g0" "$v" "$v0" "$lib" \
+            "$(awk -v a="$g" -v b="$v" 'BEGIN {print a / b}')" "$(awk -v a="$g" -v b="$lib" 'BEGIN {print a / b}')" \
+            "$pairs" >>"$out/perf.md"
     done
     echo >>"$out/perf.md"
 fi
