@@ -19,6 +19,7 @@ struct TsvqScratch final : MatchScratch {
     std::vector<std::pair<uint32_t, uint32_t>> visited;  // (distance, leaf)
     std::vector<int8_t> signed_query;                    // query bytes - 128
     std::vector<uint64_t> fresh;                         // one descent's branches (heap path)
+    std::vector<uint64_t> walks;                         // both walks' branches (two_walks)
 };
 
 }  // namespace
@@ -52,6 +53,8 @@ TsvqMatcher::TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrac
         ranked_entries_ = std::max(ranked_entries_, leaf_entry_count_[leaf]);
     }
     tree_ = dsp::DescentTree{first_child_.data(), node_bias_.data(), b.codeword(0), n};
+    kernels_ = &dsp::kernels();
+    entry_size_ = b.entry_size();
 }
 
 std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
@@ -60,6 +63,7 @@ std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
     s->heap.reserve(std::size_t(kLinearScanLeaves) * std::size_t(depth_ + 1));
     s->signed_query.resize(book_->stride());
     s->fresh.resize(std::size_t(depth_) + 1);
+    s->walks.resize(2 * (std::size_t(depth_) + 1));
     return s;
 }
 
@@ -67,7 +71,7 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
                                 const MatchContext& context) const {
     leaves = std::max<uint32_t>(1, leaves);
     const Codebook& b = *book_;
-    const dsp::Kernels& k = dsp::kernels();
+    const dsp::Kernels& k = *kernels_;
     const std::size_t n = b.stride();
     // Made only when the caller has none: constructing it per call (four
     // vectors) showed in profiles of the per-pixel search.
@@ -100,23 +104,7 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
     std::size_t best_leaf = 0;
     // The root's own distance only matters when it is a leaf.
     uint64_t next = uint64_t(b.node(0).first_child < 0 ? k.ssd(query, b.codeword(0), n) : 0) << 32;
-    if (leaves == 2 && context.tolerance == 0) {
-        // The default budget, in short: one walk, then one more from the
-        // nearest branch it passed, which the walk tracked as it went. The
-        // same leaves and the same choice as the loop below.
-        std::size_t count = 0;
-        uint64_t lowest = UINT64_MAX;
-        const uint64_t first = k.descend(tree_, query, signed_query, next, pending, &count, &lowest);
-        const std::size_t first_node = std::size_t(first & 0xFFFFFFFFu);
-        if (count == 0) return std::size_t(b.node(first_node).leaf);  // the root is the only leaf
-        uint64_t unused = UINT64_MAX;
-        const uint64_t second = k.descend(tree_, query, signed_query, lowest, pending, &count, &unused);
-        const std::size_t second_node = std::size_t(second & 0xFFFFFFFFu);
-        const uint32_t first_distance = uint32_t(first >> 32), second_distance = uint32_t(second >> 32);
-        const bool take_second = second_distance < first_distance ||
-                                 (second_distance == first_distance && node_key_[second_node] < node_key_[first_node]);
-        return std::size_t(b.node(take_second ? second_node : first_node).leaf);
-    }
+    if (leaves == 2 && context.tolerance == 0 && first_child_[0] >= 0) return two_walks(query, signed_query, pending);
     for (uint32_t visited = 0;;) {
         // The linear path collects the branches not taken in place; the heap
         // path moves them from a side buffer into the heap.
@@ -174,6 +162,23 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
     return chosen;
 }
 
+std::size_t TsvqMatcher::two_walks(const uint8_t* query, int8_t* signed_query, uint64_t* pending) const {
+    // The default budget, in short: one walk, then one more from the nearest
+    // branch it passed, which the walk tracked as it went. The same leaves
+    // and the same choice as search's general loop.
+    const dsp::Kernels& k = *kernels_;
+    std::size_t count = 0;
+    uint64_t lowest = UINT64_MAX;
+    const uint64_t first = k.descend(tree_, query, signed_query, 0, pending, &count, &lowest);
+    uint64_t unused = UINT64_MAX;
+    const uint64_t second = k.descend(tree_, query, signed_query, lowest, pending, &count, &unused);
+    const std::size_t first_node = std::size_t(first & 0xFFFFFFFFu), second_node = std::size_t(second & 0xFFFFFFFFu);
+    const uint32_t first_distance = uint32_t(first >> 32), second_distance = uint32_t(second >> 32);
+    const bool take_second = second_distance < first_distance ||
+                             (second_distance == first_distance && node_key_[second_node] < node_key_[first_node]);
+    return std::size_t(book_->node(take_second ? second_node : first_node).leaf);
+}
+
 std::size_t TsvqMatcher::nearest_leaf_exhaustive(const uint8_t* query) const {
     const Codebook& b = *book_;
     const dsp::Kernels& k = dsp::kernels();
@@ -190,7 +195,7 @@ std::size_t TsvqMatcher::nearest_leaf_exhaustive(const uint8_t* query) const {
 
 void TsvqMatcher::rank_entries(uint64_t salt, EntryRanking& ranking) const {
     ranking.records = 1;
-    if (ranked_entries_ > 1) ranking.records = dsp::kernels().rank_candidates(salt ^ kEntrySalt, ranked_entries_, ranking.rank);
+    if (ranked_entries_ > 1) ranking.records = kernels_->rank_candidates(salt ^ kEntrySalt, ranked_entries_, ranking.rank);
 }
 
 std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, const EntryRanking& ranking) const {
@@ -212,7 +217,7 @@ std::size_t TsvqMatcher::choose_entry(std::size_t leaf, const uint8_t* query, co
         const uint64_t below_n = ranking.records & (n < 64 ? (uint64_t(1) << n) - 1 : ~uint64_t(0));
         return std::size_t(63 - __builtin_clzll(below_n));
     }
-    const dsp::Kernels& kernels = dsp::kernels();
+    const dsp::Kernels& kernels = *kernels_;
     const std::size_t ch = std::size_t(b.channels()), entry_size = b.entry_size();
     uint32_t distance[kMaxEntries];
     uint32_t best = UINT32_MAX;
@@ -239,6 +244,13 @@ const uint8_t* TsvqMatcher::match(const uint8_t* query, const MatchContext& cont
     // pixel to the next (whose query reads this one).
     EntryRanking ranking;
     rank_entries(context.salt, ranking);
+    // The default (L = 2, no near-ties) straight to its two walks: the
+    // general search's set-up per call showed in the decoder's profile.
+    if (backtrack_ == 2 && context.tolerance == 0 && scratch && first_child_[0] >= 0) {
+        TsvqScratch& work = *static_cast<TsvqScratch*>(scratch);
+        const std::size_t leaf = two_walks(query, work.signed_query.data(), work.walks.data());
+        return leaf_entries_[leaf] + choose_entry(leaf, query, ranking) * entry_size_;
+    }
     const std::size_t leaf = search(query, backtrack_, scratch, context);
     return leaf_entries_[leaf] + choose_entry(leaf, query, ranking) * book_->entry_size();
 }
