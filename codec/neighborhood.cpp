@@ -142,7 +142,7 @@ NeighborhoodGather::NeighborhoodGather(const NeighborhoodLayout& layout,
         if (previous && previous->depth == t.depth && previous->dy == t.dy && previous->dx + 1 == t.dx)
             runs_.back().bytes += ch;
         else
-            runs_.push_back(Run{t.depth, offset, ch});
+            runs_.push_back(Run{t.depth, offset, ch, t.dy, std::ptrdiff_t(t.dx) * std::ptrdiff_t(ch)});
         previous = &t;
     }
 }
@@ -171,6 +171,21 @@ void NeighborhoodGather::gather_border(int x, int y, uint8_t* out) const {
     }
     const int ch = layout_->channels();
     uint8_t* o = out;
+    if (x >= x_lo_ && x < x_hi_) {
+        // Columns inside every level: each run stays on one row, which alone
+        // wraps.
+        for (const Run& run : runs_) {
+            const int h = height_[run.depth];
+            int ty = (y >> run.depth) + run.dy;
+            ty += ty < 0 ? h : 0;
+            ty -= ty >= h ? h : 0;
+            const uint8_t* row = base_[run.depth] + std::size_t(ty) * row_bytes_[run.depth];
+            copy_short(o, row + std::ptrdiff_t(x >> run.depth) * ch + run.dx_bytes, run.bytes);
+            o += run.bytes;
+        }
+        for (uint8_t* end = out + layout_->stride(); o < end; ++o) *o = 0;
+        return;
+    }
     for (const Tap& t : layout_->taps()) {
         const int w = width_[t.depth], h = height_[t.depth];
         int tx = (x >> t.depth) + t.dx, ty = (y >> t.depth) + t.dy;

@@ -130,11 +130,15 @@ private:
         int depth;
         std::ptrdiff_t offset;  // bytes from the anchor pixel at that depth
         std::size_t bytes;
+        int dy;                 // the run's row, relative to the anchor's
+        std::ptrdiff_t dx_bytes;  // and its first pixel's column, in bytes
     };
     const NeighborhoodLayout* layout_;
     const std::vector<Image>* pyramid_;
     std::vector<Run> runs_;
-    // Pixels whose window crosses an edge of some level: wrapped per tap.
+    // Pixels whose window crosses an edge of some level: wrapped per tap, or
+    // per run when only rows wrap (the top and bottom rows, which include
+    // most of the seam-closing band).
     void gather_border(int x, int y, uint8_t* out) const;
 
     const uint8_t* base_[kMaxLevels] = {};
