@@ -30,11 +30,7 @@ ToolRun fill_tool(const std::string& args) {
     return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
 }
 
-fs::path scratch_dir() {
-    fs::path d = fs::temp_directory_path() / ("vqtex_fill_tool_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-}
+fs::path scratch_dir() { return vqtex_test::scratch_dir("vqtex_fill_tool"); }
 
 const std::string corpus = VQTEX_CORPUS_DIR;
 

@@ -63,11 +63,7 @@ Encoded try_encode(uint32_t w, uint32_t h, uint32_t channels, const vqtex_encode
 
 // ---- files and programs --------------------------------------------------------
 
-fs::path scratch() {
-    const fs::path d = fs::temp_directory_path() / ("vqtex_hostile_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-}
+fs::path scratch() { return vqtex_test::scratch_dir("vqtex_hostile"); }
 
 struct ToolRun {
     int status;

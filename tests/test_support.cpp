@@ -8,12 +8,49 @@
 #include <vector>
 #include <cstring>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <stdexcept>
+#include <system_error>
+
+#include <unistd.h>
 
 #include "image_io.hpp"
 #include "rng.hpp"
 
 namespace vqtex_test {
+
+namespace {
+
+struct ScratchDirs {
+    std::mutex lock;
+    std::map<std::string, std::filesystem::path> made;
+    ~ScratchDirs() {
+        for (const auto& [name, path] : made) {
+            std::error_code ignored;
+            std::filesystem::remove_all(path, ignored);
+        }
+    }
+};
+
+ScratchDirs& scratch_dirs() {
+    static ScratchDirs dirs;
+    return dirs;
+}
+
+}  // namespace
+
+std::filesystem::path scratch_dir(const std::string& name) {
+    ScratchDirs& dirs = scratch_dirs();
+    std::lock_guard<std::mutex> hold(dirs.lock);
+    if (auto found = dirs.made.find(name); found != dirs.made.end()) return found->second;
+    const std::filesystem::path d =
+        std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(d);
+    std::filesystem::create_directories(d);
+    dirs.made.emplace(name, d);
+    return d;
+}
 
 vqtex::Image load_file(const std::string& path) {
     const vqtex_tools::LoadedImage li = vqtex_tools::load_image(path);

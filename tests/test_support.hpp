@@ -2,6 +2,7 @@
 // images, and the statistics the property tests assert on.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "image.hpp"
@@ -9,6 +10,12 @@
 #include "vqtex/vqtex.h"
 
 namespace vqtex_test {
+
+// A directory of this test process's own under the system's temporary
+// directory (NAME_PID): emptied on first use, since a process of an earlier
+// run with the same id may have left files there, and removed when the
+// process exits.
+std::filesystem::path scratch_dir(const std::string& name);
 
 // A texture from the project's own corpus/ (always present).
 vqtex::Image load_corpus(const std::string& name);

@@ -37,11 +37,7 @@ ToolRun encode_tool(const std::string& args) { return run_program(VQTEX_ENCODE_E
 ToolRun decode_tool(const std::string& args) { return run_program(VQTEX_DECODE_EXE, args); }
 ToolRun info_tool(const std::string& args) { return run_program(VQTEX_INFO_EXE, args); }
 
-fs::path scratch_dir() {
-    fs::path d = fs::temp_directory_path() / ("vqtex_tools_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-}
+fs::path scratch_dir() { return vqtex_test::scratch_dir("vqtex_tools"); }
 
 const std::string corpus = VQTEX_CORPUS_DIR;
 
