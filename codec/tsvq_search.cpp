@@ -54,7 +54,6 @@ TsvqMatcher::TsvqMatcher(std::shared_ptr<const Codebook> book, uint32_t backtrac
     }
     tree_ = dsp::DescentTree{first_child_.data(), node_bias_.data(), b.codeword(0), n};
     kernels_ = &dsp::kernels();
-    entry_size_ = b.entry_size();
 }
 
 std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
@@ -69,15 +68,26 @@ std::unique_ptr<MatchScratch> TsvqMatcher::make_scratch() const {
 
 std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScratch* scratch,
                                 const MatchContext& context) const {
-    leaves = std::max<uint32_t>(1, leaves);
+    // Made only when the caller has none: constructing it per call (four
+    // vectors) showed in profiles of the per-pixel search.
+    if (!scratch) {
+        const std::unique_ptr<MatchScratch> owned = make_scratch();
+        return search(query, leaves, owned.get(), context);
+    }
+    TsvqScratch& work = *static_cast<TsvqScratch*>(scratch);
+    // The default budget (the decoder's) apart from the general search,
+    // whose set-up showed in the decoder's profile at every pixel.
+    if (leaves == 2 && context.tolerance == 0 && first_child_[0] >= 0)
+        return two_walks(query, work.signed_query.data(), work.walks.data());
+    return search_general(query, std::max<uint32_t>(1, leaves), work, context);
+}
+
+std::size_t TsvqMatcher::search_general(const uint8_t* query, uint32_t leaves, MatchScratch& scratch,
+                                        const MatchContext& context) const {
     const Codebook& b = *book_;
     const dsp::Kernels& k = *kernels_;
     const std::size_t n = b.stride();
-    // Made only when the caller has none: constructing it per call (four
-    // vectors) showed in profiles of the per-pixel search.
-    std::unique_ptr<MatchScratch> owned;
-    if (!scratch) scratch = (owned = make_scratch()).get();
-    TsvqScratch& work = *static_cast<TsvqScratch*>(scratch);
+    TsvqScratch& work = static_cast<TsvqScratch&>(scratch);
     work.visited.clear();
     // Pending branches are ordered by (distance, node), a total order, so a
     // heap and a linear scan for the minimum pop them in the same order. For
@@ -104,7 +114,6 @@ std::size_t TsvqMatcher::search(const uint8_t* query, uint32_t leaves, MatchScra
     std::size_t best_leaf = 0;
     // The root's own distance only matters when it is a leaf.
     uint64_t next = uint64_t(b.node(0).first_child < 0 ? k.ssd(query, b.codeword(0), n) : 0) << 32;
-    if (leaves == 2 && context.tolerance == 0 && first_child_[0] >= 0) return two_walks(query, signed_query, pending);
     for (uint32_t visited = 0;;) {
         // The linear path collects the branches not taken in place; the heap
         // path moves them from a side buffer into the heap.
@@ -244,13 +253,6 @@ const uint8_t* TsvqMatcher::match(const uint8_t* query, const MatchContext& cont
     // pixel to the next (whose query reads this one).
     EntryRanking ranking;
     rank_entries(context.salt, ranking);
-    // The default (L = 2, no near-ties) straight to its two walks: the
-    // general search's set-up per call showed in the decoder's profile.
-    if (backtrack_ == 2 && context.tolerance == 0 && scratch && first_child_[0] >= 0) {
-        TsvqScratch& work = *static_cast<TsvqScratch*>(scratch);
-        const std::size_t leaf = two_walks(query, work.signed_query.data(), work.walks.data());
-        return leaf_entries_[leaf] + choose_entry(leaf, query, ranking) * entry_size_;
-    }
     const std::size_t leaf = search(query, backtrack_, scratch, context);
     return leaf_entries_[leaf] + choose_entry(leaf, query, ranking) * book_->entry_size();
 }

@@ -65,12 +65,15 @@ private:
     uint32_t ranked_entries_ = 1;               // the most entries of any leaf
     dsp::DescentTree tree_{};
     const dsp::Kernels* kernels_ = nullptr;  // dsp::kernels(), fixed for the process
-    std::size_t entry_size_ = 0;
     // L = 2 without near-ties (the decoder's default): one walk from the
     // root, one from the nearest branch it passed; the nearer leaf.
     // `pending` has room for 2 * (depth + 1) branches. The root must not be
     // a leaf.
     std::size_t two_walks(const uint8_t* query, int8_t* signed_query, uint64_t* pending) const;
+    // Any budget, with near-ties: best-first with pending branches unsorted
+    // or in a heap (search gives it a scratch and leaves >= 1).
+    std::size_t search_general(const uint8_t* query, uint32_t leaves, MatchScratch& scratch,
+                               const MatchContext& context) const;
 };
 
 }  // namespace vqtex
