@@ -26,50 +26,57 @@ inline uint32_t descent_distance(int64_t query_norm, int64_t bias, int32_t dot) 
     return uint32_t(query_norm + bias - 2 * int64_t(dot));
 }
 
-// One level of a descent: into the nearer of siblings a and a + 1 (the first
-// on ties), with the other queued as pending (distance << 32 | node) and
-// `lowest` lowered to it if it is less.
-inline void take_nearer(std::size_t a, uint32_t d0, uint32_t d1, std::size_t& node, uint32_t& distance,
-                        uint64_t* pending, std::size_t& count, uint64_t& lowest) {
-    const bool take_first = d0 <= d1;
-    node = take_first ? a : a + 1;
-    distance = take_first ? d0 : d1;
-    const uint64_t other = take_first ? (uint64_t(d1) << 32 | (a + 1)) : (uint64_t(d0) << 32 | a);
-    pending[count++] = other;
-    lowest = other < lowest ? other : lowest;
-}
-
-// Dot2(query, pair, n, out) and Prepare(query, signed_query, n) must be the
-// set's exact dot2 and prepare_query. GCC compiles the choice of child to a
-// branch, and that is the fast form: the core starts on the predicted
-// child's pair before the comparison is known, which hides the step's
-// latency whenever the guess is right. Measured on the decoder: a branch-free
-// form (min, max and an index add) was 40% slower, and computing two levels
-// per step (the pairs under both children alongside the children) no faster.
-template <class Dot2, class Prepare>
-inline uint64_t descend_tree(const DescentTree& tree, const uint8_t* query, int8_t* signed_query,
-                             uint64_t start, uint64_t* pending, std::size_t* pending_count,
-                             uint64_t* lowest_pending, Dot2 dot2,
-                             Prepare prepare_query) {
-    const int64_t query_norm = prepare_query(query, signed_query, tree.stride);
-    const int32_t* first_child = tree.first_child;
-    const int64_t* bias = tree.bias;
-    const std::size_t n = tree.stride;
+// The walk of Kernels::descend, which every set shares: from `start` into
+// the nearer of siblings a and a + 1 (the first on ties) until a leaf, the
+// other queued as pending (distance << 32 | node) and the least pending kept.
+// pair_distances(a, d) gives the distances to a and a + 1 in d[0], d[1]. GCC
+// compiles the choice of child to a branch, and that is the fast form: the
+// core starts on the predicted child's pair before the comparison is known,
+// which hides the step's latency whenever the guess is right. Measured on the
+// decoder: a branch-free form (min, max and an index add) was 40% slower, and
+// computing two levels per step (the pairs under both children alongside the
+// children) no faster.
+template <class PairDistances>
+VQTEX_DSP_INLINE uint64_t walk_to_leaf(const int32_t* first_child, uint64_t start, uint64_t* pending,
+                                       std::size_t* pending_count, uint64_t* lowest_pending,
+                                       PairDistances pair_distances) {
     std::size_t count = *pending_count;
     uint64_t lowest = *lowest_pending;
     std::size_t node = std::size_t(start & 0xFFFFFFFFu);
     uint32_t distance = uint32_t(start >> 32);
     for (int32_t first = first_child[node]; first >= 0; first = first_child[node]) {
         const std::size_t a = std::size_t(first);
-        int32_t dots[2];
-        dot2(signed_query, tree.codewords + a * n, n, dots);
-        const uint32_t d0 = descent_distance(query_norm, bias[a], dots[0]);
-        const uint32_t d1 = descent_distance(query_norm, bias[a + 1], dots[1]);
-        take_nearer(a, d0, d1, node, distance, pending, count, lowest);
+        uint32_t d[2];
+        pair_distances(a, d);
+        const bool take_first = d[0] <= d[1];
+        node = take_first ? a : a + 1;
+        distance = take_first ? d[0] : d[1];
+        const uint64_t other = take_first ? (uint64_t(d[1]) << 32 | (a + 1)) : (uint64_t(d[0]) << 32 | a);
+        pending[count++] = other;
+        lowest = other < lowest ? other : lowest;
     }
     *pending_count = count;
     *lowest_pending = lowest;
     return uint64_t(distance) << 32 | node;
+}
+
+// Kernels::descend from a set's dot2 and prepare_query (Dot2(query, pair, n,
+// out) and Prepare(query, signed_query, n), its exact kernels).
+template <class Dot2, class Prepare>
+inline uint64_t descend_tree(const DescentTree& tree, const uint8_t* query, int8_t* signed_query,
+                             uint64_t start, uint64_t* pending, std::size_t* pending_count,
+                             uint64_t* lowest_pending, Dot2 dot2,
+                             Prepare prepare_query) {
+    const int64_t query_norm = prepare_query(query, signed_query, tree.stride);
+    const int64_t* bias = tree.bias;
+    const std::size_t n = tree.stride;
+    return walk_to_leaf(tree.first_child, start, pending, pending_count, lowest_pending,
+                        [&](std::size_t a, uint32_t* d) {
+                            int32_t dots[2];
+                            dot2(signed_query, tree.codewords + a * n, n, dots);
+                            d[0] = descent_distance(query_norm, bias[a], dots[0]);
+                            d[1] = descent_distance(query_norm, bias[a + 1], dots[1]);
+                        });
 }
 
 // The signed query (bytes - 128) and |query|^2; the portable form, which

@@ -49,8 +49,8 @@ VQTEX_DSP_INLINE void reduce_pair(__m512i a, __m512i b, int32_t* out) {
 
 // The descent for codewords of at most 64 * Chunks bytes (and more than
 // 64 * (Chunks - 1)), Chunks 1 or 2: the query stays in registers for the
-// whole walk, and the two children's sums are reduced together. Same
-// decisions as descend_tree. (Summing the chunks as a tree instead of a
+// whole walk, and the two children's sums are reduced together; the walk
+// itself is the shared walk_to_leaf, so the decisions are descend_tree's. (Summing the chunks as a tree instead of a
 // chain was measured 25-30% slower on four-chunk codewords.)
 template <int Chunks>
 uint64_t descend_in_registers(const DescentTree& tree, const uint8_t* query, uint64_t start, uint64_t* pending,
@@ -72,14 +72,9 @@ uint64_t descend_in_registers(const DescentTree& tree, const uint8_t* query, uin
     }
     // At most 256 * 255^2: exact in 32 bits.
     const int64_t query_norm = uint32_t(_mm512_reduce_add_epi32(squares));
-    const int32_t* first_child = tree.first_child;
     const int64_t* bias = tree.bias;
-    std::size_t count = *pending_count;
-    uint64_t lowest = *lowest_pending;
-    std::size_t node = std::size_t(start & 0xFFFFFFFFu);
-    uint32_t distance = uint32_t(start >> 32);
-    for (int32_t first = first_child[node]; first >= 0; first = first_child[node]) {
-        const std::size_t a = std::size_t(first);
+    return detail::walk_to_leaf(tree.first_child, start, pending, pending_count, lowest_pending,
+                                [&](std::size_t a, uint32_t* d) {
         const uint8_t* pa = tree.codewords + a * n;
         const uint8_t* pb = pa + n;
         __m512i sum_a = _mm512_setzero_si512(), sum_b = _mm512_setzero_si512();
@@ -91,13 +86,9 @@ uint64_t descend_in_registers(const DescentTree& tree, const uint8_t* query, uin
         sum_b = _mm512_dpbusd_epi32(sum_b, _mm512_maskz_loadu_epi8(tail, pb + 64 * (Chunks - 1)), q[Chunks - 1]);
         int32_t dots[2];
         reduce_pair(sum_a, sum_b, dots);
-        const uint32_t d0 = detail::descent_distance(query_norm, bias[a], dots[0]);
-        const uint32_t d1 = detail::descent_distance(query_norm, bias[a + 1], dots[1]);
-        detail::take_nearer(a, d0, d1, node, distance, pending, count, lowest);
-    }
-    *pending_count = count;
-    *lowest_pending = lowest;
-    return uint64_t(distance) << 32 | node;
+        d[0] = detail::descent_distance(query_norm, bias[a], dots[0]);
+        d[1] = detail::descent_distance(query_norm, bias[a + 1], dots[1]);
+    });
 }
 
 uint64_t descend_avx512vnni(const DescentTree& tree, const uint8_t* query, int8_t* signed_scratch,
