@@ -102,25 +102,6 @@ VQTEX_DSP_INLINE void dot2_avx2(const int8_t* query, const uint8_t* pair, std::s
     out[1] = int32_t(hsum(acc1));
 }
 
-int64_t prepare_query_avx2(const uint8_t* query, int8_t* signed_query, std::size_t n) {
-    // n is a multiple of 16 (kVectorAlign).
-    const __m128i flip = _mm_set1_epi8(char(0x80));
-    uint64_t norm = 0;
-    // 32-bit lane sums are exact for 4096 bytes (4096 * 255^2 < 2^32).
-    for (std::size_t start = 0; start < n; start += 4096) {
-        const std::size_t end = start + 4096 < n ? start + 4096 : n;
-        __m256i acc = _mm256_setzero_si256();
-        for (std::size_t i = start; i < end; i += 16) {
-            const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(query + i));
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(signed_query + i), _mm_xor_si128(v, flip));
-            const __m256i wide = _mm256_cvtepu8_epi16(v);
-            acc = _mm256_add_epi32(acc, _mm256_madd_epi16(wide, wide));
-        }
-        norm += hsum(acc);
-    }
-    return int64_t(norm);
-}
-
 // The low 64 bits of a * b per lane (AVX2 has only 32x32->64 multiplies).
 inline __m256i mul64(__m256i a, __m256i b) {
     const __m256i low = _mm256_mul_epu32(a, b);
@@ -193,8 +174,8 @@ const Kernels kAvx2 = {
     dot_avx2,
     ssd2_avx2,
     dot2_avx2,
-    prepare_query_avx2,
-    detail::descend_with<dot2_avx2, prepare_query_avx2>,
+    detail::prepare_query_portable,
+    detail::descend_with<dot2_avx2, detail::prepare_query_portable>,
     rank_candidates_avx2,
     lowest_ranked_avx2,
 };

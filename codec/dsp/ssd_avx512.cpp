@@ -122,26 +122,6 @@ VQTEX_DSP_INLINE void dot2_avx512(const int8_t* query, const uint8_t* pair, std:
     out[1] = _mm512_reduce_add_epi32(acc1);
 }
 
-int64_t prepare_query_avx512(const uint8_t* query, int8_t* signed_query, std::size_t n) {
-    const __m512i flip = _mm512_set1_epi8(char(0x80));
-    uint64_t norm = 0;
-    // 32-bit lane sums are exact for 4096 bytes (4096 * 255^2 < 2^32).
-    for (std::size_t start = 0; start < n; start += 4096) {
-        const std::size_t end = start + 4096 < n ? start + 4096 : n;
-        __m512i acc = _mm512_setzero_si512();
-        for (std::size_t i = start; i < end; i += 64) {
-            const __mmask64 mask = end - i >= 64 ? ~__mmask64(0) : (__mmask64(1) << (end - i)) - 1;
-            const __m512i v = _mm512_maskz_loadu_epi8(mask, query + i);
-            _mm512_mask_storeu_epi8(signed_query + i, mask, _mm512_xor_si512(v, flip));
-            const __m512i low = _mm512_cvtepu8_epi16(_mm512_castsi512_si256(v));
-            const __m512i high = _mm512_cvtepu8_epi16(_mm512_extracti64x4_epi64(v, 1));
-            acc = _mm512_add_epi32(acc, _mm512_add_epi32(_mm512_madd_epi16(low, low), _mm512_madd_epi16(high, high)));
-        }
-        norm += uint32_t(_mm512_reduce_add_epi32(acc));
-    }
-    return int64_t(norm);
-}
-
 // rank_hash of eight consecutive keys, given key * 0x9E3779B97F4A7C15 for
 // each: the first multiply of the hash, which is a running sum over
 // consecutive keys, so one multiply fewer per vector.
@@ -207,8 +187,8 @@ const Kernels kAvx512 = {
     dot_avx512,
     ssd2_avx512,
     dot2_avx512,
-    prepare_query_avx512,
-    detail::descend_with<dot2_avx512, prepare_query_avx512>,
+    detail::prepare_query_portable,
+    detail::descend_with<dot2_avx512, detail::prepare_query_portable>,
     rank_candidates_avx512,
     lowest_ranked_avx512,
 };
