@@ -135,15 +135,14 @@ void close_seam(const LevelModel& lm, std::vector<Image>& pyramid, int level, in
     const int reach = layout.reach(0);
     const NeighborhoodGather gather(layout, pyramid);
     std::atomic<int> first_sweep_rows{0};
+    // The first sweep always runs to its end (or releases the second when it
+    // fails), so the second waits for it unconditionally.
+    const std::atomic<bool> never_stopped{false};
     auto sweep = [&](int pass, bool wait_for_first) {
         std::vector<uint8_t> query(layout.stride());
         std::unique_ptr<MatchScratch> scratch = lm.closing->make_scratch();
         for (int k = 0; k < rows; ++k) {
-            if (wait_for_first) {
-                const int needed = std::min(rows, k + reach + 1);
-                for (int spins = 0; first_sweep_rows.load(std::memory_order_acquire) < needed;)
-                    if (++spins > 64) std::this_thread::yield();
-            }
+            if (wait_for_first) wait_for(first_sweep_rows, std::min(rows, k + reach + 1), never_stopped);
             const int y = Image::wrap(img.height - band + k, img.height);
             for (int x = 0; x < img.width; ++x) {
                 gather.gather(x, y, query.data());
