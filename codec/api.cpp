@@ -7,6 +7,9 @@
 #include <new>
 
 #include "api_support.hpp"
+#include "engine/appearance.hpp"
+#include "engine/coherence_sets.hpp"
+#include "engine/coherent_synthesis.hpp"
 #include "error.hpp"
 #include "image.hpp"
 #include "parallel.hpp"
@@ -16,7 +19,67 @@
 
 using namespace vqtex;
 
+namespace {
 
+// Pyramid depth of the coherent engine for an example: the coarsest level's
+// windows (5x5 appearance windows of 3x3 neighbourhoods at spacing
+// 2^(levels-1)) still span about a third of the example, so the layout of
+// its largest features is decided there.
+int coherent_levels(int width, int height) {
+    int levels = 1;
+    while (levels < VQTEX_MAX_LEVELS && (8 << levels) <= std::min(width, height)) ++levels;
+    return levels;
+}
+
+void synthesize_coherent(const vqtex_synth_params& params, const Image& example, int threads,
+                         vqtex_image* out, vqtex_synth_stats* stats) {
+    using Clock = std::chrono::steady_clock;
+    if (params.coherence < 1 || params.coherence > 16)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "coherence must be 1 to 16 candidates per neighbour");
+    if (params.passes < 1 || params.passes > 8)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "passes must be 1 to 8 correction passes per level");
+    if (params.jitter > 1024) fail(VQTEX_ERROR_INVALID_ARGUMENT, "jitter must be 0 to 1024 (1/256 of a level's spacing)");
+    if (params.model.levels > VQTEX_MAX_LEVELS)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 0 (automatic) to " + std::to_string(VQTEX_MAX_LEVELS));
+    if (example.width > 65535 || example.height > 65535)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example larger than 65535 pixels on a side");
+    const int levels = params.model.levels ? int(params.model.levels) : coherent_levels(example.width, example.height);
+    const auto t0 = Clock::now();
+    const ProgressFn analyse = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_ANALYSE);
+    if (analyse && !analyse(0, 1)) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+    const AppearanceSpace space = build_appearance_space(example, levels, params.model.example_tileable != 0, threads);
+    const CoherenceSets sets = build_coherence_sets(space, int(params.coherence), 2, threads);
+    if (analyse && !analyse(1, 1)) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+    const auto t1 = Clock::now();
+    CoherentOptions opt;
+    opt.width = int(params.width);
+    opt.height = int(params.height);
+    opt.seed = params.seed;
+    opt.threads = threads;
+    opt.passes = int(params.passes);
+    opt.coarse_passes = std::max(4, int(params.passes));
+    opt.jitter = int(params.jitter);
+    opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
+    Image result = read_positions(example, synthesize_positions(space, sets, opt));
+    const auto t2 = Clock::now();
+    if (stats) {
+        *stats = vqtex_synth_stats{};
+        stats->levels = uint32_t(levels);
+        std::size_t bytes = 0;
+        for (const auto& l : space.levels) bytes += l.colours.byte_count() + l.features.size() * sizeof(int16_t);
+        for (const auto& l : sets.levels) bytes += l.size() * sizeof(uint32_t);
+        for (int l = 0; l < levels; ++l) {
+            stats->training_vectors[l] = uint32_t(example.pixel_count());
+            stats->codewords[l] = uint32_t(example.pixel_count());
+        }
+        stats->model_bytes = bytes;
+        stats->analyse_seconds = std::chrono::duration<double>(t1 - t0).count();
+        stats->synthesise_seconds = std::chrono::duration<double>(t2 - t1).count();
+    }
+    image_to_c(std::move(result), out);
+}
+
+}  // namespace
 
 extern "C" {
 
@@ -76,6 +139,10 @@ void vqtex_synth_params_init(vqtex_synth_params* p) {
     *p = vqtex_synth_params{};
     p->struct_size = sizeof(vqtex_synth_params);
     vqtex_model_params_init(&p->model);
+    p->engine = VQTEX_ENGINE_COHERENT;
+    p->coherence = 4;
+    p->passes = 2;
+    p->jitter = 128;
     p->search = VQTEX_SEARCH_TSVQ;
     // Two leaves. One (a single descent) is faster and on 10 photographed
     // corpus textures scores as well (sliced Wasserstein 8.8 against 9.2),
@@ -104,6 +171,8 @@ vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_imag
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown search kind");
         const Image ex = image_from_c(example, "example image");
         const int threads = resolve_threads(params->threads);
+        if (params->engine == VQTEX_ENGINE_COHERENT) return synthesize_coherent(*params, ex, threads, out, stats);
+        if (params->engine != VQTEX_ENGINE_PAPER) fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown synthesis engine");
         using Clock = std::chrono::steady_clock;
 
         const auto t0 = Clock::now();

@@ -129,6 +129,9 @@ vqtex_synth_params default_params(int width, int height, uint64_t seed) {
     p.height = uint32_t(height);
     p.seed = seed;
     p.threads = 1;
+    // The engine these tests were written for; the coherent engine has its
+    // own (test_coherent.cpp).
+    p.engine = VQTEX_ENGINE_PAPER;
     return p;
 }
 

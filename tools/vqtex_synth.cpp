@@ -20,11 +20,27 @@ int main(int argc, char** argv) {
     uint32_t levels = 0, backtrack = 0, threads = 0, tolerance = 0, entries = 0;
     bool no_seam_closing = false;
     double train_fraction = 1.0;
-    bool exhaustive = false, tsvq = false, tileable = false, json = false, quiet = false;
+    bool exhaustive = false, tsvq = false, tileable = false, json = false, quiet = false, paper = false;
+    std::string engine = "coherent";
+    uint32_t coherence = 0, passes = 0, jitter = 0;
     app.add_option("input", input, "example image (any format OpenImageIO reads)")->required();
     app.add_option("output", output, "output image (format from the extension: .png, .tif, .exr ...)")->required();
     app.add_option("-s,--size", size, "output size WxH (1 to 16384 per side)")->capture_default_str();
     app.add_option("--seed", seed, "random seed: different seeds give different textures")->capture_default_str();
+    app.add_option("--engine", engine,
+                   "coherent (example coordinates and k-coherence candidates, keeps structure; default) "
+                   "or paper (Wei & Levoy's per-pixel search)")
+        ->check(CLI::IsMember({"coherent", "paper"}));
+    app.add_flag("--paper", paper, "the paper's algorithm exactly: --engine paper --init noise --no-seam-closing");
+    auto* coherence_opt = app.add_option("--coherence", coherence,
+                                         "coherent engine: candidates per neighbour, 1 to 16 (default 4)")
+                              ->check(CLI::Range(1, 16));
+    auto* passes_opt = app.add_option("--passes", passes, "coherent engine: correction passes per level, 1 to 8 (default 2)")
+                           ->check(CLI::Range(1, 8));
+    auto* jitter_opt = app.add_option("--jitter", jitter,
+                                      "coherent engine: variety, coordinate jitter in 1/256 of a level's spacing, "
+                                      "0 to 1024 (default 128)")
+                           ->check(CLI::Range(0, 1024));
     app.add_option("--levels", levels, "pyramid levels (default: automatic, 4 for 128x128)");
     app.add_option("--shapes", shapes,
                    "neighbourhood per level, finest first, RxC:k (default for 4 levels 9x9:2,7x7:2,5x5:2,5x5:1)");
@@ -51,10 +67,35 @@ int main(int argc, char** argv) {
     app.add_flag("--json", json, "print machine-readable statistics on stdout");
     app.add_flag("-q,--quiet", quiet, "print nothing but errors");
     CLI11_PARSE(app, argc, argv);
+    if (paper) engine = "paper";
+    if (engine == "paper") {
+        for (const auto* o : {coherence_opt, passes_opt, jitter_opt})
+            if (o->count()) {
+                std::fprintf(stderr, "vqtex-synth: error: %s applies to the coherent engine, not to --engine paper\n",
+                             o->get_name().c_str());
+                return 1;
+            }
+    } else {
+        for (const char* name : {"--shapes", "--exhaustive", "--tsvq", "--codewords", "--backtrack", "--entries",
+                                 "--train-fraction", "--leaf", "--init", "--tolerance", "--no-seam-closing"})
+            if (app.get_option(name)->count()) {
+                std::fprintf(stderr, "vqtex-synth: error: %s applies to the paper engine: add --engine paper (or --paper)\n",
+                             name);
+                return 1;
+            }
+    }
 
     try {
         vqtex_synth_params params;
         vqtex_synth_params_init(&params);
+        params.engine = engine == "paper" ? VQTEX_ENGINE_PAPER : VQTEX_ENGINE_COHERENT;
+        if (coherence) params.coherence = coherence;
+        if (passes) params.passes = passes;
+        if (jitter_opt->count()) params.jitter = jitter;
+        if (paper) {
+            init = "noise";
+            no_seam_closing = true;
+        }
         parse_size(size, params.width, params.height);
         params.seed = seed;
         params.model.levels = levels;

@@ -140,8 +140,31 @@ typedef struct vqtex_model_params {
 
 VQTEX_API void vqtex_model_params_init(vqtex_model_params* params);
 
+typedef enum vqtex_engine {
+    /* Synthesis of example coordinates, coarse to fine, each pixel choosing
+     * among the k-coherence candidates of its neighbours by appearance-space
+     * neighbourhoods (Lefebvre & Hoppe 2005, 2006; Tong et al. 2002): keeps
+     * the example's structure (default). Uses model.levels and
+     * model.example_tileable; the search fields below do not apply. */
+    VQTEX_ENGINE_COHERENT = 0,
+    /* Wei & Levoy's per-pixel search over causal neighbourhoods (paper
+     * sections 2-4), with the search, init, tolerance and model fields
+     * below. With init = VQTEX_INIT_NOISE and model.seam_closing = 0 it is
+     * the paper's algorithm exactly [--paper]. */
+    VQTEX_ENGINE_PAPER = 1
+} vqtex_engine;
+
 typedef struct vqtex_synth_params {
     uint32_t struct_size;      /* set by vqtex_synth_params_init */
+    vqtex_engine engine;       /* [--paper] */
+    /* Coherent engine. */
+    uint32_t coherence;        /* candidates per neighbour: its shifted source and the example
+                                  positions that look most like it, 1 to 16 [--coherence] */
+    uint32_t passes;           /* correction passes per level, 1 to 8 [--passes] */
+    uint32_t jitter;           /* variety: seeded displacement of each level's coordinates, in
+                                  1/256 of the level's spacing, 0 to 1024 [--jitter] */
+    /* Paper engine (the coherent one reads model.levels and
+     * model.example_tileable only). */
     vqtex_model_params model;
     vqtex_search search;       /* [--tsvq / --exhaustive] */
     uint32_t backtrack;        /* TSVQ leaves visited per search, L [--backtrack] */

@@ -1,0 +1,208 @@
+// appearance.cpp - Gaussian stack and fixed-point PCA appearance vectors
+// (Lefebvre & Hoppe 2005 section 3.1, 2006 section 3). See appearance.hpp.
+#include "appearance.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "parallel.hpp"
+#include "pyramid.hpp"
+
+namespace vqtex {
+namespace {
+
+__extension__ typedef __int128 int128;
+__extension__ typedef unsigned __int128 uint128;
+
+constexpr int kWindow = 5;  // appearance vectors summarise a 5x5 window
+constexpr int kWindowTaps = kWindow * kWindow;
+// Covariance sums are 32-bit: 255 * 255 * this many samples still fits.
+constexpr int kMaxPcaSamples = 65536;
+constexpr int kPowerIterations = 40;
+constexpr int kAxisShift = 30;  // unit vectors in Q30 while iterating
+
+uint64_t isqrt(uint128 n) {
+    if (n == 0) return 0;
+    int bits = 0;
+    for (uint128 m = n; m; m >>= 1) ++bits;
+    uint128 x = uint128(1) << ((bits + 1) / 2);  // at or above the root
+    for (;;) {
+        const uint128 y = (x + n / x) >> 1;
+        if (y >= x) return uint64_t(x);
+        x = y;
+    }
+}
+
+int fold(int i, int size, bool wraps) { return wraps ? Image::wrap(i, size) : reflect_index(i, size); }
+
+// The 5x5 window of `img` around (x, y) with taps `step` apart, channel by
+// channel, into out (kWindowTaps * channels values).
+void gather_window(const Image& img, int x, int y, int step, bool wraps, int16_t* out) {
+    int xs[kWindow], ys[kWindow];
+    for (int i = 0; i < kWindow; ++i) {
+        xs[i] = fold(x + (i - kWindow / 2) * step, img.width, wraps);
+        ys[i] = fold(y + (i - kWindow / 2) * step, img.height, wraps);
+    }
+    for (int r = 0; r < kWindow; ++r)
+        for (int c = 0; c < kWindow; ++c) {
+            const uint8_t* p = img.at(xs[c], ys[r]);
+            for (int ch = 0; ch < img.channels; ++ch) *out++ = p[ch];
+        }
+}
+
+}  // namespace
+
+int AppearanceSpace::fold_x(int x) const { return fold(x, width, wraps); }
+int AppearanceSpace::fold_y(int y) const { return fold(y, height, wraps); }
+
+Image stack_filter(const Image& in, int step, bool wraps) {
+    static constexpr int kTaps[5] = {1, 4, 6, 4, 1};
+    const int w = in.width, h = in.height, ch = in.channels;
+    std::vector<int32_t> rows(std::size_t(w) * h * ch);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < ch; ++c) {
+                int32_t sum = 0;
+                for (int t = 0; t < 5; ++t) sum += kTaps[t] * in.at(fold(x + (t - 2) * step, w, wraps), y)[c];
+                rows[(std::size_t(y) * w + x) * ch + c] = sum;
+            }
+    Image out(w, h, ch);
+    for (int y = 0; y < h; ++y) {
+        int ys[5];
+        for (int t = 0; t < 5; ++t) ys[t] = fold(y + (t - 2) * step, h, wraps);
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < ch; ++c) {
+                int32_t sum = 0;
+                for (int t = 0; t < 5; ++t) sum += kTaps[t] * rows[(std::size_t(ys[t]) * w + x) * ch + c];
+                out.at(x, y)[c] = uint8_t((sum + 128) >> 8);
+            }
+    }
+    return out;
+}
+
+std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& samples, int dims, int count,
+                                                 int axes) {
+    const std::size_t d = std::size_t(dims);
+    std::vector<int64_t> sum(d, 0);
+    std::vector<uint32_t> products(d * d, 0);
+    for (int s = 0; s < count; ++s) {
+        const int16_t* x = samples.data() + std::size_t(s) * d;
+        for (std::size_t i = 0; i < d; ++i) {
+            sum[i] += x[i];
+            const uint32_t xi = uint32_t(x[i]);
+            uint32_t* row = products.data() + i * d;
+            for (std::size_t j = i; j < d; ++j) row[j] += xi * uint32_t(x[j]);
+        }
+    }
+    // count^2 times the covariance, exact, then scaled so that every entry
+    // is below 2^24: a row times a Q30 vector then fits 64 bits.
+    std::vector<int128> cov(d * d);
+    int128 largest = 0;
+    for (std::size_t i = 0; i < d; ++i)
+        for (std::size_t j = i; j < d; ++j) {
+            const int128 c = int128(count) * products[i * d + j] - int128(sum[i]) * sum[j];
+            cov[i * d + j] = cov[j * d + i] = c;
+            largest = std::max(largest, c < 0 ? -c : c);
+        }
+    int shift = 0;
+    while ((largest >> shift) >= (int128(1) << 24)) ++shift;
+    std::vector<int64_t> k(d * d);
+    for (std::size_t i = 0; i < d * d; ++i) k[i] = int64_t(cov[i] >> shift);
+
+    std::vector<std::vector<int64_t>> found;  // Q30
+    std::vector<std::vector<int32_t>> result(std::size_t(axes), std::vector<int32_t>(d, 0));
+    std::vector<int64_t> v(d), w(d);
+    for (int a = 0; a < axes; ++a) {
+        for (std::size_t i = 0; i < d; ++i) v[i] = int64_t(1 + (i * 7 + std::size_t(a) * 13) % 5) << 24;
+        bool zero = false;
+        for (int it = 0; it < kPowerIterations && !zero; ++it) {
+            for (std::size_t i = 0; i < d; ++i) {
+                int64_t acc = 0;
+                const int64_t* row = k.data() + i * d;
+                for (std::size_t j = 0; j < d; ++j) acc += row[j] * v[j];
+                w[i] = acc >> 24;
+            }
+            for (const auto& e : found) {
+                int128 dot = 0;
+                for (std::size_t i = 0; i < d; ++i) dot += int128(e[i]) * w[i];
+                for (std::size_t i = 0; i < d; ++i) w[i] -= int64_t((int128(e[i]) * dot) >> (2 * kAxisShift));
+            }
+            uint128 norm2 = 0;
+            for (std::size_t i = 0; i < d; ++i) norm2 += uint128(int128(w[i]) * w[i]);
+            const uint64_t norm = isqrt(norm2);
+            if (norm == 0) {
+                zero = true;
+                break;
+            }
+            for (std::size_t i = 0; i < d; ++i) v[i] = int64_t((int128(w[i]) << kAxisShift) / int128(norm));
+        }
+        if (zero) break;  // no variance left: this and later axes stay zero
+        found.push_back(v);
+        for (std::size_t i = 0; i < d; ++i) result[std::size_t(a)][i] = int32_t((v[i] + (1 << 14)) >> 15);
+    }
+    return result;
+}
+
+AppearanceSpace build_appearance_space(const Image& example, int levels, bool wraps, int threads) {
+    AppearanceSpace space;
+    space.width = example.width;
+    space.height = example.height;
+    space.wraps = wraps;
+    const int w = example.width, h = example.height, ch = example.channels;
+    const int dims = kWindowTaps * ch;
+    const std::size_t n = example.pixel_count();
+    // PCA samples on a regular grid: all pixels of examples up to 256x256.
+    int stride = 1;
+    while ((std::size_t((w + stride - 1) / stride) * std::size_t((h + stride - 1) / stride)) >
+           std::size_t(kMaxPcaSamples))
+        ++stride;
+    for (int l = 0; l < levels; ++l) {
+        AppearanceLevel level;
+        level.spacing = 1 << l;
+        level.colours = l == 0 ? example : stack_filter(space.levels.back().colours, 1 << (l - 1), wraps);
+        const Image& img = level.colours;
+
+        std::vector<int16_t> samples;
+        int count = 0;
+        std::vector<int16_t> window(static_cast<std::size_t>(dims));
+        for (int y = 0; y < h; y += stride)
+            for (int x = 0; x < w; x += stride) {
+                gather_window(img, x, y, level.spacing, wraps, window.data());
+                samples.insert(samples.end(), window.begin(), window.end());
+                ++count;
+            }
+        const std::vector<std::vector<int32_t>> axes = principal_axes(samples, dims, count, kAppearanceDims);
+        std::vector<int64_t> mean(std::size_t(dims), 0);
+        for (int s = 0; s < count; ++s)
+            for (int i = 0; i < dims; ++i) mean[std::size_t(i)] += samples[std::size_t(s) * dims + i];
+        for (auto& m : mean) m = (m + count / 2) / count;
+        // Projections in the example's own units (a unit axis keeps a
+        // window's length), so distances compare with colour differences.
+        std::vector<int32_t> flat(std::size_t(kAppearanceDims) * dims);
+        for (int a = 0; a < kAppearanceDims; ++a)
+            for (int i = 0; i < dims; ++i) flat[std::size_t(a) * dims + i] = axes[std::size_t(a)][std::size_t(i)];
+
+        level.features.assign(n * kAppearanceDims, 0);
+        parallel_for(threads, std::size_t(h), 8, [&](std::size_t y0, std::size_t y1) {
+            std::vector<int16_t> win(static_cast<std::size_t>(dims));
+            std::vector<int32_t> centred(static_cast<std::size_t>(dims));
+            for (std::size_t y = y0; y < y1; ++y)
+                for (int x = 0; x < w; ++x) {
+                    gather_window(img, x, int(y), level.spacing, wraps, win.data());
+                    for (int i = 0; i < dims; ++i) centred[std::size_t(i)] = win[std::size_t(i)] - int32_t(mean[std::size_t(i)]);
+                    int16_t* f = level.features.data() + (y * std::size_t(w) + std::size_t(x)) * kAppearanceDims;
+                    for (int a = 0; a < kAppearanceDims; ++a) {
+                        const int32_t* axis = flat.data() + std::size_t(a) * dims;
+                        int64_t acc = 0;
+                        for (int i = 0; i < dims; ++i) acc += int64_t(axis[i]) * centred[std::size_t(i)];
+                        const int64_t v = (acc + (1 << 14)) >> 15;
+                        f[a] = int16_t(std::clamp<int64_t>(v, -kAppearanceClamp, kAppearanceClamp));
+                    }
+                }
+        });
+        space.levels.push_back(std::move(level));
+    }
+    return space;
+}
+
+}  // namespace vqtex

@@ -1,0 +1,209 @@
+// coherent_synthesis.cpp - coordinate synthesis with k-coherence candidates
+// in appearance space (Lefebvre & Hoppe 2005 sections 3-4, 2006 section 4;
+// Tong et al. 2002; Ashikhmin 2001). See coherent_synthesis.hpp.
+#include "coherent_synthesis.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cstring>
+
+#include "error.hpp"
+#include "parallel.hpp"
+#include "pyramid.hpp"
+
+namespace vqtex {
+namespace {
+
+// Neighbourhood of a correction step: the 3x3 window of appearance
+// vectors (each already summarises a 5x5 window of its level).
+constexpr int kRadius = 1;
+constexpr int kTaps = (2 * kRadius + 1) * (2 * kRadius + 1);
+constexpr int kMaxCandidates = kTaps * 16;
+
+uint64_t mix64(uint64_t z) {
+    z += 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+// A per-pixel hash of the seed, the level and a purpose: the same pixel of
+// the same level gets the same numbers whatever else is computed.
+uint64_t pixel_hash(uint64_t seed, int level, int purpose, int x, int y) {
+    return mix64(seed ^ mix64((uint64_t(uint32_t(level)) << 40) ^ (uint64_t(uint32_t(purpose)) << 56) ^
+                              (uint64_t(uint32_t(y)) << 20) ^ uint64_t(uint32_t(x))));
+}
+
+// Position (x, y) of the example, folded inside if it is not.
+uint32_t folded(const AppearanceSpace& space, int x, int y) {
+    return pack_position(space.fold_x(x), space.fold_y(y));
+}
+
+struct LevelView {
+    const AppearanceSpace& space;
+    const CoherenceSets& sets;
+    int level;
+    int spacing;
+
+    const int16_t* feature(uint32_t p) const { return space.feature(level, position_x(p), position_y(p)); }
+
+    // Distance between the query (kTaps vectors) and the example's window at
+    // p, stopping once it exceeds `bound`.
+    int32_t distance(const int16_t* query, int x, int y, int32_t bound) const {
+        const int w = space.width, h = space.height;
+        const bool inside = x - kRadius * spacing >= 0 && x + kRadius * spacing < w &&
+                            y - kRadius * spacing >= 0 && y + kRadius * spacing < h;
+        int32_t d = 0;
+        int t = 0;
+        for (int dy = -kRadius; dy <= kRadius; ++dy) {
+            for (int dx = -kRadius; dx <= kRadius; ++dx, ++t) {
+                const int sx = x + dx * spacing, sy = y + dy * spacing;
+                const int16_t* f = inside ? space.feature(level, sx, sy)
+                                          : space.feature(level, space.fold_x(sx), space.fold_y(sy));
+                const int16_t* q = query + t * kAppearanceDims;
+                for (int i = 0; i < kAppearanceDims; ++i) {
+                    const int32_t diff = int32_t(f[i]) - q[i];
+                    d += diff * diff;
+                }
+            }
+            if (d > bound) return d;
+        }
+        return d;
+    }
+};
+
+// One correction of pixel (x, y) of `cur` (w x h, a torus): the best of
+// its neighbours' coherent candidates.
+uint32_t correct_pixel(const LevelView& v, const std::vector<uint32_t>& cur, int w, int h, int x, int y) {
+    alignas(32) int16_t query[kTaps * kAppearanceDims];
+    uint32_t sources[kTaps];
+    int t = 0;
+    for (int dy = -kRadius; dy <= kRadius; ++dy)
+        for (int dx = -kRadius; dx <= kRadius; ++dx, ++t) {
+            const uint32_t s = cur[std::size_t(Image::wrap(y + dy, h)) * w + Image::wrap(x + dx, w)];
+            sources[t] = s;
+            std::memcpy(query + t * kAppearanceDims, v.feature(s), sizeof(int16_t) * kAppearanceDims);
+        }
+    uint32_t candidates[kMaxCandidates];
+    int count = 0;
+    const int ex_w = v.space.width, ex_h = v.space.height;
+    const int k = std::min(v.sets.k, kMaxCandidates / kTaps);
+    t = 0;
+    for (int dy = -kRadius; dy <= kRadius; ++dy)
+        for (int dx = -kRadius; dx <= kRadius; ++dx, ++t) {
+            int ux = position_x(sources[t]) - dx * v.spacing, uy = position_y(sources[t]) - dy * v.spacing;
+            if (v.space.wraps) {
+                ux = Image::wrap(ux, ex_w);
+                uy = Image::wrap(uy, ex_h);
+            } else if (ux < 0 || uy < 0 || ux >= ex_w || uy >= ex_h) {
+                continue;  // the neighbour's source continues past the example's edge
+            }
+            const uint32_t* set = v.sets.of(v.level, uint32_t(uy) * uint32_t(ex_w) + uint32_t(ux));
+            for (int i = 0; i < k; ++i) {
+                const uint32_t c = pack_position(int(set[i] % uint32_t(ex_w)), int(set[i] / uint32_t(ex_w)));
+                bool seen = false;
+                for (int j = 0; j < count && !seen; ++j) seen = candidates[j] == c;
+                if (!seen) candidates[count++] = c;
+            }
+        }
+    // The pixel's own position competes too (its source may be off the
+    // example's edge for every neighbour).
+    uint32_t best = sources[kTaps / 2];
+    int32_t best_d = v.distance(query, position_x(best), position_y(best), INT32_MAX);
+    for (int i = 0; i < count; ++i) {
+        const int32_t d = v.distance(query, position_x(candidates[i]), position_y(candidates[i]), best_d);
+        if (d < best_d) {
+            best_d = d;
+            best = candidates[i];
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
+PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& parent, int width, int height,
+                               int spacing) {
+    PositionMap out{width, height, std::vector<uint32_t>(std::size_t(width) * height)};
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const uint32_t p = parent.positions[std::size_t(y >> 1) * parent.width + (x >> 1)];
+            out.positions[std::size_t(y) * width + x] =
+                folded(space, position_x(p) + (x & 1) * spacing, position_y(p) + (y & 1) * spacing);
+        }
+    return out;
+}
+
+PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSets& sets,
+                                 const CoherentOptions& options, std::vector<PositionMap>* levels) {
+    const int top = int(space.levels.size()) - 1;
+    uint64_t total = 0, done = 0;
+    for (int l = top; l >= 0; --l) {
+        const uint64_t area = uint64_t(pyramid_level_size(options.width, l)) * pyramid_level_size(options.height, l);
+        total += area * uint64_t(l == top ? options.coarse_passes : options.passes);
+    }
+    PositionMap map;
+    if (levels) levels->assign(space.levels.size(), PositionMap{});
+    for (int l = top; l >= 0; --l) {
+        const int w = pyramid_level_size(options.width, l), h = pyramid_level_size(options.height, l);
+        const int spacing = space.levels[std::size_t(l)].spacing;
+        if (l == top) {
+            // The coarsest level starts anywhere: positions drawn at random.
+            map = PositionMap{w, h, std::vector<uint32_t>(std::size_t(w) * h)};
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const uint64_t r = pixel_hash(options.seed, l, 0, x, y);
+                    map.positions[std::size_t(y) * w + x] =
+                        pack_position(int((r & 0xFFFFFFFF) % uint64_t(space.width)), int((r >> 32) % uint64_t(space.height)));
+                }
+        } else {
+            map = upsample_positions(space, map, w, h, spacing);
+            // Jitter of up to jitter/256 of the spacing in x and y.
+            const int64_t reach = int64_t(spacing) * options.jitter;
+            if (reach > 0)
+                for (int y = 0; y < h; ++y)
+                    for (int x = 0; x < w; ++x) {
+                        const uint64_t r = pixel_hash(options.seed, l, 1, x, y);
+                        const int64_t jx = ((int64_t(r & 0xFFFF) - 32768) * reach) / (32768 * 256);
+                        const int64_t jy = ((int64_t((r >> 16) & 0xFFFF) - 32768) * reach) / (32768 * 256);
+                        uint32_t& p = map.positions[std::size_t(y) * w + x];
+                        p = folded(space, position_x(p) + int(jx), position_y(p) + int(jy));
+                    }
+        }
+        const LevelView view{space, sets, l, spacing};
+        const int passes = l == top ? options.coarse_passes : options.passes;
+        std::vector<uint32_t> next;
+        static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+        for (int pass = 0; pass < passes; ++pass) {
+            for (const auto& [sx, sy] : kOrder) {
+                next = map.positions;
+                const int rows = (h - sy + 1) / 2;
+                parallel_for(options.threads, std::size_t(std::max(rows, 0)), 4, [&](std::size_t r0, std::size_t r1) {
+                    for (std::size_t r = r0; r < r1; ++r) {
+                        const int y = sy + 2 * int(r);
+                        for (int x = sx; x < w; x += 2)
+                            next[std::size_t(y) * w + x] = correct_pixel(view, map.positions, w, h, x, y);
+                    }
+                });
+                map.positions.swap(next);
+            }
+            done += uint64_t(w) * h;
+            if (options.progress && !options.progress(done, total))
+                fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+        }
+        if (levels) (*levels)[std::size_t(l)] = map;
+    }
+    return map;
+}
+
+Image read_positions(const Image& example, const PositionMap& map) {
+    Image out(map.width, map.height, example.channels);
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x) {
+            const uint32_t p = map.positions[std::size_t(y) * map.width + x];
+            copy_pixel(out.at(x, y), example.at(position_x(p), position_y(p)), example.channels);
+        }
+    return out;
+}
+
+}  // namespace vqtex

@@ -1,0 +1,62 @@
+// coherent_synthesis.hpp - texture synthesis by example coordinates with
+// coherent candidates: the engine after Wei & Levoy that keeps structure.
+//
+// Each output pixel holds a position in the example (Lefebvre & Hoppe 2005,
+// "Parallel controllable texture synthesis"). Coarse to fine over a Gaussian
+// stack: a level starts from the coarser one's positions upsampled (child =
+// parent + offset * spacing), so the layout found at a coarse level carries
+// down instead of being searched again pixel by pixel; seeded jitter makes
+// outputs differ; then a few correction passes let every pixel pick, among
+// the k-coherence sets (Tong et al. 2002) of its neighbours' shifted sources
+// (Ashikhmin 2001), the position whose appearance-space neighbourhood
+// (Lefebvre & Hoppe 2006) matches best. Passes run on interleaved pixel
+// subsets, each reading only the state before it, so a pixel's result never
+// depends on the thread count; the output is a torus, so it tiles with no
+// scan seam. Pixels are read through the finest positions at the end.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "appearance.hpp"
+#include "coherence_sets.hpp"
+#include "image.hpp"
+
+namespace vqtex {
+
+struct CoherentOptions {
+    int width = 256, height = 256;
+    uint64_t seed = 1;
+    int threads = 1;
+    int passes = 2;         // correction passes at every level but the coarsest
+    int coarse_passes = 4;  // at the coarsest, which starts from random positions
+    int jitter = 128;       // per level, in 1/256 of the level's spacing
+    std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
+};
+
+// Positions into the example, (y << 16) | x, for a width x height output.
+struct PositionMap {
+    int width = 0, height = 0;
+    std::vector<uint32_t> positions;
+};
+
+inline uint32_t pack_position(int x, int y) { return (uint32_t(y) << 16) | uint32_t(x); }
+inline int position_x(uint32_t p) { return int(p & 0xFFFF); }
+inline int position_y(uint32_t p) { return int(p >> 16); }
+
+// The finest level's positions (and, when `levels` is given, every level's,
+// finest first).
+PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSets& sets,
+                                 const CoherentOptions& options, std::vector<PositionMap>* levels = nullptr);
+
+// The output pixels: the example's pixels at the positions.
+Image read_positions(const Image& example, const PositionMap& map);
+
+// The next finer level's positions before jitter and correction: each
+// child takes its parent's position plus its offset times `spacing` (the
+// finer level's), folded into the example. Exposed for tests.
+PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& parent, int width, int height,
+                               int spacing);
+
+}  // namespace vqtex
