@@ -317,7 +317,6 @@ GmicResult run_gmic(const Image& exemplar, int w, int h, uint64_t seed, const st
     return g;
 }
 
-
 // The synth protocol's summary: the mean of every score per synthesiser
 // over the textures it scored (column n; the floor over all of them), then
 // one line per texture with the metrics on which vqtex scores worse than
@@ -552,6 +551,8 @@ int main(int argc, char** argv) {
                 r.status = "failed";
                 r.texture = name;
                 writer.add(r, floor);
+                // A white panel keeps G'MIC's output in the fourth place.
+                synth_panels.push_back(Image{sw, sh, 3, std::vector<uint8_t>(std::size_t(sw) * sh * 3, 255)});
             }
             if (!no_peers) {
                 GmicResult g = run_gmic(exemplar, sw, sh, seed, fs::path(name).stem().string(), scratch,
