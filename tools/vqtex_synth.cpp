@@ -33,13 +33,13 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"coherent", "paper"}));
     app.add_flag("--paper", paper, "the paper's algorithm exactly: --engine paper --init noise --no-seam-closing");
     auto* coherence_opt = app.add_option("--coherence", coherence,
-                                         "coherent engine: candidates per neighbour, 1 to 16 (default 4)")
+                                         "coherent engine: candidates per neighbour, 1 to 16 (default 1)")
                               ->check(CLI::Range(1, 16));
     auto* passes_opt = app.add_option("--passes", passes, "coherent engine: correction passes per level, 1 to 8 (default 2)")
                            ->check(CLI::Range(1, 8));
     auto* jitter_opt = app.add_option("--jitter", jitter,
                                       "coherent engine: variety, coordinate jitter in 1/256 of a level's spacing, "
-                                      "0 to 1024 (default 128)")
+                                      "0 to 1024 (default 0)")
                            ->check(CLI::Range(0, 1024));
     app.add_option("--levels", levels, "pyramid levels (default: automatic, 4 for 128x128)");
     app.add_option("--shapes", shapes,

@@ -156,6 +156,9 @@ AppearanceSpace build_appearance_space(const Image& example, int levels, bool wr
     while ((std::size_t((w + stride - 1) / stride) * std::size_t((h + stride - 1) / stride)) >
            std::size_t(kMaxPcaSamples))
         ++stride;
+    space.pixels.assign(n * kAppearanceDims, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        for (int c = 0; c < ch; ++c) space.pixels[i * kAppearanceDims + std::size_t(c)] = int16_t(4 * example.pixels[i * std::size_t(ch) + std::size_t(c)]);
     for (int l = 0; l < levels; ++l) {
         AppearanceLevel level;
         level.spacing = 1 << l;

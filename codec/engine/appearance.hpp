@@ -36,6 +36,9 @@ struct AppearanceSpace {
     int width = 0, height = 0;
     bool wraps = false;  // the example tiles: positions wrap instead of reflecting
     std::vector<AppearanceLevel> levels;  // [0] finest
+    // The example's own pixels as vectors of the same layout (channels
+    // times 4, zero-padded), for matching raw colours at the finest level.
+    std::vector<int16_t> pixels;
 
     const int16_t* feature(int level, int x, int y) const {
         return levels[std::size_t(level)].features.data() +

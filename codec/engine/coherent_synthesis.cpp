@@ -14,9 +14,9 @@
 namespace vqtex {
 namespace {
 
-// Neighbourhood of a correction step: the 3x3 window of appearance
+// Neighbourhood of a correction step: the 5x5 window of appearance
 // vectors (each already summarises a 5x5 window of its level).
-constexpr int kRadius = 1;
+constexpr int kRadius = 2;
 constexpr int kTaps = (2 * kRadius + 1) * (2 * kRadius + 1);
 constexpr int kMaxCandidates = kTaps * 16;
 
@@ -42,10 +42,15 @@ uint32_t folded(const AppearanceSpace& space, int x, int y) {
 struct LevelView {
     const AppearanceSpace& space;
     const CoherenceSets& sets;
-    int level;
+    int level;       // for the coherence sets
     int spacing;
+    const int16_t* features;  // kAppearanceDims per example pixel
+    int k;           // coherence candidates per neighbour
 
-    const int16_t* feature(uint32_t p) const { return space.feature(level, position_x(p), position_y(p)); }
+    const int16_t* feature(int x, int y) const {
+        return features + (std::size_t(y) * space.width + x) * kAppearanceDims;
+    }
+    const int16_t* feature(uint32_t p) const { return feature(position_x(p), position_y(p)); }
 
     // Distance between the query (kTaps vectors) and the example's window at
     // p, stopping once it exceeds `bound`.
@@ -58,8 +63,7 @@ struct LevelView {
         for (int dy = -kRadius; dy <= kRadius; ++dy) {
             for (int dx = -kRadius; dx <= kRadius; ++dx, ++t) {
                 const int sx = x + dx * spacing, sy = y + dy * spacing;
-                const int16_t* f = inside ? space.feature(level, sx, sy)
-                                          : space.feature(level, space.fold_x(sx), space.fold_y(sy));
+                const int16_t* f = inside ? feature(sx, sy) : feature(space.fold_x(sx), space.fold_y(sy));
                 const int16_t* q = query + t * kAppearanceDims;
                 for (int i = 0; i < kAppearanceDims; ++i) {
                     const int32_t diff = int32_t(f[i]) - q[i];
@@ -74,7 +78,8 @@ struct LevelView {
 
 // One correction of pixel (x, y) of `cur` (w x h, a torus): the best of
 // its neighbours' coherent candidates.
-uint32_t correct_pixel(const LevelView& v, const std::vector<uint32_t>& cur, int w, int h, int x, int y) {
+uint32_t correct_pixel(const LevelView& v, const std::vector<uint32_t>& cur, int w, int h, int x, int y,
+                       int bias) {
     alignas(32) int16_t query[kTaps * kAppearanceDims];
     uint32_t sources[kTaps];
     int t = 0;
@@ -85,9 +90,10 @@ uint32_t correct_pixel(const LevelView& v, const std::vector<uint32_t>& cur, int
             std::memcpy(query + t * kAppearanceDims, v.feature(s), sizeof(int16_t) * kAppearanceDims);
         }
     uint32_t candidates[kMaxCandidates];
+    bool continues[kMaxCandidates];
     int count = 0;
     const int ex_w = v.space.width, ex_h = v.space.height;
-    const int k = std::min(v.sets.k, kMaxCandidates / kTaps);
+    const int k = std::min(v.k, kMaxCandidates / kTaps);
     t = 0;
     for (int dy = -kRadius; dy <= kRadius; ++dy)
         for (int dx = -kRadius; dx <= kRadius; ++dx, ++t) {
@@ -98,12 +104,19 @@ uint32_t correct_pixel(const LevelView& v, const std::vector<uint32_t>& cur, int
             } else if (ux < 0 || uy < 0 || ux >= ex_w || uy >= ex_h) {
                 continue;  // the neighbour's source continues past the example's edge
             }
-            const uint32_t* set = v.sets.of(v.level, uint32_t(uy) * uint32_t(ex_w) + uint32_t(ux));
+            const uint32_t own = uint32_t(uy) * uint32_t(ex_w) + uint32_t(ux);
+            const uint32_t* set = k > 1 ? v.sets.of(v.level, own) : &own;
             for (int i = 0; i < k; ++i) {
                 const uint32_t c = pack_position(int(set[i] % uint32_t(ex_w)), int(set[i] / uint32_t(ex_w)));
-                bool seen = false;
-                for (int j = 0; j < count && !seen; ++j) seen = candidates[j] == c;
-                if (!seen) candidates[count++] = c;
+                int seen = -1;
+                for (int j = 0; j < count && seen < 0; ++j)
+                    if (candidates[j] == c) seen = j;
+                if (seen >= 0) {
+                    continues[seen] = continues[seen] || i == 0;
+                } else {
+                    continues[count] = i == 0;
+                    candidates[count++] = c;
+                }
             }
         }
     // The pixel's own position competes too (its source may be off the
@@ -111,13 +124,46 @@ uint32_t correct_pixel(const LevelView& v, const std::vector<uint32_t>& cur, int
     uint32_t best = sources[kTaps / 2];
     int32_t best_d = v.distance(query, position_x(best), position_y(best), INT32_MAX);
     for (int i = 0; i < count; ++i) {
-        const int32_t d = v.distance(query, position_x(candidates[i]), position_y(candidates[i]), best_d);
+        // An alternative must beat the best by the bias: d (1 + bias/256) < best.
+        const int32_t bound = continues[i] ? best_d : int32_t((int64_t(best_d) * 256) / (256 + bias));
+        int32_t d = v.distance(query, position_x(candidates[i]), position_y(candidates[i]), bound);
+        if (!continues[i]) d = int32_t(std::min<int64_t>(INT32_MAX, int64_t(d) + (int64_t(d) * bias) / 256));
         if (d < best_d) {
             best_d = d;
             best = candidates[i];
         }
     }
     return best;
+}
+
+// A child's coordinate from its parent's. A parent whose second child
+// would fall past the example's edge has its block of children moved inside
+// whole, so the block stays a coherent copy; folding the child back (a
+// mirror) repeated the same rows over several levels and drew streaks.
+int child_coordinate(int size, bool wraps, int parent, int offset, int spacing) {
+    if (wraps) return Image::wrap(parent + offset * spacing, size);
+    const int base = parent + spacing < size ? parent : std::max(0, size - 1 - spacing);
+    return std::min(base + offset * spacing, size - 1);
+}
+
+// One correction pass over the whole level, in four interleaved subsets;
+// each subset reads only the positions as they were before it.
+void correction_pass(const LevelView& view, PositionMap& map, const CoherentOptions& options) {
+    static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+    const int w = map.width, h = map.height;
+    std::vector<uint32_t> next;
+    for (const auto& [sx, sy] : kOrder) {
+        next = map.positions;
+        const int rows = (h - sy + 1) / 2;
+        parallel_for(options.threads, std::size_t(std::max(rows, 0)), 4, [&](std::size_t r0, std::size_t r1) {
+            for (std::size_t r = r0; r < r1; ++r) {
+                const int y = sy + 2 * int(r);
+                for (int x = sx; x < w; x += 2)
+                    next[std::size_t(y) * w + x] = correct_pixel(view, map.positions, w, h, x, y, options.coherence_bias);
+            }
+        });
+        map.positions.swap(next);
+    }
 }
 
 }  // namespace
@@ -129,7 +175,8 @@ PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& 
         for (int x = 0; x < width; ++x) {
             const uint32_t p = parent.positions[std::size_t(y >> 1) * parent.width + (x >> 1)];
             out.positions[std::size_t(y) * width + x] =
-                folded(space, position_x(p) + (x & 1) * spacing, position_y(p) + (y & 1) * spacing);
+                pack_position(child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing),
+                              child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing));
         }
     return out;
 }
@@ -159,7 +206,7 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
         } else {
             map = upsample_positions(space, map, w, h, spacing);
             // Jitter of up to jitter/256 of the spacing in x and y.
-            const int64_t reach = int64_t(spacing) * options.jitter;
+            const int64_t reach = spacing >= options.jitter_min_spacing ? int64_t(spacing) * options.jitter : 0;
             if (reach > 0)
                 for (int y = 0; y < h; ++y)
                     for (int x = 0; x < w; ++x) {
@@ -170,28 +217,38 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
                         p = folded(space, position_x(p) + int(jx), position_y(p) + int(jy));
                     }
         }
-        const LevelView view{space, sets, l, spacing};
+        const LevelView view{space, sets, l, spacing, space.levels[std::size_t(l)].features.data(), sets.k};
         const int passes = l == top ? options.coarse_passes : options.passes;
-        std::vector<uint32_t> next;
-        static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
         for (int pass = 0; pass < passes; ++pass) {
-            for (const auto& [sx, sy] : kOrder) {
-                next = map.positions;
-                const int rows = (h - sy + 1) / 2;
-                parallel_for(options.threads, std::size_t(std::max(rows, 0)), 4, [&](std::size_t r0, std::size_t r1) {
-                    for (std::size_t r = r0; r < r1; ++r) {
-                        const int y = sy + 2 * int(r);
-                        for (int x = sx; x < w; x += 2)
-                            next[std::size_t(y) * w + x] = correct_pixel(view, map.positions, w, h, x, y);
-                    }
-                });
-                map.positions.swap(next);
-            }
+            correction_pass(view, map, options);
             done += uint64_t(w) * h;
             if (options.progress && !options.progress(done, total))
                 fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
         }
+        if (l == 0 && options.polish_passes > 0) {
+            // Seams between coherent copies are placed by colours at last:
+            // the coherence of the output's own pixels is what a viewer sees.
+            const LevelView polish{space, sets, 0, 1, space.pixels.data(), 1};
+            for (int pass = 0; pass < options.polish_passes; ++pass) correction_pass(polish, map, options);
+        }
         if (levels) (*levels)[std::size_t(l)] = map;
+    }
+    // Coherent copies tend to end on the coarsest level's pixel grid; the
+    // output's origin is moved off that grid by a seeded offset, so that its
+    // wrap-around edges are no more likely to fall on a seam than any other
+    // row or column (the torus makes the shift free).
+    const int cell = 1 << top;
+    const uint64_t r = pixel_hash(options.seed, top, 2, 0, 0);
+    // Odd offsets: the edges then fall inside 2x2 blocks, on no level's grid.
+    const int ox = int((r & 0xFFFF) % uint64_t(std::max(1, std::min(cell, map.width) / 2))) * 2 + 1;
+    const int oy = int((r >> 16 & 0xFFFF) % uint64_t(std::max(1, std::min(cell, map.height) / 2))) * 2 + 1;
+    if (options.roll && (ox || oy)) {
+        std::vector<uint32_t> rolled(map.positions.size());
+        for (int y = 0; y < map.height; ++y)
+            for (int x = 0; x < map.width; ++x)
+                rolled[std::size_t(y) * map.width + x] =
+                    map.positions[std::size_t(Image::wrap(y + oy, map.height)) * map.width + Image::wrap(x + ox, map.width)];
+        map.positions.swap(rolled);
     }
     return map;
 }
