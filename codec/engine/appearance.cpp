@@ -112,6 +112,7 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& sam
     std::vector<std::vector<int64_t>> found;  // Q30
     std::vector<std::vector<int32_t>> result(std::size_t(axes), std::vector<int32_t>(d, 0));
     std::vector<int64_t> v(d), w(d);
+    uint64_t strongest = 0;  // |K v| of the first axis, once converged
     for (int a = 0; a < axes; ++a) {
         for (std::size_t i = 0; i < d; ++i) v[i] = int64_t(1 + (i * 7 + std::size_t(a) * 13) % 5) << 24;
         bool zero = false;
@@ -130,7 +131,10 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& sam
             uint128 norm2 = 0;
             for (std::size_t i = 0; i < d; ++i) norm2 += uint128(int128(w[i]) * w[i]);
             const uint64_t norm = isqrt(norm2);
-            if (norm == 0) {
+            // Variance below 1/4096 of the strongest axis's is rounding
+            // noise: scaled up to unit length it would not be orthogonal.
+            if (a == 0 && it + 1 == kPowerIterations) strongest = norm;
+            if (norm == 0 || (a > 0 && norm < strongest / 4096 + 1)) {
                 zero = true;
                 break;
             }

@@ -1,0 +1,281 @@
+// test_coherent.cpp - the coherent engine (codec/engine/coherent_synthesis,
+// appearance, coherence_sets): its pieces against slow reference
+// implementations, determinism, and structure reproduced on a texture whose
+// structure the test can measure.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "engine/appearance.hpp"
+#include "engine/coherence_sets.hpp"
+#include "engine/coherent_synthesis.hpp"
+#include "rng.hpp"
+#include "test_support.hpp"
+
+using namespace vqtex;
+
+namespace {
+
+// Rows of bricks: dark mortar lines 2 px wide, brick heights 10 px, brick
+// lengths drawn from 14 to 26 px, each course starting at a random offset,
+// brick shades varying. Its structure is measurable: the runs of brick
+// pixels between mortar along rows and columns.
+Image brick_wall(int w, int h, uint64_t seed) {
+    Image img(w, h, 3);
+    Rng rng(seed);
+    const int course = 12;
+    for (int y0 = 0; y0 < h; y0 += course) {
+        int x = -int(rng.below(20));
+        while (x < w) {
+            const int len = 14 + int(rng.below(13));
+            const int shade = 150 + int(rng.below(60));
+            for (int y = y0; y < std::min(h, y0 + course); ++y)
+                for (int xx = std::max(0, x); xx < std::min(w, x + len); ++xx) {
+                    const bool mortar = y - y0 >= course - 2 || xx - x >= len - 2;
+                    uint8_t* p = img.at(xx, y);
+                    const int noise = int(rng.below(9)) - 4;
+                    p[0] = uint8_t(mortar ? 50 + noise : shade + noise);
+                    p[1] = uint8_t(mortar ? 45 + noise : shade / 2 + noise);
+                    p[2] = uint8_t(mortar ? 40 + noise : shade / 3 + noise);
+                }
+            x += len;
+        }
+    }
+    return img;
+}
+
+bool is_mortar(const Image& img, int x, int y) { return img.at(x, y)[0] < 100; }
+
+struct RunStats {
+    double mortar_fraction = 0, mean_row_run = 0, mean_column_run = 0;
+};
+
+// Mean length of brick runs between mortar pixels along rows and columns
+// (runs touching the image's border are left out).
+RunStats runs(const Image& img) {
+    RunStats s;
+    std::size_t mortar = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) mortar += is_mortar(img, x, y);
+    s.mortar_fraction = double(mortar) / double(img.pixel_count());
+    auto mean_run = [&](bool along_rows) {
+        const int lines = along_rows ? img.height : img.width, length = along_rows ? img.width : img.height;
+        double total = 0;
+        int count = 0;
+        for (int l = 0; l < lines; ++l) {
+            int start = -1;
+            for (int i = 0; i < length; ++i) {
+                const bool m = along_rows ? is_mortar(img, i, l) : is_mortar(img, l, i);
+                if (m) {
+                    if (start >= 0 && i - start > 0) {
+                        total += i - start;
+                        ++count;
+                    }
+                    start = i + 1;
+                }
+            }
+        }
+        return count ? total / count : 1e9;
+    };
+    s.mean_row_run = mean_run(true);
+    s.mean_column_run = mean_run(false);
+    return s;
+}
+
+vqtex_synth_params coherent_params(int w, int h, uint64_t seed) {
+    vqtex_synth_params p;
+    vqtex_synth_params_init(&p);
+    p.width = uint32_t(w);
+    p.height = uint32_t(h);
+    p.seed = seed;
+    p.threads = 1;
+    return p;
+}
+
+Image textured(int w, int h, uint64_t seed) {
+    Image img(w, h, 3);
+    Rng rng(seed);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c)
+                img.at(x, y)[c] = uint8_t(int(128 + 60 * std::sin((x + 2 * c) * 0.7) * std::cos(y * 0.45)) +
+                                          int(rng.below(40)));
+    return img;
+}
+
+}  // namespace
+
+TEST(Coherent, DefaultsSelectTheCoherentEngine) {
+    vqtex_synth_params p;
+    vqtex_synth_params_init(&p);
+    EXPECT_EQ(p.engine, VQTEX_ENGINE_COHERENT);
+    EXPECT_GE(p.coherence, 1u);
+    EXPECT_GE(p.passes, 1u);
+}
+
+TEST(Coherent, PrincipalAxesAreOrthonormalAndOrdered) {
+    // Samples spread mostly along (1, 1, 0, 0), less along (0, 0, 1, -1),
+    // least along (0, 0, 1, 1).
+    std::vector<int16_t> samples;
+    Rng rng(3);
+    const int count = 4000;
+    for (int i = 0; i < count; ++i) {
+        const int a = int(rng.below(201)) - 100, b = (int(rng.below(201)) - 100) / 3,
+                  c = (int(rng.below(201)) - 100) / 10;
+        for (int v : {128 + a, 128 + a, 100 + b + c, 100 - b + c}) samples.push_back(int16_t(v));
+    }
+    const auto axes = principal_axes(samples, 4, count, 4);
+    ASSERT_EQ(axes.size(), 4u);
+    auto dot = [](const std::vector<int32_t>& u, const std::vector<int32_t>& v) {
+        double s = 0;
+        for (std::size_t i = 0; i < u.size(); ++i) s += double(u[i]) * v[i];
+        return s / (32768.0 * 32768.0);
+    };
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(dot(axes[i], axes[i]), 1.0, 1e-3) << i;
+        for (int j = 0; j < i; ++j) EXPECT_NEAR(dot(axes[i], axes[j]), 0.0, 1e-3) << i << "," << j;
+    }
+    const double r = std::sqrt(0.5);
+    EXPECT_NEAR(std::abs(dot(axes[0], {int32_t(r * 32768), int32_t(r * 32768), 0, 0})), 1.0, 1e-2);
+    EXPECT_NEAR(std::abs(dot(axes[1], {0, 0, int32_t(r * 32768), -int32_t(r * 32768)})), 1.0, 1e-2);
+    EXPECT_NEAR(std::abs(dot(axes[2], {0, 0, int32_t(r * 32768), int32_t(r * 32768)})), 1.0, 1e-2);
+    // The first two dimensions are equal in every sample: the fourth axis
+    // carries no variance; it is zero or any unit vector orthogonal to the rest.
+    const double n3 = dot(axes[3], axes[3]);
+    EXPECT_TRUE(std::abs(n3) < 1e-9 || std::abs(n3 - 1.0) < 1e-3) << n3;
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(dot(axes[3], axes[j]), 0.0, 1e-3) << j;
+}
+
+TEST(Coherent, CoherenceSetsEqualBruteForce) {
+    const Image ex = textured(26, 21, 5);
+    const AppearanceSpace space = build_appearance_space(ex, 3, false, 1);
+    const int k = 4, exclusion = 2;
+    const CoherenceSets sets = build_coherence_sets(space, k, exclusion, 2);
+    ASSERT_EQ(sets.levels.size(), 3u);
+    const int n = ex.width * ex.height;
+    for (int l = 0; l < 3; ++l) {
+        const int reach = exclusion * space.levels[l].spacing;
+        for (int u = 0; u < n; ++u) {
+            const int16_t* fu = space.levels[l].features.data() + std::size_t(u) * kAppearanceDims;
+            std::vector<std::pair<int64_t, int>> all;
+            for (int c = 0; c < n; ++c) {
+                if (std::abs(c % ex.width - u % ex.width) < reach && std::abs(c / ex.width - u / ex.width) < reach)
+                    continue;
+                const int16_t* fc = space.levels[l].features.data() + std::size_t(c) * kAppearanceDims;
+                int64_t d = 0;
+                for (int i = 0; i < kAppearanceDims; ++i) d += int64_t(fu[i] - fc[i]) * (fu[i] - fc[i]);
+                all.push_back({d, c});
+            }
+            std::sort(all.begin(), all.end());
+            const uint32_t* set = sets.of(l, uint32_t(u));
+            ASSERT_EQ(set[0], uint32_t(u));
+            for (int i = 1; i < k; ++i) ASSERT_EQ(set[i], uint32_t(all[std::size_t(i - 1)].second)) << l << " " << u << " " << i;
+        }
+    }
+}
+
+TEST(Coherent, UpsampledChildrenAreCoherentBlocksInsideTheExample) {
+    const Image ex = textured(40, 33, 2);
+    const AppearanceSpace space = build_appearance_space(ex, 3, false, 1);
+    for (int spacing : {1, 2, 4}) {
+        PositionMap parent{7, 5, {}};
+        Rng rng{uint64_t(spacing)};
+        for (int i = 0; i < 35; ++i)
+            parent.positions.push_back(pack_position(int(rng.below(40)), int(rng.below(33))));
+        const PositionMap child = upsample_positions(space, parent, 13, 10, spacing);
+        ASSERT_EQ(child.positions.size(), 130u);
+        for (int y = 0; y < 10; ++y)
+            for (int x = 0; x < 13; ++x) {
+                const uint32_t p = parent.positions[std::size_t(y / 2) * 7 + x / 2];
+                const uint32_t c = child.positions[std::size_t(y) * 13 + x];
+                ASSERT_LT(position_x(c), 40);
+                ASSERT_LT(position_y(c), 33);
+                // The definition: the parent's position plus the child's
+                // offset, or the block moved inside when it would cross the edge.
+                const int bx = position_x(p) + spacing < 40 ? position_x(p) : 40 - 1 - spacing;
+                const int by = position_y(p) + spacing < 33 ? position_y(p) : 33 - 1 - spacing;
+                EXPECT_EQ(position_x(c), bx + (x & 1) * spacing);
+                EXPECT_EQ(position_y(c), by + (y & 1) * spacing);
+            }
+    }
+}
+
+TEST(Coherent, SameBytesForAnyThreadCountAndRun) {
+    const Image ex = brick_wall(96, 96, 7);
+    vqtex_synth_params p = coherent_params(150, 110, 9);
+    const Image one = vqtex_test::synthesize(ex, p);
+    for (uint32_t threads : {2u, 3u, 5u}) {
+        p.threads = threads;
+        EXPECT_EQ(vqtex_test::synthesize(ex, p), one) << threads;
+    }
+}
+
+TEST(Coherent, SeedsGiveDifferentTextures) {
+    const Image ex = brick_wall(96, 96, 7);
+    const Image a = vqtex_test::synthesize(ex, coherent_params(128, 128, 1));
+    const Image b = vqtex_test::synthesize(ex, coherent_params(128, 128, 2));
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) differing += a.pixels[i] != b.pixels[i];
+    EXPECT_GT(differing, a.pixels.size() / 2);
+}
+
+TEST(Coherent, BrickStructureReproduced) {
+    // Courses and brick lengths keep their sizes: mean brick runs along
+    // rows and columns, and the share of mortar, within 15% of the example's.
+    const Image ex = brick_wall(128, 128, 11);
+    const RunStats want = runs(ex);
+    for (uint64_t seed : {1u, 2u, 3u}) {
+        const Image out = vqtex_test::synthesize(ex, coherent_params(256, 256, seed));
+        const RunStats got = runs(out);
+        EXPECT_NEAR(got.mortar_fraction, want.mortar_fraction, 0.15 * want.mortar_fraction) << seed;
+        EXPECT_NEAR(got.mean_row_run, want.mean_row_run, 0.15 * want.mean_row_run) << seed;
+        EXPECT_NEAR(got.mean_column_run, want.mean_column_run, 0.15 * want.mean_column_run) << seed;
+    }
+}
+
+TEST(Coherent, EveryOutputPixelIsAnExamplePixel) {
+    // Coordinates synthesis copies pixels: no colour the example lacks,
+    // hence no blur and no invented noise.
+    const Image ex = textured(64, 48, 4);
+    const Image out = vqtex_test::synthesize(ex, coherent_params(100, 70, 3));
+    std::vector<uint32_t> colours;
+    for (int y = 0; y < ex.height; ++y)
+        for (int x = 0; x < ex.width; ++x) {
+            const uint8_t* p = ex.at(x, y);
+            colours.push_back(uint32_t(p[0]) << 16 | uint32_t(p[1]) << 8 | p[2]);
+        }
+    std::sort(colours.begin(), colours.end());
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            const uint8_t* p = out.at(x, y);
+            ASSERT_TRUE(std::binary_search(colours.begin(), colours.end(), uint32_t(p[0]) << 16 | uint32_t(p[1]) << 8 | p[2]));
+        }
+}
+
+TEST(Coherent, InvalidParametersRefused) {
+    const Image ex = textured(32, 32, 1);
+    vqtex_image in{32, 32, 3, const_cast<uint8_t*>(ex.pixels.data())};
+    vqtex_image out{};
+    vqtex_error err{};
+    for (auto tweak : {+[](vqtex_synth_params& p) { p.coherence = 0; }, +[](vqtex_synth_params& p) { p.coherence = 17; },
+                       +[](vqtex_synth_params& p) { p.passes = 0; }, +[](vqtex_synth_params& p) { p.jitter = 1025; },
+                       +[](vqtex_synth_params& p) { p.engine = vqtex_engine(7); }}) {
+        vqtex_synth_params p = coherent_params(32, 32, 1);
+        tweak(p);
+        EXPECT_EQ(vqtex_synthesize(&p, &in, &out, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+        EXPECT_EQ(out.pixels, nullptr);
+    }
+}
+
+TEST(Coherent, TinyExamplesAndOutputs) {
+    for (int side : {1, 2, 5, 9}) {
+        const Image ex = textured(side, side + 1, 1);
+        for (int out_side : {1, 3, 17}) {
+            const Image out = vqtex_test::synthesize(ex, coherent_params(out_side, out_side + 2, 1));
+            EXPECT_EQ(out.width, out_side);
+            EXPECT_EQ(out.height, out_side + 2);
+        }
+    }
+}
