@@ -94,10 +94,29 @@ TEST(Tools, TooSmallExampleFailsWithoutOutput) {
     const vqtex::Image img = vqtex_test::make_random(6, 5, 3, 1);
     vqtex_tools::save_image(tiny.string(), 6, 5, 3, img.pixels.data());
     const fs::path out = scratch_dir() / "never4.png";
-    const ToolRun r = run_tool(tiny.string() + " " + out.string() + " --levels 1 --shapes 9x9:1");
+    const ToolRun r = run_tool(tiny.string() + " " + out.string() + " --engine paper --levels 1 --shapes 9x9:1");
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.output.find("too small"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Tools, EngineOptionsBelongToTheirEngine) {
+    const fs::path in = scratch_dir() / "engines.png";
+    const vqtex::Image img = vqtex_test::make_random(24, 24, 3, 2);
+    vqtex_tools::save_image(in.string(), 24, 24, 3, img.pixels.data());
+    const fs::path out = scratch_dir() / "engines_out.png";
+    // A paper-engine option without the paper engine, and the reverse: a
+    // one-line error naming the option, and no output.
+    ToolRun r = run_tool(in.string() + " " + out.string() + " --exhaustive");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("--exhaustive applies to the paper engine"), std::string::npos) << r.output;
+    r = run_tool(in.string() + " " + out.string() + " --paper --passes 3");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("--passes applies to the coherent engine"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+    r = run_tool(in.string() + " " + out.string() + " --paper --exhaustive --size 16x16 --quiet");
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::exists(out));
 }
 
 TEST(Tools, HelpWorks) {
