@@ -17,7 +17,8 @@ namespace {
 // Neighbourhood of a correction step: the 5x5 window of appearance
 // vectors (each already summarises a 5x5 window of its level).
 constexpr int kRadius = 2;
-constexpr int kTaps = (2 * kRadius + 1) * (2 * kRadius + 1);
+constexpr int kSide = 2 * kRadius + 1;
+constexpr int kTaps = kSide * kSide;
 constexpr int kMaxCandidates = kTaps * 16;
 
 uint64_t mix64(uint64_t z) {
@@ -76,26 +77,22 @@ struct LevelView {
     }
 };
 
-// One correction of pixel (x, y) of `cur` (w x h, a torus): the best of
-// its neighbours' coherent candidates.
-uint32_t correct_pixel(const LevelView& v, const std::vector<uint32_t>& cur, int w, int h, int x, int y,
-                       int bias) {
-    alignas(32) int16_t query[kTaps * kAppearanceDims];
+// One correction of pixel (x, y) of `cur` (w x h, a torus; xs and ys are
+// the wrapped columns and rows of its window): the best of its neighbours'
+// coherent candidates.
+uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int* xs, const int* ys, int bias) {
     uint32_t sources[kTaps];
-    int t = 0;
-    for (int dy = -kRadius; dy <= kRadius; ++dy)
-        for (int dx = -kRadius; dx <= kRadius; ++dx, ++t) {
-            const uint32_t s = cur[std::size_t(Image::wrap(y + dy, h)) * w + Image::wrap(x + dx, w)];
-            sources[t] = s;
-            std::memcpy(query + t * kAppearanceDims, v.feature(s), sizeof(int16_t) * kAppearanceDims);
-        }
+    for (int r = 0, t = 0; r < kSide; ++r) {
+        const uint32_t* row = cur + std::size_t(ys[r]) * w;
+        for (int c = 0; c < kSide; ++c, ++t) sources[t] = row[xs[c]];
+    }
+    const uint32_t own_position = sources[kTaps / 2];
     uint32_t candidates[kMaxCandidates];
     bool continues[kMaxCandidates];
     int count = 0;
     const int ex_w = v.space.width, ex_h = v.space.height;
     const int k = std::min(v.k, kMaxCandidates / kTaps);
-    t = 0;
-    for (int dy = -kRadius; dy <= kRadius; ++dy)
+    for (int dy = -kRadius, t = 0; dy <= kRadius; ++dy)
         for (int dx = -kRadius; dx <= kRadius; ++dx, ++t) {
             int ux = position_x(sources[t]) - dx * v.spacing, uy = position_y(sources[t]) - dy * v.spacing;
             if (v.space.wraps) {
@@ -104,8 +101,20 @@ uint32_t correct_pixel(const LevelView& v, const std::vector<uint32_t>& cur, int
             } else if (ux < 0 || uy < 0 || ux >= ex_w || uy >= ex_h) {
                 continue;  // the neighbour's source continues past the example's edge
             }
-            const uint32_t own = uint32_t(uy) * uint32_t(ex_w) + uint32_t(ux);
-            const uint32_t* set = k > 1 ? v.sets.of(v.level, own) : &own;
+            if (k == 1) {
+                // The pixel's own position is evaluated first anyway.
+                const uint32_t c = pack_position(ux, uy);
+                if (c == own_position) continue;
+                int seen = -1;
+                for (int j = 0; j < count && seen < 0; ++j)
+                    if (candidates[j] == c) seen = j;
+                if (seen < 0) {
+                    continues[count] = true;
+                    candidates[count++] = c;
+                }
+                continue;
+            }
+            const uint32_t* set = v.sets.of(v.level, uint32_t(uy) * uint32_t(ex_w) + uint32_t(ux));
             for (int i = 0; i < k; ++i) {
                 const uint32_t c = pack_position(int(set[i] % uint32_t(ex_w)), int(set[i] / uint32_t(ex_w)));
                 int seen = -1;
@@ -119,9 +128,15 @@ uint32_t correct_pixel(const LevelView& v, const std::vector<uint32_t>& cur, int
                 }
             }
         }
-    // The pixel's own position competes too (its source may be off the
-    // example's edge for every neighbour).
-    uint32_t best = sources[kTaps / 2];
+    // Inside a coherent copy every neighbour proposes the pixel's own
+    // position: nothing to compare.
+    if (count == 0) return own_position;
+    alignas(32) int16_t query[kTaps * kAppearanceDims];
+    for (int t = 0; t < kTaps; ++t)
+        std::memcpy(query + t * kAppearanceDims, v.feature(sources[t]), sizeof(int16_t) * kAppearanceDims);
+    // The pixel's own position competes too, first and unbiased (its source
+    // may be off the example's edge for every neighbour).
+    uint32_t best = own_position;
     int32_t best_d = v.distance(query, position_x(best), position_y(best), INT32_MAX);
     for (int i = 0; i < count; ++i) {
         // An alternative must beat the best by the bias: d (1 + bias/256) < best.
@@ -156,10 +171,22 @@ void correction_pass(const LevelView& view, PositionMap& map, const CoherentOpti
         next = map.positions;
         const int rows = (h - sy + 1) / 2;
         parallel_for(options.threads, std::size_t(std::max(rows, 0)), 4, [&](std::size_t r0, std::size_t r1) {
+            int xs[kSide], ys[kSide];
             for (std::size_t r = r0; r < r1; ++r) {
                 const int y = sy + 2 * int(r);
-                for (int x = sx; x < w; x += 2)
-                    next[std::size_t(y) * w + x] = correct_pixel(view, map.positions, w, h, x, y, options.coherence_bias);
+                for (int i = 0; i < kSide; ++i) ys[i] = Image::wrap(y + i - kRadius, h);
+                for (int i = 0; i < kSide; ++i) xs[i] = Image::wrap(sx + i - kRadius, w);
+                for (int x = sx; x < w; x += 2) {
+                    next[std::size_t(y) * w + x] =
+                        correct_pixel(view, map.positions.data(), w, xs, ys, options.coherence_bias);
+                    // Slide the window two columns: wrap by comparison
+                    // except on outputs narrower than the window.
+                    for (int i = 0; i < kSide; ++i) {
+                        int c = xs[i] + 2;
+                        if (c >= w) c = w >= kSide ? c - w : Image::wrap(x + 2 + i - kRadius, w);
+                        xs[i] = c;
+                    }
+                }
             }
         });
         map.positions.swap(next);
