@@ -33,8 +33,8 @@ struct CoherentOptions {
     int coarse_passes = 4;  // at the coarsest, which starts from random positions
     int jitter = 0;         // per level, in 1/256 of the level's spacing
     int jitter_min_spacing = 1;  // levels of a finer spacing are not jittered
-    int polish_passes = 2;       // finest level: passes matching raw colours (5x5)
-    bool roll = true;            // move the output's origin off the coarsest grid
+    int polish_passes = 1;       // finest level: passes matching raw colours (5x5)
+    bool roll = true;            // cut the torus open where the pixels change least
     // Distance surcharge, in 1/256, of a candidate that continues no
     // neighbour's source (a k-coherence alternative) over one that does:
     // favours long coherent copies (Hertzmann et al. 2001's kappa).
