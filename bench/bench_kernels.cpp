@@ -8,7 +8,7 @@
 
 #include "dsp/dsp.hpp"
 #include "image_io.hpp"
-#include "rng.hpp"
+#include "common/rng.hpp"
 #include "vqtex/vqtex.h"
 
 namespace {

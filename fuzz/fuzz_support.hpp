@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-#include "checksum.hpp"
+#include "common/checksum.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex_fuzz {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "dsp/dsp.hpp"
-#include "rng.hpp"
+#include "common/rng.hpp"
 
 using namespace vqtex;
 

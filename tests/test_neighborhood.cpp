@@ -2,8 +2,8 @@
 // 2.2-2.3).
 #include <gtest/gtest.h>
 
-#include "neighborhood.hpp"
-#include "pyramid.hpp"
+#include "engine/neighborhood.hpp"
+#include "engine/pyramid.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex;

@@ -11,15 +11,15 @@
 #include <string>
 
 #include "image_io.hpp"
-#include "neighborhood3d.hpp"
-#include "volume_codec.hpp"
+#include "engine/neighborhood3d.hpp"
+#include "format/volume_codec.hpp"
 #include "vqtex/vqtex.hpp"
-#include "container.hpp"
-#include "rng.hpp"
+#include "format/container.hpp"
+#include "common/rng.hpp"
 #include "test_support.hpp"
-#include "temporal_model.hpp"
-#include "temporal_synthesis.hpp"
-#include "volume.hpp"
+#include "analysis/temporal_model.hpp"
+#include "engine/temporal_synthesis.hpp"
+#include "engine/volume.hpp"
 
 using namespace vqtex;
 

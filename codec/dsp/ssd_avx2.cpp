@@ -1,8 +1,8 @@
 // ssd_avx2.cpp - AVX2 distance kernels, compiled with -mavx2 and only called
 // after the dispatcher has seen AVX2 on the CPU. Bit-identical to the scalar
 // kernels.
-#include "descent.hpp"
-#include "dsp.hpp"
+#include "dsp/descent.hpp"
+#include "dsp/dsp.hpp"
 
 #if defined(__AVX2__) && !defined(VQTEX_SCALAR_ONLY)
 #include <immintrin.h>

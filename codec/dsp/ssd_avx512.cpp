@@ -1,8 +1,8 @@
 // ssd_avx512.cpp - AVX-512 (F+BW+DQ) distance kernels, compiled with its own
 // flags and only called when the CPU reports AVX-512BW and DQ. Bit-identical to the
 // scalar kernels.
-#include "descent.hpp"
-#include "dsp.hpp"
+#include "dsp/descent.hpp"
+#include "dsp/dsp.hpp"
 
 #if defined(__AVX512BW__) && defined(__AVX512DQ__) && !defined(VQTEX_SCALAR_ONLY)
 // GCC 12's own AVX-512 reduction helpers trip its uninitialised-value

@@ -1,7 +1,7 @@
 // ssd_scalar.cpp - the reference distance kernels: plain C++, the definition
 // of what every SIMD version must reproduce bit for bit.
-#include "descent.hpp"
-#include "dsp.hpp"
+#include "dsp/descent.hpp"
+#include "dsp/dsp.hpp"
 
 namespace vqtex::dsp {
 namespace {

@@ -1,7 +1,7 @@
 // ssd_sse2.cpp - SSE2 distance kernels (every x86-64 CPU has them).
 // Bit-identical to ssd_scalar.cpp: exact 32-bit integer sums.
-#include "descent.hpp"
-#include "dsp.hpp"
+#include "dsp/descent.hpp"
+#include "dsp/dsp.hpp"
 
 #if defined(__SSE2__) && !defined(VQTEX_SCALAR_ONLY)
 #include <emmintrin.h>
