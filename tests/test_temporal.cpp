@@ -459,7 +459,7 @@ TEST(TemporalCodec, RoundTripThroughTheFileIsBitExactForAnyThreadCount) {
     o.frames = 20;
     o.seed = info.seed;
     o.init = f.init;
-    const Volume direct = synthesize_volume_pyramid(f.texture, o)[0];
+    const Volume direct = synthesize_volume_pyramid(volume_model_of(f.model, f.header.backtrack), o)[0];
     EXPECT_EQ(0, std::memcmp(one.frame(0), direct.stack.pixels.data(), one.frame_bytes() * 20));
     // Another seed, another animation; defaults give the example's size.
     d.width = d.height = 0;

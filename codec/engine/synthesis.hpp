@@ -51,19 +51,6 @@ struct SynthesisTrace {
     std::vector<std::vector<uint32_t>> visit_order;  // per level, per pixel
 };
 
-// What a level holds before it is synthesised: what the first rows read
-// through the top wrap and each row's first pixels read through the row wrap.
-enum class LevelInit {
-    // Every level starts as histogram-matched white noise (paper section 2.5).
-    Noise,
-    // The coarsest level starts as noise; each finer level starts as the
-    // finished coarser level, upsampled. The first rows then read, through
-    // the wrap, a coarse version of what the bottom rows will become, instead
-    // of noise: fewer broken rows at the top, much less visible wrap-around
-    // seams. The randomness still comes from the coarsest level's noise.
-    Parent,
-};
-
 struct SynthesisOptions {
     LevelInit init = LevelInit::Parent;
     // Near-tie tolerance in 1/256 of the best distance (see MatchContext).

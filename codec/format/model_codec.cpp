@@ -457,8 +457,6 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
     f.model.exemplar_width = c.header.exemplar_width;
     f.model.exemplar_height = c.header.exemplar_height;
     f.model.levels.resize(std::size_t(levels));
-    f.texture.channels = ch;
-    f.texture.levels.resize(std::size_t(levels));
 
     auto require = [&](const char tag[4], int level, int kind) -> const Section& {
         return require_section(c, tag, level, kind, kind ? "closing" : "");
@@ -502,16 +500,13 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
         if (l == 0) f.precision = precision, f.pixel_precision = pixel_precision;
 
         CodecModel::Level& lv = f.model.levels[std::size_t(l)];
-        LevelModel& tm = f.texture.levels[std::size_t(l)];
         lv.shape = shape;
-        tm.shape = shape;
         const bool needs_histogram = f.init == LevelInit::Noise || l == levels - 1;
         if (needs_histogram) {
             const LevelHistogram h =
                 decode_histogram(section_bytes(data, require(kTagHistogram, l, 0)), ch, "level " + std::to_string(l));
             ++expected_sections;
             lv.histogram = h;
-            tm.histogram = h;
         }
         for (int kind = 0; kind < 1 + has_closing; ++kind) {
             Shape s = kind == 0 ? shape : closing_shape;
@@ -521,15 +516,11 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
             auto book = read_tree(c, data, l, kind, kind ? "closing" : "", tree_layout_of(layout), precision,
                                   pixel_precision, where, tree_budget);
             expected_sections += kSectionsPerTree;
-            auto matcher = std::make_shared<TsvqMatcher>(book, c.header.backtrack);
             if (kind == 0) {
                 lv.causal = book;
-                tm.matcher = matcher;
             } else {
                 lv.closing = book;
                 lv.closing_shape = s;
-                tm.closing = matcher;
-                tm.closing_shape = s;
             }
         }
     }

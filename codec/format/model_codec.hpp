@@ -11,9 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "format/container.hpp"
 #include "engine/neighborhood.hpp"
-#include "engine/synthesis.hpp"
+#include "engine/noise.hpp"
+#include "engine/tree_model.hpp"
+#include "format/container.hpp"
 #include "tsvq/tsvq_tree.hpp"
 
 namespace vqtex {
@@ -26,20 +27,6 @@ struct EncodeSettings {
     LevelInit init = LevelInit::Parent;
     uint64_t seed = 1;
     int zstd_level = 19;
-};
-
-// A model as the codec sees it: per level, shape, histogram and codebooks.
-struct CodecModel {
-    int channels = 0;
-    uint32_t exemplar_width = 0, exemplar_height = 0;
-    struct Level {
-        Shape shape;
-        LevelHistogram histogram;  // empty when the file does not need it
-        std::shared_ptr<const Codebook> causal;
-        std::shared_ptr<const Codebook> closing;  // may be null
-        Shape closing_shape;                      // symmetric; meaningful with `closing`
-    };
-    std::vector<Level> levels;  // [0] = finest
 };
 
 std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& settings);
@@ -112,8 +99,6 @@ struct DecodedFile {
     std::vector<Section> sections;
     CodecModel model;
     int precision = 0, pixel_precision = 0;  // of level 0
-    // Ready to synthesise: matchers built over the decoded codebooks.
-    TextureModel texture;
     LevelInit init = LevelInit::Parent;
     // Of the memory limit, what the decoded trees may take (an upper bound):
     // the output must fit in the rest.

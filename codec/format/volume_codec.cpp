@@ -120,8 +120,6 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     f.model.exemplar_width = c.header.exemplar_width;
     f.model.exemplar_height = c.header.exemplar_height;
     f.model.levels.resize(std::size_t(levels));
-    f.texture.channels = ch;
-    f.texture.levels.resize(std::size_t(levels));
 
     auto require = [&](const char tag[4], int level, int kind) -> const Section& {
         return require_section(c, tag, level, kind, kind == 1 ? "closing" : kind == 2 ? "frame seam" : "");
@@ -169,14 +167,11 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
         if (l == 0) f.precision = precision, f.pixel_precision = pixel_precision;
 
         VolumeCodecModel::Level& lv = f.model.levels[std::size_t(l)];
-        VolumeLevelModel& tm = f.texture.levels[std::size_t(l)];
         lv.shape = shape;
-        tm.shape = shape;
         if (f.init == LevelInit::Noise || l == levels - 1) {
             const LevelHistogram h = decode_histogram(section_bytes(data, require(kTagHistogram, l, 0)), ch, where_level);
             ++expected_sections;
             lv.histogram = h;
-            tm.histogram = h;
         }
         for (int kind = 0; kind < 1 + 2 * has_closing; ++kind) {
             Shape3 s = kind == 0 ? shape : kind == 1 ? closing_shape : seam_shape_of(shape, closing_shape);
@@ -193,20 +188,14 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
                 fail(VQTEX_ERROR_CORRUPT, where + ": entries " +
                                               (book->key_length() ? "carry keys the shape does not define"
                                                                   : "lack their value in the previous frame"));
-            auto matcher = std::make_shared<TsvqMatcher>(book, c.header.backtrack);
             if (kind == 0) {
                 lv.causal = book;
-                tm.matcher = matcher;
             } else if (kind == 1) {
                 lv.closing = book;
                 lv.closing_shape = s;
-                tm.closing = matcher;
-                tm.closing_shape = s;
             } else {
                 lv.seam = book;
                 lv.seam_shape = s;
-                tm.seam = matcher;
-                tm.seam_shape = s;
             }
         }
     }

@@ -9,26 +9,11 @@
 #include <memory>
 #include <vector>
 
+#include "engine/tree_model.hpp"
 #include "format/model_codec.hpp"
-#include "engine/temporal_synthesis.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex {
-
-struct VolumeCodecModel {
-    int channels = 0;
-    uint32_t exemplar_width = 0, exemplar_height = 0, exemplar_frames = 0;
-    struct Level {
-        Shape3 shape;
-        LevelHistogram histogram;
-        std::shared_ptr<const Codebook> causal;
-        std::shared_ptr<const Codebook> closing;  // may be null
-        Shape3 closing_shape;
-        std::shared_ptr<const Codebook> seam;     // frame-seam closing: present with `closing`
-        Shape3 seam_shape;
-    };
-    std::vector<Level> levels;  // [0] = finest
-};
 
 std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const EncodeSettings& settings);
 
@@ -37,7 +22,6 @@ struct DecodedVolumeFile {
     std::vector<Section> sections;
     VolumeCodecModel model;
     int precision = 0, pixel_precision = 0;
-    VolumeModel texture;  // matchers built over the decoded codebooks
     LevelInit init = LevelInit::Parent;
     // What the decoded trees take of the memory limit (as DecodedFile).
     std::size_t model_bytes = 0;
@@ -50,8 +34,5 @@ bool is_volume_file(const uint8_t* data, std::size_t size);
 // Parses, verifies and rebuilds; specific errors for any damage, nothing
 // above `memory_limit` allocated.
 DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit);
-
-// vqtex_inspect for an animated texture (volume_api.cpp).
-void describe_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit, vqtex_file_info* info);
 
 }  // namespace vqtex

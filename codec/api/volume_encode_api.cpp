@@ -1,7 +1,7 @@
-// volume_api.cpp - the exported calls for animated textures (paper section
-// 5.2 with the codec of section 6): encode a frame sequence into a file,
-// decode a file into a looping sequence of any size and length, inspect.
-// Validation and status mapping as in codec_api.cpp.
+// volume_encode_api.cpp - the exported encoder for animated textures (paper
+// section 5.2 with the codec of section 6): a frame sequence into a file.
+// Decoding is in decode_api.cpp. Validation and status mapping as in
+// encode_api.cpp.
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -16,8 +16,6 @@
 using namespace vqtex;
 
 namespace {
-
-constexpr uint32_t kMaxOutputFrames = 16384;
 
 Volume volume_from_c(const vqtex_volume* in) {
     if (!in) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence is NULL");
@@ -51,12 +49,6 @@ void check_params(const vqtex_volume_encode_params* p) {
 }  // namespace
 
 extern "C" {
-
-void vqtex_volume_free(vqtex_volume* v) {
-    if (!v) return;
-    std::free(v->pixels);
-    *v = vqtex_volume{};
-}
 
 void vqtex_volume_encode_params_init(vqtex_volume_encode_params* p) {
     if (!p) return;
@@ -117,67 +109,4 @@ vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const
     });
 }
 
-vqtex_status vqtex_decode_volume(const vqtex_decode_params* p, uint32_t frames, const uint8_t* data, size_t size,
-                                 vqtex_volume* out, vqtex_error* error) {
-    return guarded(error, [&] {
-        if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output volume pointer is NULL");
-        *out = vqtex_volume{};
-        if (!p || p->struct_size != sizeof(vqtex_decode_params))
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_decode_params not initialised with vqtex_decode_params_init()");
-        if (p->width > kMaxOutputSide || p->height > kMaxOutputSide || frames > kMaxOutputFrames)
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(p->width) + "x" + std::to_string(p->height) +
-                                                   " with " + std::to_string(frames) + " frames is out of range (1 to " +
-                                                   std::to_string(kMaxOutputSide) + " per side, 1 to " +
-                                                   std::to_string(kMaxOutputFrames) + " frames)");
-        const std::size_t limit = memory_limit_of(p);
-        const DecodedVolumeFile f = decode_volume_file(data, size, limit);
-        const uint32_t w = p->width ? p->width : f.header.exemplar_width;
-        const uint32_t h = p->height ? p->height : f.header.exemplar_height;
-        const uint32_t n = frames ? frames : f.model.exemplar_frames;
-        if (w > kMaxOutputSide || h > kMaxOutputSide || n > kMaxOutputFrames)
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) + "x" +
-                                                   std::to_string(n) + " is out of range: give an explicit size");
-        // The 3D output pyramid is at most 8/7 of the animation, plus the
-        // copy handed to the caller, beside what the trees took.
-        const uint64_t needed = uint64_t(w) * h * n * f.header.channels * 15 / 7 + f.model_bytes;
-        if (needed > limit)
-            fail(VQTEX_ERROR_LIMIT_EXCEEDED, "a " + std::to_string(w) + "x" + std::to_string(h) + " animation of " +
-                                                 std::to_string(n) + " frames needs about " + std::to_string(needed >> 20) +
-                                                 " MiB, above the memory limit of " + std::to_string(limit >> 20) +
-                                                 " MiB: raise memory_limit (--memory-limit)");
-        VolumeSynthesisOptions opt;
-        opt.width = int(w);
-        opt.height = int(h);
-        opt.frames = int(n);
-        opt.seed = p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed;
-        opt.threads = resolve_threads(p->threads);
-        opt.init = f.init;
-        opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
-        std::vector<Volume> pyramid = synthesize_volume_pyramid(f.texture, opt);
-        const Volume& v = pyramid[0];
-        uint8_t* pixels = static_cast<uint8_t*>(std::malloc(v.byte_count()));
-        if (!pixels) throw std::bad_alloc();
-        std::memcpy(pixels, v.stack.pixels.data(), v.byte_count());
-        *out = vqtex_volume{uint32_t(v.width), uint32_t(v.height), uint32_t(v.frames), uint32_t(v.channels), pixels};
-    });
-}
-
 }  // extern "C"
-
-namespace vqtex {
-
-void describe_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit, vqtex_file_info* info) {
-    const DecodedVolumeFile f = decode_volume_file(data, size, memory_limit);
-    describe_container(f.header, f.sections, size, f.precision, f.pixel_precision, info);
-    info->exemplar_frames = f.model.exemplar_frames;
-    for (std::size_t l = 0; l < f.model.levels.size(); ++l) {
-        const auto& lv = f.model.levels[l];
-        info->shapes[l] = vqtex_shape{uint8_t(lv.shape.rows), uint8_t(lv.shape.cols), uint8_t(lv.shape.levels)};
-        info->window_frames[l] = uint8_t(lv.shape.frames);
-        info->codewords[l] = uint32_t(lv.causal->leaf_count());
-        info->entries[l] = uint32_t(lv.causal->total_entries());
-        info->closing_codewords[l] = lv.closing ? uint32_t(lv.closing->leaf_count()) : 0;
-    }
-}
-
-}  // namespace vqtex

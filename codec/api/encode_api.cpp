@@ -1,8 +1,8 @@
-// codec_api.cpp - the exported encoder, decoder and inspector (paper
-// section 6: "only the codebook would be transmitted ... decompression
-// would consist of texture synthesis"). Validation and status mapping as in
-// api.cpp; the work is in texture_model.cpp, model_codec.cpp and
-// synthesis.cpp.
+// encode_api.cpp - the exported encoder (paper section 6: "only the
+// codebook would be transmitted"): an example image into a file, at a
+// quality preset or a target size. Validation and status mapping as in
+// api.cpp; the work is in analysis/texture_model.cpp and
+// format/model_codec.cpp. Decoding is in decode_api.cpp.
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -13,10 +13,8 @@
 #include "common/error.hpp"
 #include "format/model_codec.hpp"
 #include "common/parallel.hpp"
-#include "engine/pyramid.hpp"
 #include "engine/synthesis.hpp"
 #include "analysis/texture_model.hpp"
-#include "format/volume_codec.hpp"
 #include "vqtex/vqtex.h"
 
 using namespace vqtex;
@@ -56,44 +54,6 @@ void fill_stats(vqtex_encode_stats* stats, const EncodeResult& r) {
         stats->codewords[l] = uint32_t(r.analysis.codebooks[l]->leaf_count());
         stats->entries[l] = uint32_t(r.analysis.codebooks[l]->total_entries());
     }
-}
-
-void check_decode_params(const vqtex_decode_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_decode_params))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT,
-             "vqtex_decode_params not initialised with vqtex_decode_params_init()");
-    if (p->width > kMaxOutputSide || p->height > kMaxOutputSide)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(p->width) + "x" +
-                                               std::to_string(p->height) + " is out of range (1 to " +
-                                               std::to_string(kMaxOutputSide) + " per side)");
-}
-
-// Decodes and synthesises; returns the whole synthesised pyramid.
-std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
-    check_decode_params(p);
-    const std::size_t limit = memory_limit_of(p);
-    const DecodedFile f = decode_file(data, size, limit);
-    const uint32_t w = p->width ? p->width : f.header.exemplar_width;
-    const uint32_t h = p->height ? p->height : f.header.exemplar_height;
-    if (w > kMaxOutputSide || h > kMaxOutputSide)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) +
-                                               " is out of range: give an explicit size");
-    // The output pyramid is at most 4/3 of the texture; check it against
-    // what the trees left of the limit before allocating it.
-    const uint64_t needed = uint64_t(w) * h * f.header.channels * 4 / 3 + f.model_bytes;
-    if (needed > limit)
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "a " + std::to_string(w) + "x" + std::to_string(h) +
-                                             " output needs about " + std::to_string(needed >> 20) +
-                                             " MiB, above the memory limit of " + std::to_string(limit >> 20) +
-                                             " MiB: raise memory_limit (--memory-limit)");
-    SynthesisOptions opt;
-    opt.width = int(w);
-    opt.height = int(h);
-    opt.seed = p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed;
-    opt.threads = resolve_threads(p->threads);
-    opt.init = f.init;
-    opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
-    return synthesize_pyramid(f.texture, opt);
 }
 
 }  // namespace
@@ -145,8 +105,6 @@ vqtex_status vqtex_encode_params_preset(vqtex_encode_params* p, int quality) {
     return VQTEX_OK;
 }
 
-void vqtex_free(void* data) { std::free(data); }
-
 vqtex_status vqtex_encode(const vqtex_encode_params* params, const vqtex_image* example, uint8_t** data,
                           size_t* size, vqtex_encode_stats* stats, vqtex_error* error) {
     return guarded(error, [&] {
@@ -196,71 +154,6 @@ vqtex_status vqtex_encode(const vqtex_encode_params* params, const vqtex_image* 
             stats->quality = chosen_quality;
             stats->attempts = attempts;
             stats->seconds = std::chrono::duration<double>(t1 - t0).count();
-        }
-    });
-}
-
-void vqtex_decode_params_init(vqtex_decode_params* p) {
-    if (!p) return;
-    *p = vqtex_decode_params{};
-    p->struct_size = sizeof(vqtex_decode_params);
-    p->seed = VQTEX_SEED_FROM_FILE;
-    p->memory_limit = kDefaultMemoryLimit;
-}
-
-vqtex_status vqtex_decode(const vqtex_decode_params* params, const uint8_t* data, size_t size,
-                          vqtex_image* out, vqtex_error* error) {
-    return guarded(error, [&] {
-        if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output image pointer is NULL");
-        *out = vqtex_image{};
-        std::vector<Image> pyramid = decode_pyramid(params, data, size);
-        // The coarser levels go before the copy to the caller's buffer: the
-        // peak is then twice the output, not two and a third times.
-        pyramid.resize(1);
-        image_to_c(std::move(pyramid[0]), out);
-    });
-}
-
-vqtex_status vqtex_decode_mips(const vqtex_decode_params* params, const uint8_t* data, size_t size,
-                               vqtex_image* levels, uint32_t capacity, uint32_t* count, vqtex_error* error) {
-    return guarded(error, [&] {
-        if (!levels || !count) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output pointers are NULL");
-        *count = 0;
-        std::vector<Image> pyramid = decode_pyramid(params, data, size);
-        while (pyramid.back().width > 1 || pyramid.back().height > 1)
-            pyramid.push_back(downsample(pyramid.back(), EdgeMode::Wrap));
-        if (capacity < pyramid.size())
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "the mip chain has " + std::to_string(pyramid.size()) +
-                                                   " levels; capacity is " + std::to_string(capacity));
-        for (std::size_t i = 0; i < pyramid.size(); ++i) {
-            try {
-                image_to_c(std::move(pyramid[i]), &levels[i]);
-            } catch (...) {
-                for (std::size_t j = 0; j < i; ++j) vqtex_image_free(&levels[j]);
-                throw;
-            }
-        }
-        *count = uint32_t(pyramid.size());
-    });
-}
-
-vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_limit, vqtex_file_info* info,
-                           vqtex_error* error) {
-    return guarded(error, [&] {
-        if (!info) fail(VQTEX_ERROR_INVALID_ARGUMENT, "info pointer is NULL");
-        *info = vqtex_file_info{};
-        if (is_volume_file(data, size)) {
-            describe_volume_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit), info);
-            return;
-        }
-        const DecodedFile f = decode_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit));
-        describe_container(f.header, f.sections, size, f.precision, f.pixel_precision, info);
-        for (std::size_t l = 0; l < f.model.levels.size(); ++l) {
-            const auto& lv = f.model.levels[l];
-            info->shapes[l] = vqtex_shape{uint8_t(lv.shape.rows), uint8_t(lv.shape.cols), uint8_t(lv.shape.levels)};
-            info->codewords[l] = uint32_t(lv.causal->leaf_count());
-            info->entries[l] = uint32_t(lv.causal->total_entries());
-            info->closing_codewords[l] = lv.closing ? uint32_t(lv.closing->leaf_count()) : 0;
         }
     });
 }
