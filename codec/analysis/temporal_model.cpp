@@ -108,8 +108,6 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
                               int threads, const ProgressFn& progress) {
     if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence is empty");
     const VolumePlan plan = plan_volume_model(params, shapes, example.width, example.height, example.frames);
-    if (params.entries_per_leaf > TsvqMatcher::kMaxEntries)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "entries per leaf must be 1 to " + std::to_string(TsvqMatcher::kMaxEntries));
     const bool tileable = params.example_tileable != 0;
     const std::vector<Volume> pyramid =
         build_volume_pyramid(example, plan.levels, tileable ? EdgeMode::Wrap : EdgeMode::Mirror);

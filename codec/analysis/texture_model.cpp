@@ -22,11 +22,6 @@ ModelPlan plan_model(const vqtex_model_params& params, int width, int height) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 1 to " + std::to_string(kMaxLevels) +
                                                " (got " + std::to_string(plan.levels) + ")");
     plan.shapes = default_shapes(plan.levels);
-    // The file stores closing windows of 3 to 63, odd; a 1x1 one reads no pixel.
-    if (params.closing_window &&
-        (params.closing_window % 2 == 0 || params.closing_window < 3 || params.closing_window > 63))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "closing window must be odd, 3 to 63 (got " +
-                                               std::to_string(params.closing_window) + ")");
     for (int l = 0; l < plan.levels; ++l) {
         const vqtex_shape& s = params.shapes[l];
         if (s.rows == 0 && s.cols == 0 && s.levels == 0) continue;
@@ -110,9 +105,6 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
                                const ProgressFn& progress) {
     if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example image is empty (0x0)");
     const ModelPlan plan = plan_model(params, example.width, example.height);
-    if (params.entries_per_leaf > TsvqMatcher::kMaxEntries)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "entries per leaf must be 1 to " +
-                                               std::to_string(TsvqMatcher::kMaxEntries));
     const bool tileable = params.example_tileable != 0;
     const std::vector<Image> pyramid =
         build_pyramid(example, plan.levels, tileable ? EdgeMode::Wrap : EdgeMode::Mirror);

@@ -89,21 +89,6 @@ inline ProgressFn stage_progress(vqtex_progress_fn fn, void* user, vqtex_stage s
     return [fn, user, stage](uint64_t done, uint64_t total) { return fn(user, stage, done, total) != 0; };
 }
 
-// Checks shared by every encoder entry point (still and animated).
-inline void check_encode_params(const vqtex_encode_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_encode_params))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT,
-             "vqtex_encode_params not initialised with vqtex_encode_params_init()");
-    if (p->precision < 1 || p->precision > 8 || p->pixel_precision < 1 || p->pixel_precision > 8)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision and pixel precision must be 1 to 8 bits");
-    if (p->smoothing < 1 || p->smoothing > 8)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "smoothing must be 1 to 8");
-    if (p->backtrack < 1 || p->backtrack > 255)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "backtrack must be 1 to 255 leaves for an encoded file");
-    if (p->init != VQTEX_INIT_PARENT && p->init != VQTEX_INIT_NOISE)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown init mode");
-}
-
 // How the file coder should write what the caller asked for.
 inline EncodeSettings encode_settings_of(const vqtex_encode_params& p) {
     EncodeSettings s;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "api/api_support.hpp"
+#include "api/validate.hpp"
 #include "fill/constrained.hpp"
 #include "common/error.hpp"
 #include "vqtex/vqtex.h"
@@ -13,25 +14,13 @@ using namespace vqtex;
 
 namespace {
 
+// The engine's options for valid params (validate() has passed).
 FillOptions fill_options(const vqtex_fill_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_fill_params))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_fill_params not initialised with vqtex_fill_params_init()");
-    if (p->search != VQTEX_SEARCH_TSVQ && p->search != VQTEX_SEARCH_EXHAUSTIVE)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown search kind");
-    if (p->method != VQTEX_FILL_TWO_PASS && p->method != VQTEX_FILL_CAUSAL)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown fill method");
-    if (p->levels > VQTEX_MAX_LEVELS)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 0 (automatic) to " + std::to_string(VQTEX_MAX_LEVELS) +
-                                               " (got " + std::to_string(p->levels) + ")");
-    if (!(p->codeword_fraction > 0.0f && p->codeword_fraction <= 1.0f))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "codeword fraction must be in (0, 1]");
-    if (p->tolerance > 4096)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "tolerance must be 0 to 4096 (in 1/256 of the best distance)");
     FillOptions o;
     o.levels = int(p->levels);
     o.method = p->method == VQTEX_FILL_CAUSAL ? FillMethod::Causal : FillMethod::TwoPass;
     o.exhaustive = p->search == VQTEX_SEARCH_EXHAUSTIVE;
-    o.backtrack = p->backtrack ? p->backtrack : 1;
+    o.backtrack = p->backtrack;
     o.tolerance = p->tolerance;
     o.codeword_fraction = double(p->codeword_fraction);
     o.seed = p->seed;
@@ -93,6 +82,7 @@ vqtex_status vqtex_fill(const vqtex_fill_params* params, const vqtex_image* imag
     return guarded(error, [&] {
         if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output image pointer is NULL");
         *out = vqtex_image{};
+        validate(params);
         const FillOptions o = fill_options(params);
         const Image img = image_from_c(image, "image");
         const std::vector<uint8_t> m = mask_from_c(mask, img);
@@ -111,6 +101,7 @@ vqtex_status vqtex_extend(const vqtex_fill_params* params, const vqtex_image* im
     return guarded(error, [&] {
         if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output image pointer is NULL");
         *out = vqtex_image{};
+        validate(params);
         const FillOptions o = fill_options(params);
         const Image img = image_from_c(image, "image");
         if (width < 1 || height < 1 || width > kMaxOutputSide || height > kMaxOutputSide)

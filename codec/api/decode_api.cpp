@@ -7,6 +7,7 @@
 #include <new>
 
 #include "api/api_support.hpp"
+#include "api/validate.hpp"
 #include "common/error.hpp"
 #include "engine/pyramid.hpp"
 #include "engine/synthesis.hpp"
@@ -22,19 +23,9 @@ namespace {
 
 constexpr uint32_t kMaxOutputFrames = 16384;
 
-void check_decode_params(const vqtex_decode_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_decode_params))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT,
-             "vqtex_decode_params not initialised with vqtex_decode_params_init()");
-    if (p->width > kMaxOutputSide || p->height > kMaxOutputSide)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(p->width) + "x" +
-                                               std::to_string(p->height) + " is out of range (1 to " +
-                                               std::to_string(kMaxOutputSide) + " per side)");
-}
-
 // Decodes and synthesises; returns the whole synthesised pyramid.
 std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
-    check_decode_params(p);
+    validate(p);
     const std::size_t limit = memory_limit_of(p);
     const DecodedFile f = decode_file(data, size, limit);
     const uint32_t w = p->width ? p->width : f.header.exemplar_width;
@@ -149,9 +140,8 @@ vqtex_status vqtex_decode_volume(const vqtex_decode_params* p, uint32_t frames, 
     return guarded(error, [&] {
         if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output volume pointer is NULL");
         *out = vqtex_volume{};
-        if (!p || p->struct_size != sizeof(vqtex_decode_params))
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_decode_params not initialised with vqtex_decode_params_init()");
-        if (p->width > kMaxOutputSide || p->height > kMaxOutputSide || frames > kMaxOutputFrames)
+        validate(p);
+        if (frames > kMaxOutputFrames)
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(p->width) + "x" + std::to_string(p->height) +
                                                    " with " + std::to_string(frames) + " frames is out of range (1 to " +
                                                    std::to_string(kMaxOutputSide) + " per side, 1 to " +

@@ -10,6 +10,7 @@
 #include <new>
 
 #include "api/api_support.hpp"
+#include "api/validate.hpp"
 #include "common/error.hpp"
 #include "format/model_codec.hpp"
 #include "common/parallel.hpp"
@@ -111,7 +112,7 @@ vqtex_status vqtex_encode(const vqtex_encode_params* params, const vqtex_image* 
         if (!data || !size) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output pointers are NULL");
         *data = nullptr;
         *size = 0;
-        check_encode_params(params);
+        validate(params);
         const Image ex = image_from_c(example, "example image");
         const int threads = resolve_threads(params->threads);
         const ProgressFn progress = stage_progress(params->progress, params->progress_user, VQTEX_STAGE_ANALYSE);

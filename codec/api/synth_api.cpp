@@ -10,6 +10,7 @@
 
 #include "analysis/texture_model.hpp"
 #include "api/api_support.hpp"
+#include "api/validate.hpp"
 #include "common/error.hpp"
 #include "common/image.hpp"
 #include "common/parallel.hpp"
@@ -52,18 +53,9 @@ void vqtex_synth_params_init(vqtex_synth_params* p) {
 vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_image* example,
                               vqtex_image* out, vqtex_synth_stats* stats, vqtex_error* error) {
     return guarded(error, [&] {
-        if (!params || params->struct_size != sizeof(vqtex_synth_params))
-            fail(VQTEX_ERROR_INVALID_ARGUMENT,
-                 "vqtex_synth_params not initialised with vqtex_synth_params_init()");
         if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output image pointer is NULL");
         *out = vqtex_image{};
-        if (params->width < 1 || params->height < 1 || params->width > kMaxOutputSide ||
-            params->height > kMaxOutputSide)
-            fail(VQTEX_ERROR_INVALID_ARGUMENT,
-                 "output size " + std::to_string(params->width) + "x" + std::to_string(params->height) +
-                     " is out of range (1 to " + std::to_string(kMaxOutputSide) + " per side)");
-        if (params->search != VQTEX_SEARCH_TSVQ && params->search != VQTEX_SEARCH_EXHAUSTIVE)
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown search kind");
+        validate(params);
         const Image ex = image_from_c(example, "example image");
         const int threads = resolve_threads(params->threads);
         using Clock = std::chrono::steady_clock;
@@ -73,8 +65,6 @@ vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_imag
             stage_progress(params->progress, params->progress_user, VQTEX_STAGE_ANALYSE);
         const ProgressFn synth_progress =
             stage_progress(params->progress, params->progress_user, VQTEX_STAGE_SYNTHESISE);
-        if (params->tolerance > 4096)
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "tolerance must be 0 to 4096 (in 1/256 of the best distance)");
         AnalysisResult analysis = analyse_example(ex, params->model, params->search,
                                                   params->backtrack, threads, analyse_progress);
         const auto t1 = Clock::now();
@@ -82,8 +72,6 @@ vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_imag
         opt.width = int(params->width);
         opt.height = int(params->height);
         opt.seed = params->seed;
-        if (params->init != VQTEX_INIT_PARENT && params->init != VQTEX_INIT_NOISE)
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown init mode");
         opt.tolerance = params->tolerance;
         opt.init = params->init == VQTEX_INIT_NOISE ? LevelInit::Noise : LevelInit::Parent;
         opt.threads = threads;

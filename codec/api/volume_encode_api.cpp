@@ -8,6 +8,7 @@
 #include <new>
 
 #include "api/api_support.hpp"
+#include "api/validate.hpp"
 #include "common/error.hpp"
 #include "analysis/temporal_model.hpp"
 #include "format/volume_codec.hpp"
@@ -35,17 +36,6 @@ Volume volume_from_c(const vqtex_volume* in) {
     return v;
 }
 
-void check_params(const vqtex_volume_encode_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_volume_encode_params) ||
-        p->codec.struct_size != sizeof(vqtex_encode_params))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT,
-             "vqtex_volume_encode_params not initialised with vqtex_volume_encode_params_init()");
-    check_encode_params(&p->codec);
-    const vqtex_encode_params& c = p->codec;
-    if (c.target_size != 0)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "a target size is not supported for animated textures: choose a quality");
-}
-
 }  // namespace
 
 extern "C" {
@@ -67,7 +57,7 @@ vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const
         if (!data || !size) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output pointers are NULL");
         *data = nullptr;
         *size = 0;
-        check_params(params);
+        validate(params);
         const Volume ex = volume_from_c(example);
         const vqtex_encode_params& c = params->codec;
         std::vector<Shape3> shapes;

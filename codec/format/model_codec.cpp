@@ -399,8 +399,6 @@ std::size_t tree_budget_of(const Container& c, std::size_t memory_limit) {
 }
 
 std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& s) {
-    if (s.precision < 1 || s.precision > 8 || s.pixel_precision < 1 || s.pixel_precision > 8)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision must be 1 to 8 bits");
     FileHeader h;
     h.exemplar_width = model.exemplar_width;
     h.exemplar_height = model.exemplar_height;

@@ -44,8 +44,6 @@ Shape3 seam_shape_of(const Shape3& causal, const Shape3& closing) {
 }  // namespace
 
 std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const EncodeSettings& s) {
-    if (s.precision < 1 || s.precision > 8 || s.pixel_precision < 1 || s.pixel_precision > 8)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision must be 1 to 8 bits");
     FileHeader h;
     h.version = kVolumeFormatVersion;
     h.flags = kFlagVolume;
