@@ -40,17 +40,6 @@ void BM_Ssd(benchmark::State& state) {
     state.SetLabel(k.name);
 }
 
-void BM_Ssd2(benchmark::State& state) {
-    const auto& k = vqtex::dsp::available_kernels(int(state.range(0)));
-    const auto q = random_bytes(208, 3), pair = random_bytes(416, 4);
-    uint32_t out[2];
-    for (auto _ : state) {
-        k.ssd2(q.data(), pair.data(), 208, out);
-        benchmark::DoNotOptimize(out);
-    }
-    state.SetLabel(k.name);
-}
-
 void BM_Dot2(benchmark::State& state) {
     const auto& k = vqtex::dsp::available_kernels(int(state.range(0)));
     const auto raw = random_bytes(208, 5), pair = random_bytes(416, 6);
@@ -136,7 +125,6 @@ void kernel_args(benchmark::internal::Benchmark* b) {
 }  // namespace
 
 BENCHMARK(BM_Ssd)->Apply(kernel_args);
-BENCHMARK(BM_Ssd2)->Apply(kernel_args);
 BENCHMARK(BM_Dot2)->Apply(kernel_args);
 BENCHMARK(BM_Encode)->Args({128, 1})->Args({256, 1})->Args({256, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Decode)
