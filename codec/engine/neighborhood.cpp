@@ -10,8 +10,7 @@
 
 namespace vqtex {
 
-int coarser_window_size(const Shape& shape, int depth) {
-    int size = std::max(shape.rows, shape.cols);
+int coarser_extent(int size, int depth) {
     for (int d = 0; d < depth; ++d) size = (size / 2) | 1;
     return size;
 }
@@ -31,7 +30,7 @@ std::vector<Tap> shape_taps(const Shape& shape) {
             taps.push_back({0, int16_t(dy), int16_t(dx)});
         }
     for (int d = 1; d < shape.levels; ++d) {
-        const int r = coarser_window_size(shape, d) / 2;
+        const int r = coarser_extent(std::max(shape.rows, shape.cols), d) / 2;
         for (int dy = -r; dy <= r; ++dy)
             for (int dx = -r; dx <= r; ++dx) taps.push_back({int8_t(d), int16_t(dy), int16_t(dx)});
     }

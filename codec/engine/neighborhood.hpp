@@ -31,9 +31,10 @@ struct Shape {
     bool operator==(const Shape&) const = default;
 };
 
-// Width of the full window at `depth` levels below the current one: about
-// half the size per level, kept odd ({5x5,2} -> 3x3, {9x9,2} -> 5x5).
-int coarser_window_size(const Shape& shape, int depth);
+// Extent (odd) of the coarser window `depth` levels down along an axis whose
+// current-level extent is `size`: about half per level, kept odd (5 -> 3 -> 1;
+// a {9x9,2} shape reads a 5x5 window one level down). 2D and 3D shapes alike.
+int coarser_extent(int size, int depth);
 
 struct Tap {
     int8_t depth;  // 0 = current level, d = d levels coarser

@@ -10,11 +10,6 @@
 
 namespace vqtex {
 
-int coarser_extent(int size, int depth) {
-    for (int d = 0; d < depth; ++d) size = (size / 2) | 1;
-    return size;
-}
-
 std::vector<Tap3> shape3_taps(const Shape3& shape) {
     std::vector<Tap3> taps;
     const int ry = shape.rows / 2, rx = shape.cols / 2, rt = shape.frames / 2;

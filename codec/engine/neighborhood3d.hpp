@@ -54,10 +54,6 @@ struct Tap3 {
 std::vector<Tap3> shape3_taps(const Shape3& shape);
 std::string shape3_to_string(const Shape3& shape);  // "{5x5x5,2}"
 
-// Extent (odd) of the coarser window `depth` levels down along an axis whose
-// current-level extent is `size`: 5 -> 3 -> 1.
-int coarser_extent(int size, int depth);
-
 // Default shapes, [0] = the finest level: {5x5x5,2}, and {5x5x5,1} at the
 // coarsest (the paper's {3x3x3,2} and {1x1x1,3}: see neighborhood3d.cpp).
 std::vector<Shape3> default_shapes3(int levels);

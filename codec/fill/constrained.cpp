@@ -144,7 +144,7 @@ struct Window {
 
 void add_coarser_rects(const Shape& shape, Window& w) {
     for (int d = 1; d < shape.levels; ++d) {
-        const int r = coarser_window_size(shape, d) / 2;
+        const int r = coarser_extent(std::max(shape.rows, shape.cols), d) / 2;
         w.rects.push_back({d, -r, -r, r, r});
     }
 }
