@@ -131,7 +131,10 @@ void close_frame_seam(const VolumeLevelModel& lm, std::vector<Volume>& pyramid, 
     const NeighborhoodLayout3 layout(lm.seam_shape, channels, level, levels);
     if (layout.stride() != lm.seam->stride())
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "frame-seam matcher and shape disagree at level " + std::to_string(level));
-    const int band = std::min(2 * (lm.shape.rows / 2) + 1, (v.height + 1) / 2);
+    // The rows a frame's seam band spans are the still engine's (one frame's
+    // causal window, time aside).
+    const Shape frame_shape{lm.shape.rows, lm.shape.cols, lm.shape.levels};
+    const int band = std::min(closing_band_rows(frame_shape), (v.height + 1) / 2);
     keep_still = keep_still && layout.predecessor_offset() >= 0;
     std::vector<uint8_t> query(layout.stride());
     std::vector<uint8_t> row(std::size_t(v.width) * std::size_t(channels));
