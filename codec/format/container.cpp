@@ -66,7 +66,7 @@ std::vector<uint8_t> ContainerWriter::write() {
     return std::move(w.data());
 }
 
-Container read_container(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
+FileHeader read_header(const uint8_t* data, std::size_t size) {
     if (!data && size) fail(VQTEX_ERROR_INVALID_ARGUMENT, "file data is NULL");
     if (size < sizeof kMagic || std::memcmp(data, kMagic, sizeof kMagic) != 0) {
         if (size < sizeof kMagic && (size == 0 || std::memcmp(data, kMagic, size) == 0))  // data may be NULL
@@ -83,11 +83,9 @@ Container read_container(const uint8_t* data, std::size_t size, std::size_t memo
     if (size < kHeaderSize + kTrailerSize)
         fail(VQTEX_ERROR_TRUNCATED, "file ends inside the header (" + std::to_string(size) + " bytes)");
 
-    Container c;
-    c.file_size = size;
     ByteReader r(data, size - kTrailerSize, "header");
     r.bytes(sizeof kMagic, "magic");
-    FileHeader& h = c.header;
+    FileHeader h;
     h.version = r.u16("version");
     h.flags = r.u16("flags");
     h.exemplar_width = r.u32("exemplar width");
@@ -98,7 +96,15 @@ Container read_container(const uint8_t* data, std::size_t size, std::size_t memo
     h.backtrack = r.u8("backtrack");
     h.seed = r.u64("seed");
     h.section_count = r.u32("section count");
-    const uint32_t reserved = r.u32("reserved");
+    h.reserved = r.u32("reserved");
+    return h;
+}
+
+Container read_container(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
+    Container c;
+    c.file_size = size;
+    c.header = read_header(data, size);
+    FileHeader& h = c.header;
 
     // Walk the section table first: a file cut short anywhere is reported
     // as truncated, before the checksum is even looked at.
@@ -153,7 +159,7 @@ Container read_container(const uint8_t* data, std::size_t size, std::size_t memo
                  ? std::string("format version 2 is for animations, but the animation flag (header bit 1) is not set")
                  : std::string("file is format version 1 but has the animation flag (header bit 1): animations are "
                                "version 2 (a development build wrote this file; encode it again)"));
-    if (reserved != 0) fail(VQTEX_ERROR_CORRUPT, "reserved header field is not zero");
+    if (h.reserved != 0) fail(VQTEX_ERROR_CORRUPT, "reserved header field is not zero");
     if (h.channels < 1 || h.channels > 4)
         fail(VQTEX_ERROR_CORRUPT, "header declares " + std::to_string(h.channels) + " channels (1 to 4)");
     if (h.levels < 1 || h.levels > 8)

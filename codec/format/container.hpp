@@ -41,6 +41,7 @@ struct FileHeader {
     uint8_t backtrack = 1;  // TSVQ leaves visited per search
     uint64_t seed = 0;      // default seed
     uint32_t section_count = 0;
+    uint32_t reserved = 0;  // must be 0 (read_container checks it)
 };
 
 struct Section {
@@ -78,6 +79,11 @@ struct Container {
     std::vector<Section> sections;
     std::size_t file_size = 0;
 };
+
+// The header's fields as read, after the signature, the version and the
+// header's length are checked (TRUNCATED, BAD_MAGIC, UNSUPPORTED_VERSION);
+// read_container checks the rest.
+FileHeader read_header(const uint8_t* data, std::size_t size);
 
 // Parses and verifies the header, section table, total length and CRC, in
 // that order, so each kind of damage gets its own error. `memory_limit`

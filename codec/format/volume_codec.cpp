@@ -98,8 +98,13 @@ std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const En
 }
 
 bool is_volume_file(const uint8_t* data, std::size_t size) {
-    return data && size >= kHeaderSize && std::memcmp(data, kMagic, sizeof kMagic) == 0 &&
-           (data[10] & kFlagVolume) != 0;
+    // A file whose header cannot be read is left to decode_file, whose
+    // container parser reports the same error either way.
+    try {
+        return (read_header(data, size).flags & kFlagVolume) != 0;
+    } catch (const Error&) {
+        return false;
+    }
 }
 
 DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
