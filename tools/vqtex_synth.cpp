@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
     app.add_flag("--tileable-example", tileable, "the example tiles: use wrap-around neighbourhoods");
     app.add_option("-j,--threads", threads, "threads (default: all cores; output is identical)");
     app.add_flag("--json", json, "print machine-readable statistics on stdout");
-    app.add_flag("-q,--quiet", quiet, "print nothing but errors");
+    app.add_flag("--quiet", quiet, "print nothing but errors");
     CLI11_PARSE(app, argc, argv);
 
     try {
