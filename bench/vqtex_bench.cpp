@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -34,6 +35,7 @@
 #include "image_io.hpp"
 #include "metrics.hpp"
 #include "vqtex/vqtex.h"
+#include "vqtex/vqtex.hpp"
 
 namespace fs = std::filesystem;
 using namespace vqtex_tools;
@@ -60,11 +62,11 @@ Image tiled(const Image& img, int w, int h) {
     return out;
 }
 
+// Takes the library's image (and releases it).
 Image from_c(vqtex_image& c) {
-    Image out{int(c.width), int(c.height), int(c.channels),
-              std::vector<uint8_t>(c.pixels, c.pixels + std::size_t(c.width) * c.height * c.channels)};
-    vqtex_image_free(&c);
-    return out;
+    const vqtex_cpp::Image owned(std::exchange(c, vqtex_image{}));
+    return Image{int(owned.width()), int(owned.height()), int(owned.channels()),
+                 std::vector<uint8_t>(owned.data(), owned.data() + owned.size_bytes())};
 }
 
 vqtex_image view(Image& img) { return {uint32_t(img.width), uint32_t(img.height), uint32_t(img.channels), img.pixels.data()}; }
@@ -304,9 +306,8 @@ int main(int argc, char** argv) {
                         std::fprintf(stderr, "vqtex-bench: error: %s: %s\n", name.c_str(), err.detail);
                         return false;
                     }
-                    const bool ok = write_all(file, data, size);
-                    vqtex_free(data);
-                    return ok;
+                    const vqtex_cpp::Buffer owned(data, size);
+                    return write_all(file, owned.data(), owned.size());
                 }, encode_peak, encode_s))
                 return 1;
             const std::vector<uint8_t> bytes = read_all(file);
@@ -322,15 +323,13 @@ int main(int argc, char** argv) {
                 long decode_peak = 0;
                 double decode_s = 0;
                 if (!measured([&] {
-                        vqtex_image dec{};
+                        vqtex_cpp::Image dec;
                         vqtex_error err{};
-                        if (vqtex_decode(&dp, bytes.data(), bytes.size(), &dec, &err) != VQTEX_OK) {
+                        if (vqtex_decode(&dp, bytes.data(), bytes.size(), dec.out(), &err) != VQTEX_OK) {
                             std::fprintf(stderr, "vqtex-bench: error: %s: %s\n", name.c_str(), err.detail);
                             return false;
                         }
-                        const bool ok = write_all(raw, dec.pixels, std::size_t(dec.width) * dec.height * dec.channels);
-                        vqtex_image_free(&dec);
-                        return ok;
+                        return write_all(raw, dec.data(), dec.size_bytes());
                     }, decode_peak, decode_s))
                     return 1;
                 Image decoded{int(dp.width), int(dp.height), exemplar.channels, read_all(raw)};
