@@ -8,7 +8,7 @@
 
 #include "dsp/dsp.hpp"
 #include "image_io.hpp"
-#include "rng.hpp"
+#include "common/rng.hpp"
 #include "vqtex/vqtex.h"
 
 namespace {
@@ -37,17 +37,6 @@ void BM_Ssd(benchmark::State& state) {
     const auto& k = vqtex::dsp::available_kernels(int(state.range(0)));
     const auto a = random_bytes(208, 3), b = random_bytes(208, 4);
     for (auto _ : state) benchmark::DoNotOptimize(k.ssd(a.data(), b.data(), 208));
-    state.SetLabel(k.name);
-}
-
-void BM_Ssd2(benchmark::State& state) {
-    const auto& k = vqtex::dsp::available_kernels(int(state.range(0)));
-    const auto q = random_bytes(208, 3), pair = random_bytes(416, 4);
-    uint32_t out[2];
-    for (auto _ : state) {
-        k.ssd2(q.data(), pair.data(), 208, out);
-        benchmark::DoNotOptimize(out);
-    }
     state.SetLabel(k.name);
 }
 
@@ -136,7 +125,6 @@ void kernel_args(benchmark::internal::Benchmark* b) {
 }  // namespace
 
 BENCHMARK(BM_Ssd)->Apply(kernel_args);
-BENCHMARK(BM_Ssd2)->Apply(kernel_args);
 BENCHMARK(BM_Dot2)->Apply(kernel_args);
 BENCHMARK(BM_Encode)->Args({128, 1})->Args({256, 1})->Args({256, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Decode)

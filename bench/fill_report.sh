@@ -53,7 +53,7 @@ for t in "${textures[@]}"; do
     for method in two-pass causal; do
       result="$out/${t}_${m}_vqtex_${method}.png"
       t0=$(seconds)
-      "$build/vqtex-fill" "$damaged" "$mask" "$result" --method "$method" -j 1 -q
+      "$build/vqtex-fill" "$damaged" "$mask" "$result" --method "$method" -j 1 --quiet
       t1=$(seconds)
       row "$t" "$m" "vqtex $method" "$(awk "BEGIN { print $t1 - $t0 }")" "$result" "$mask"
     done

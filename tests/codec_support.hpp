@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "image.hpp"
+#include "common/image.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex_test {

@@ -8,6 +8,13 @@ src="$2"
 prefix="$(mktemp -d)"
 trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" >/dev/null
+# Benchmark programs stay in the build tree.
+for program in vqtex-bench fill-seams; do
+  if [ -e "$prefix/bin/$program" ]; then
+    echo "install test: $program was installed into bin" >&2
+    exit 1
+  fi
+done
 
 cmake -S "$src/examples" -B "$prefix/examples-build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$prefix/examples-build" >/dev/null

@@ -124,3 +124,132 @@ TEST(Api, GreyAndRgbaExamplesKeepTheirChannels) {
         EXPECT_EQ(out.channels, ex.channels) << name;
     }
 }
+
+// Validate once, before any work: every entry point checks its whole params
+// struct first, so an invalid value is refused with a detail naming it
+// before the analysis, training or decoding has reported any progress.
+namespace {
+
+struct WorkSeen {
+    int calls = 0;
+    static int note(void* user, vqtex_stage, uint64_t, uint64_t) {
+        ++static_cast<WorkSeen*>(user)->calls;
+        return 1;
+    }
+};
+
+// `call` runs one entry point; it must fail with INVALID_ARGUMENT, a detail
+// containing `detail`, and no progress report.
+template <typename Call>
+void expect_refused_before_work(const char* what, const char* detail, Call call) {
+    WorkSeen seen;
+    vqtex_error err{};
+    EXPECT_EQ(call(&seen, &err), VQTEX_ERROR_INVALID_ARGUMENT) << what;
+    EXPECT_NE(std::strstr(err.detail, detail), nullptr) << what << ": " << err.detail;
+    EXPECT_EQ(seen.calls, 0) << what << ": work was done before the refusal";
+}
+
+}  // namespace
+
+TEST(Validation, EveryInvalidValueIsRefusedBeforeAnyWork) {
+    const vqtex::Image ex = vqtex_test::make_random(32, 32, 3, 7);
+    vqtex_image in{32, 32, 3, const_cast<uint8_t*>(ex.pixels.data())};
+
+    using SynthEdit = void (*)(vqtex_synth_params&);
+    const std::pair<SynthEdit, const char*> synth_cases[] = {
+        {[](vqtex_synth_params& p) { p.init = vqtex_init(7); }, "unknown init mode"},
+        {[](vqtex_synth_params& p) { p.backtrack = 0; }, "backtrack must be 1"},
+        {[](vqtex_synth_params& p) { p.model.entries_per_leaf = 65; }, "entries per leaf must be 1 to 64"},
+        {[](vqtex_synth_params& p) { p.model.closing_window = 4; }, "closing window must be odd"},
+        {[](vqtex_synth_params& p) { p.model.levels = 9; }, "levels must be 1 to 8"},
+        {[](vqtex_synth_params& p) { p.model.leaf = vqtex_leaf(3); }, "unknown leaf representative"},
+        {[](vqtex_synth_params& p) { p.tolerance = 5000; }, "tolerance must be 0 to 4096"},
+        {[](vqtex_synth_params& p) { p.search = vqtex_search(9); }, "unknown search kind"},
+        {[](vqtex_synth_params& p) { p.width = 0; }, "out of range"},
+    };
+    for (const auto& [edit, detail] : synth_cases) {
+        expect_refused_before_work("synthesize", detail, [&](WorkSeen* seen, vqtex_error* err) {
+            vqtex_synth_params p = vqtex_test::default_params(32, 32);
+            p.progress = &WorkSeen::note;
+            p.progress_user = seen;
+            edit(p);
+            vqtex_image out{};
+            return vqtex_synthesize(&p, &in, &out, nullptr, err);
+        });
+    }
+
+    using EncodeEdit = void (*)(vqtex_encode_params&);
+    const std::pair<EncodeEdit, const char*> encode_cases[] = {
+        {[](vqtex_encode_params& p) { p.init = vqtex_init(7); }, "unknown init mode"},
+        {[](vqtex_encode_params& p) { p.backtrack = 0; }, "backtrack must be 1 to 255"},
+        {[](vqtex_encode_params& p) { p.backtrack = 256; }, "backtrack must be 1 to 255"},
+        {[](vqtex_encode_params& p) { p.precision = 0; }, "precision and pixel precision must be 1 to 8"},
+        {[](vqtex_encode_params& p) { p.pixel_precision = 9; }, "precision and pixel precision must be 1 to 8"},
+        {[](vqtex_encode_params& p) { p.smoothing = 0; }, "smoothing must be 1 to 8"},
+        {[](vqtex_encode_params& p) { p.model.entries_per_leaf = 100; }, "entries per leaf must be 1 to 64"},
+        {[](vqtex_encode_params& p) { p.model.closing_window = 65; }, "closing window must be odd"},
+    };
+    for (const auto& [edit, detail] : encode_cases) {
+        expect_refused_before_work("encode", detail, [&](WorkSeen* seen, vqtex_error* err) {
+            vqtex_encode_params p;
+            vqtex_encode_params_init(&p);
+            p.progress = &WorkSeen::note;
+            p.progress_user = seen;
+            edit(p);
+            uint8_t* data = nullptr;
+            size_t size = 0;
+            return vqtex_encode(&p, &in, &data, &size, nullptr, err);
+        });
+        // The animated encoder shares the encoder's checks.
+        expect_refused_before_work("encode_volume", detail, [&](WorkSeen* seen, vqtex_error* err) {
+            vqtex_volume_encode_params p;
+            vqtex_volume_encode_params_init(&p);
+            p.codec.progress = &WorkSeen::note;
+            p.codec.progress_user = seen;
+            edit(p.codec);
+            vqtex_volume vin{32, 32, 1, 3, const_cast<uint8_t*>(ex.pixels.data())};
+            uint8_t* data = nullptr;
+            size_t size = 0;
+            return vqtex_encode_volume(&p, &vin, &data, &size, nullptr, err);
+        });
+    }
+
+    using FillEdit = void (*)(vqtex_fill_params&);
+    const std::pair<FillEdit, const char*> fill_cases[] = {
+        {[](vqtex_fill_params& p) { p.backtrack = 0; }, "backtrack must be 1"},
+        {[](vqtex_fill_params& p) { p.method = vqtex_fill_method(5); }, "unknown fill method"},
+        {[](vqtex_fill_params& p) { p.codeword_fraction = 0.0f; }, "codeword fraction must be in (0, 1]"},
+        {[](vqtex_fill_params& p) { p.tolerance = 4097; }, "tolerance must be 0 to 4096"},
+        {[](vqtex_fill_params& p) { p.levels = 9; }, "levels must be 0 (automatic) to 8"},
+    };
+    for (const auto& [edit, detail] : fill_cases) {
+        expect_refused_before_work("extend", detail, [&](WorkSeen* seen, vqtex_error* err) {
+            vqtex_fill_params p;
+            vqtex_fill_params_init(&p);
+            p.progress = &WorkSeen::note;
+            p.progress_user = seen;
+            edit(p);
+            vqtex_image out{};
+            return vqtex_extend(&p, &in, nullptr, 48, 48, 8, 8, nullptr, &out, nullptr, err);
+        });
+    }
+}
+
+// The decoder's params are checked before the file is read: an invalid
+// size is named even when the bytes are no vqtex file at all.
+TEST(Validation, DecodeParamsAreCheckedBeforeTheFile) {
+    const uint8_t junk[16] = {};
+    vqtex_decode_params p;
+    vqtex_decode_params_init(&p);
+    p.width = 20000;
+    vqtex_error err{};
+    vqtex_image out{};
+    EXPECT_EQ(vqtex_decode(&p, junk, sizeof junk, &out, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(err.detail, "out of range"), nullptr) << err.detail;
+    vqtex_volume vout{};
+    EXPECT_EQ(vqtex_decode_volume(&p, 4, junk, sizeof junk, &vout, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(err.detail, "out of range"), nullptr) << err.detail;
+    vqtex_decode_params uninit{};
+    EXPECT_EQ(vqtex_decode(&uninit, junk, sizeof junk, &out, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(err.detail, "vqtex_decode_params_init"), nullptr) << err.detail;
+}

@@ -11,7 +11,7 @@
 #include "engine/appearance.hpp"
 #include "engine/coherence_sets.hpp"
 #include "engine/coherent_synthesis.hpp"
-#include "rng.hpp"
+#include "common/rng.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex;

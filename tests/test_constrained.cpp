@@ -10,9 +10,9 @@
 #include <set>
 #include <string>
 
-#include "constrained.hpp"
-#include "error.hpp"
-#include "fill_order.hpp"
+#include "fill/constrained.hpp"
+#include "common/error.hpp"
+#include "fill/fill_order.hpp"
 #include "metrics.hpp"
 #include "test_support.hpp"
 #include "vqtex/vqtex.hpp"

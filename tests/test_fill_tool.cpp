@@ -72,7 +72,7 @@ TEST(FillTool, FillsAHoleAndKeepsEverythingElse) {
 TEST(FillTool, ExtendsAndUsesTheAlphaChannel) {
     const std::string in = corpus + "/weave_128.png";
     const fs::path out = scratch_dir() / "big.png";
-    ToolRun r = fill_tool(in + " " + out.string() + " --extend 160x144 --anchor top-left -q");
+    ToolRun r = fill_tool(in + " " + out.string() + " --extend 160x144 --anchor top-left --quiet");
     ASSERT_EQ(r.status, 0) << r.output;
     const vqtex::Image a = vqtex_test::load_file(in), b = vqtex_test::load_file(out.string());
     ASSERT_EQ(b.width, 160);
@@ -90,7 +90,7 @@ TEST(FillTool, ExtendsAndUsesTheAlphaChannel) {
         }
     const fs::path holed = scratch_dir() / "holed.png", fixed = scratch_dir() / "fixed.png";
     vqtex_tools::save_image(holed.string(), 96, 96, 4, rgba.pixels.data());
-    r = fill_tool(holed.string() + " " + fixed.string() + " --alpha -q");
+    r = fill_tool(holed.string() + " " + fixed.string() + " --alpha --quiet");
     ASSERT_EQ(r.status, 0) << r.output;
     const vqtex::Image f = vqtex_test::load_file(fixed.string());
     ASSERT_EQ(f.channels, 4);
@@ -124,7 +124,17 @@ TEST(FillTool, ErrorsAreOneLineAndLeaveNoOutput) {
         EXPECT_FALSE(fs::exists(out)) << c.args;
     }
     // A separate example rescues the mask that leaves too little.
-    const ToolRun r = fill_tool(in + " " + huge_mask + " " + out.string() + " --example " + in + " -q");
+    const ToolRun r = fill_tool(in + " " + huge_mask + " " + out.string() + " --example " + in + " --quiet");
     EXPECT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(fs::exists(out));
+}
+
+// -q means --quality in vqtex-encode; vqtex-fill has no quality, so it
+// refuses -q instead of reading it as --quiet.
+TEST(FillTool, ShortQIsNotQuiet) {
+    const std::string in = corpus + "/weave_128.png";
+    const fs::path out = scratch_dir() / "q.png";
+    const ToolRun r = fill_tool(in + " " + out.string() + " --extend 160x144 -q");
+    EXPECT_NE(r.status, 0) << r.output;
+    EXPECT_FALSE(fs::exists(out));
 }

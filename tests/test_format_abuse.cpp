@@ -5,9 +5,9 @@
 
 #include <set>
 
-#include "checksum.hpp"
+#include "common/checksum.hpp"
 #include "codec_support.hpp"
-#include "container.hpp"
+#include "format/container.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex_test;

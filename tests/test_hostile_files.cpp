@@ -15,13 +15,13 @@
 #include <vector>
 
 #include "alloc_counter.hpp"
-#include "bitstream.hpp"
-#include "checksum.hpp"
+#include "common/bitstream.hpp"
+#include "common/checksum.hpp"
 #include "codec_support.hpp"
-#include "container.hpp"
-#include "neighborhood.hpp"
+#include "format/container.hpp"
+#include "engine/neighborhood.hpp"
 #include "test_support.hpp"
-#include "tsvq_tree.hpp"
+#include "tsvq/tsvq_tree.hpp"
 
 using namespace vqtex_test;
 

@@ -25,7 +25,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "alloc_counter.hpp"
-#include "checksum.hpp"
+#include "common/checksum.hpp"
 #include "codec_support.hpp"
 #include "image_io.hpp"
 #include "test_support.hpp"

@@ -2,8 +2,10 @@
 // 2.2-2.3).
 #include <gtest/gtest.h>
 
-#include "neighborhood.hpp"
-#include "pyramid.hpp"
+#include <algorithm>
+
+#include "engine/neighborhood.hpp"
+#include "engine/pyramid.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex;
@@ -13,11 +15,12 @@ TEST(Neighborhood, PaperShapesHaveThePaperSizes) {
     const Shape s9{9, 9, 2};
     EXPECT_EQ(shape_taps(s9).size(), 65u);
     EXPECT_EQ(causal_tap_count(s9), 40);
-    EXPECT_EQ(coarser_window_size(s9, 1), 5);
+    EXPECT_EQ(coarser_extent(std::max(s9.rows, s9.cols), 1), 5);
     const NeighborhoodLayout layout(s9, 3, 0, 4);
     EXPECT_EQ(layout.dimension(), 195u);
     EXPECT_EQ(layout.stride() % 16, 0u);
-    EXPECT_EQ(coarser_window_size(Shape{5, 5, 2}, 1), 3);
+    EXPECT_EQ(coarser_extent(5, 1), 3);
+    EXPECT_EQ(coarser_extent(5, 2), 1);
     EXPECT_EQ(shape_taps(Shape{3, 3, 1}).size(), 4u);
 }
 

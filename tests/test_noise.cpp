@@ -3,7 +3,7 @@
 
 #include <numeric>
 
-#include "noise.hpp"
+#include "engine/noise.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex;

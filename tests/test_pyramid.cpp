@@ -1,7 +1,7 @@
 // test_pyramid.cpp - the integer Gaussian pyramid (paper section 2.3).
 #include <gtest/gtest.h>
 
-#include "pyramid.hpp"
+#include "engine/pyramid.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex;

@@ -16,7 +16,7 @@
 #include <unistd.h>
 
 #include "image_io.hpp"
-#include "rng.hpp"
+#include "common/rng.hpp"
 
 namespace vqtex_test {
 

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <string>
 
-#include "image.hpp"
-#include "synthesis.hpp"
+#include "common/image.hpp"
+#include "engine/synthesis.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex_test {

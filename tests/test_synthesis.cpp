@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "pyramid.hpp"
-#include "search_exhaustive.hpp"
-#include "texture_model.hpp"
+#include "engine/pyramid.hpp"
+#include "tsvq/search_exhaustive.hpp"
+#include "analysis/texture_model.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex;

@@ -11,15 +11,15 @@
 #include <string>
 
 #include "image_io.hpp"
-#include "neighborhood3d.hpp"
-#include "volume_codec.hpp"
+#include "engine/neighborhood3d.hpp"
+#include "format/volume_codec.hpp"
 #include "vqtex/vqtex.hpp"
-#include "container.hpp"
-#include "rng.hpp"
+#include "format/container.hpp"
+#include "common/rng.hpp"
 #include "test_support.hpp"
-#include "temporal_model.hpp"
-#include "temporal_synthesis.hpp"
-#include "volume.hpp"
+#include "analysis/temporal_model.hpp"
+#include "engine/temporal_synthesis.hpp"
+#include "engine/volume.hpp"
 
 using namespace vqtex;
 
@@ -259,6 +259,7 @@ TEST(TemporalSynthesis, LoopsSeamlesslyInTime) {
     int closed_top = 0, open_top = 0, runs = 0;
     double worst_closed = 0;
     std::vector<double> open_ratios;
+    std::string runs_seen;  // shown only when an expectation fails
     for (const char* name : {"waves_48_anim", "advected_32_anim", "flicker_32_anim"}) {
         const Volume ex = load_sequence(name);
         for (int closing = 0; closing < 2; ++closing) {
@@ -269,8 +270,9 @@ TEST(TemporalSynthesis, LoopsSeamlesslyInTime) {
             for (uint64_t seed = 1; seed <= 3; ++seed) {
                 const Volume out = synthesize(a.model, 32, 32, 32, seed, 2)[0];
                 const LoopStats s = loop_stats(out);
-                std::printf("%-18s closing %d seed %d: wrap/median %.2f, rank %d of %d\n", name, closing,
-                            int(seed), s.ratio, s.rank, s.pairs);
+                runs_seen += std::string(name) + " closing " + std::to_string(closing) + " seed " +
+                             std::to_string(seed) + ": wrap/median " + std::to_string(s.ratio) + ", rank " +
+                             std::to_string(s.rank) + " of " + std::to_string(s.pairs) + "\n";
                 if (closing) {
                     closed_top += s.rank >= s.pairs - 2;
                     worst_closed = std::max(worst_closed, s.ratio);
@@ -284,13 +286,13 @@ TEST(TemporalSynthesis, LoopsSeamlesslyInTime) {
     }
     // Closed loops: the wrap pair is among the two largest of 32 at most
     // twice in 9 runs (chance: 9 * 2/32 = 0.6), never far above the median.
-    EXPECT_LE(closed_top, 2);
-    EXPECT_LT(worst_closed, 1.6);
+    EXPECT_LE(closed_top, 2) << runs_seen;
+    EXPECT_LT(worst_closed, 1.6) << runs_seen;
     // Open loops: the statistic sees the seam (on the exactly periodic
     // waves the last frame sometimes lines up with the first by chance).
-    EXPECT_GE(open_top, runs - 3);
+    EXPECT_GE(open_top, runs - 3) << runs_seen;
     std::sort(open_ratios.begin(), open_ratios.end());
-    EXPECT_GT(open_ratios[open_ratios.size() / 2], 1.6);
+    EXPECT_GT(open_ratios[open_ratios.size() / 2], 1.6) << runs_seen;
 }
 
 // Frames tile: across the x and the y wrap, neighbours differ like
@@ -312,16 +314,17 @@ TEST(TemporalSynthesis, TilesInSpace) {
             mean.y += r.y / seeds;
             open_mean.y += seam_ranks(synthesize(open, 40, 36, 12, uint64_t(seed), 2)[0]).y / seeds;
         }
-        std::printf("%-18s mean rank of the wrap among neighbour pairs: across x %.2f, across y %.2f "
-                    "(without frame-seam closing %.2f)\n",
-                    name, mean.x, mean.y, open_mean.y);
         EXPECT_LT(mean.x, 0.75) << name;
         EXPECT_LT(mean.y, 0.75) << name;
-        // The seam it closes is real: on the waves, without it, the wrap
-        // ranks near the top (measured 0.91; 0.74 on the advected noise,
-        // 0.53 on the flicker, whose frames hide it better).
+        // The seam it closes is real, and closing it moves the wrap well down
+        // the ranking on every animation: measured 0.91 -> 0.35 on the waves,
+        // 0.74 -> 0.41 on the advected noise, 0.53 -> 0.29 on the flicker
+        // (whose frames hide the seam better), so a gain of 0.15 leaves a
+        // margin of 0.09 and more. On the waves the open seam ranks near the
+        // top (measured 0.91).
+        EXPECT_GT(open_mean.y - mean.y, 0.15) << name << ": " << open_mean.y << " -> " << mean.y;
         if (std::string(name) == "waves_48_anim") {
-            EXPECT_GT(open_mean.y, 0.85);
+            EXPECT_GT(open_mean.y, 0.75);
         }
     }
 }
@@ -403,7 +406,6 @@ TEST(TemporalSynthesis, StaticInputGivesStaticOutput) {
     const VolumeAnalysis moving = analyse_volume(load_sequence("advected_32_anim"), temporal_params(), {},
                                                  VQTEX_SEARCH_TSVQ, 2, 2, {});
     const double moving_change = relative_change(synthesize(moving.model, 40, 36, 24, 1, 2)[0]);
-    std::printf("relative change per frame of advected noise: %.3f\n", moving_change);
     EXPECT_GT(moving_change, 0.05);
 }
 
@@ -426,7 +428,6 @@ std::vector<uint8_t> encode_corpus(const char* name, int quality = 30) {
 
 TEST(TemporalCodec, RoundTripThroughTheFileIsBitExactForAnyThreadCount) {
     const std::vector<uint8_t> file = encode_corpus("flicker_32_anim");
-    std::printf("flicker_32_anim (32x32x32 RGB, %d bytes of PNG frames) -> %zu bytes\n", 64891, file.size());
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
     // Version 2: a reader of version 1 only (which rejects every other
     // version, docs/FORMAT.md section 6) says UNSUPPORTED_VERSION, not CORRUPT.
@@ -459,7 +460,7 @@ TEST(TemporalCodec, RoundTripThroughTheFileIsBitExactForAnyThreadCount) {
     o.frames = 20;
     o.seed = info.seed;
     o.init = f.init;
-    const Volume direct = synthesize_volume_pyramid(f.texture, o)[0];
+    const Volume direct = synthesize_volume_pyramid(volume_model_of(f.model, f.header.backtrack), o)[0];
     EXPECT_EQ(0, std::memcmp(one.frame(0), direct.stack.pixels.data(), one.frame_bytes() * 20));
     // Another seed, another animation; defaults give the example's size.
     d.width = d.height = 0;
@@ -597,13 +598,11 @@ TEST(TemporalCodec, StillSequenceDecodesStill) {
             double median = 0;
             const double mean = relative_change(v, &median);
             median *= variance_of(v);
-            std::printf("noise %d, %zu bytes, seed %d: relative change per frame %.4f (median squared difference %.2f; input's %.2f)\n",
-                        noise, file.size(), int(seed), mean, median, input_median);
             EXPECT_GT(variance_of(v), 50.0);
             if (noise == 0) {
-                EXPECT_EQ(mean, 0.0);
+                EXPECT_EQ(mean, 0.0) << "seed " << seed;
             } else {
-                EXPECT_LT(median, input_median);
+                EXPECT_LT(median, input_median) << "noise " << noise << " seed " << seed;
             }
         }
     }

@@ -45,7 +45,7 @@ const std::string corpus = VQTEX_CORPUS_DIR;
 
 TEST(Tools, SynthWritesAnImageOfTheRequestedSize) {
     const fs::path out = scratch_dir() / "out.png";
-    const ToolRun r = run_tool(corpus + "/weave_128.png " + out.string() + " --size 200x100 -q");
+    const ToolRun r = run_tool(corpus + "/weave_128.png " + out.string() + " --size 200x100 --quiet");
     ASSERT_EQ(r.status, 0) << r.output;
     const vqtex::Image img = vqtex_test::load_file(out.string());
     EXPECT_EQ(img.width, 200);

@@ -8,12 +8,12 @@
 #include <set>
 
 #include "dsp/dsp.hpp"
-#include "pyramid.hpp"
-#include "rng.hpp"
-#include "search_exhaustive.hpp"
-#include "texture_model.hpp"
-#include "tsvq_search.hpp"
-#include "tsvq_train.hpp"
+#include "engine/pyramid.hpp"
+#include "common/rng.hpp"
+#include "tsvq/search_exhaustive.hpp"
+#include "analysis/texture_model.hpp"
+#include "tsvq/tsvq_search.hpp"
+#include "tsvq/tsvq_train.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex;

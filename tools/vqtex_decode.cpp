@@ -11,6 +11,7 @@
 #include "image_io.hpp"
 #include "sequence_io.hpp"
 #include "vqtex/vqtex.h"
+#include "vqtex/vqtex.hpp"
 
 using namespace vqtex_tools;
 
@@ -53,25 +54,18 @@ int main(int argc, char** argv) {
             if (mips) throw std::invalid_argument("--mips is not supported for animations");
             if (!is_frame_pattern(output))
                 throw std::invalid_argument("output '" + output + "' needs one frame-number field for --frames, e.g. out/frame_%03d.png");
-            vqtex_volume v{};
+            vqtex_cpp::Volume v;  // owns the result
             vqtex_error err{};
             const double t0 = now_seconds();
-            const vqtex_status st = vqtex_decode_volume(&p, frames, bytes.data(), bytes.size(), &v, &err);
+            const vqtex_status st = vqtex_decode_volume(&p, frames, bytes.data(), bytes.size(), v.out(), &err);
             bar.finish();
             if (st != VQTEX_OK) {
                 std::fprintf(stderr, "vqtex-decode: error: %s: %s\n", input.c_str(), err.detail);
                 return 1;
             }
             const double t1 = now_seconds();
-            std::vector<std::string> written;
-            try {
-                written = save_sequence(output, v);
-            } catch (...) {
-                vqtex_volume_free(&v);
-                throw;
-            }
-            const uint32_t w = v.width, h = v.height, n = v.frames;
-            vqtex_volume_free(&v);
+            const std::vector<std::string> written = save_sequence(output, v.get());
+            const uint32_t w = v.width(), h = v.height(), n = v.frames();
             if (json) {
                 std::printf("{\"input\":%s,\"output\":%s,\"bytes\":%zu,\"width\":%u,\"height\":%u,\"frames\":%u,"
                             "\"decode_seconds\":%.6f,\"seconds_per_frame\":%.6f}\n",
@@ -95,6 +89,9 @@ int main(int argc, char** argv) {
             st = vqtex_decode(&p, bytes.data(), bytes.size(), &levels[0], &err);
             count = st == VQTEX_OK ? 1 : 0;
         }
+        // The library's images, released when these go out of scope.
+        std::vector<vqtex_cpp::Image> owned;
+        for (uint32_t i = 0; i < count; ++i) owned.emplace_back(levels[i]);
         bar.finish();
         if (st != VQTEX_OK) {
             std::fprintf(stderr, "vqtex-decode: error: %s: %s\n", input.c_str(), err.detail);
@@ -102,19 +99,13 @@ int main(int argc, char** argv) {
         }
         const double t1 = now_seconds();
         std::vector<std::string> written;
-        try {
-            if (mips) {
-                written = save_mip_chain(output, levels.data(), count);
-            } else {
-                save_image(output, levels[0].width, levels[0].height, levels[0].channels, levels[0].pixels);
-                written.push_back(output);
-            }
-        } catch (...) {
-            for (uint32_t i = 0; i < count; ++i) vqtex_image_free(&levels[i]);
-            throw;
+        if (mips) {
+            written = save_mip_chain(output, levels.data(), count);
+        } else {
+            save_image(output, levels[0].width, levels[0].height, levels[0].channels, levels[0].pixels);
+            written.push_back(output);
         }
         const uint32_t w = levels[0].width, h = levels[0].height;
-        for (uint32_t i = 0; i < count; ++i) vqtex_image_free(&levels[i]);
         const double t2 = now_seconds();
         if (json) {
             std::printf("{\"input\":%s,\"output\":%s,\"bytes\":%zu,\"width\":%u,\"height\":%u,"

@@ -10,6 +10,7 @@
 #include "image_io.hpp"
 #include "sequence_io.hpp"
 #include "vqtex/vqtex.h"
+#include "vqtex/vqtex.hpp"
 
 using namespace vqtex_tools;
 
@@ -35,9 +36,8 @@ int encode_animation(const std::string& input, const std::string& output, vqtex_
         std::fprintf(stderr, "vqtex-encode: error: %s\n", err.detail);
         return 1;
     }
-    std::vector<uint8_t> bytes(data, data + size);
-    vqtex_free(data);
-    save_bytes(output, bytes);
+    const vqtex_cpp::Buffer file(data, size);  // owns the bytes from here
+    save_bytes(output, std::vector<uint8_t>(file.data(), file.data() + file.size()));
     const double seconds = now_seconds() - t0;
     if (json) {
         std::printf("{\"input\":%s,\"output\":%s,\"width\":%u,\"height\":%u,\"frames\":%u,\"channels\":%u,"
@@ -153,9 +153,8 @@ int main(int argc, char** argv) {
             return 1;
         }
         bar.finish();
-        std::vector<uint8_t> bytes(data, data + size);
-        vqtex_free(data);
-        save_bytes(output, bytes);
+        const vqtex_cpp::Buffer file(data, size);  // owns the bytes from here
+        save_bytes(output, std::vector<uint8_t>(file.data(), file.data() + file.size()));
         const double seconds = now_seconds() - t0;
         const double pixels = double(example.width) * example.height;
         if (json) {

@@ -10,6 +10,7 @@
 #include "cli_common.hpp"
 #include "image_io.hpp"
 #include "vqtex/vqtex.h"
+#include "vqtex/vqtex.hpp"
 
 using namespace vqtex_tools;
 
@@ -85,7 +86,7 @@ int main(int argc, char** argv) {
     app.add_option("--seed", seed, "seed for near-tie choices")->capture_default_str();
     app.add_option("-j,--threads", threads, "threads (default: all cores; output is identical)");
     app.add_flag("--json", json, "print machine-readable statistics on stdout");
-    app.add_flag("-q,--quiet", quiet, "print nothing but errors");
+    app.add_flag("--quiet", quiet, "print nothing but errors");
     CLI11_PARSE(app, argc, argv);
 
     try {
@@ -141,7 +142,7 @@ int main(int argc, char** argv) {
         vqtex_image mask_img{image.width, image.height, 1, mask.data()};
         vqtex_image ex_img{example.width, example.height, example.channels, example.pixels.data()};
         const vqtex_image* ex_ptr = example_path.empty() ? nullptr : &ex_img;
-        vqtex_image out{};
+        vqtex_cpp::Image out;  // owns the result
         vqtex_fill_stats stats{};
         vqtex_error err{};
         const double t0 = now_seconds();
@@ -151,9 +152,9 @@ int main(int argc, char** argv) {
             ox = anchor_offset(anchor, true, image.width, canvas_w);
             oy = anchor_offset(anchor, false, image.height, canvas_h);
             st = vqtex_extend(&params, &img, mask.empty() ? nullptr : &mask_img, canvas_w, canvas_h, ox, oy, ex_ptr,
-                              &out, &stats, &err);
+                              out.out(), &stats, &err);
         } else {
-            st = vqtex_fill(&params, &img, &mask_img, ex_ptr, &out, &stats, &err);
+            st = vqtex_fill(&params, &img, &mask_img, ex_ptr, out.out(), &stats, &err);
         }
         bar.finish();
         if (st != VQTEX_OK) {
@@ -161,14 +162,8 @@ int main(int argc, char** argv) {
             return 1;
         }
         const double t1 = now_seconds();
-        try {
-            save_image(output, out.width, out.height, out.channels, out.pixels);
-        } catch (...) {
-            vqtex_image_free(&out);
-            throw;
-        }
-        const uint32_t out_w = out.width, out_h = out.height;
-        vqtex_image_free(&out);
+        save_image(output, out.width(), out.height(), out.channels(), out.data());
+        const uint32_t out_w = out.width(), out_h = out.height();
         const double t2 = now_seconds();
         uint64_t filled = 0;
         for (uint32_t l = 0; l < stats.levels; ++l) filled += l == 0 ? stats.filled[0] : 0;

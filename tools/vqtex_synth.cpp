@@ -8,6 +8,7 @@
 #include "cli_common.hpp"
 #include "image_io.hpp"
 #include "vqtex/vqtex.h"
+#include "vqtex/vqtex.hpp"
 
 using namespace vqtex_tools;
 
@@ -65,7 +66,7 @@ int main(int argc, char** argv) {
     app.add_flag("--tileable-example", tileable, "the example tiles: use wrap-around neighbourhoods");
     app.add_option("-j,--threads", threads, "threads (default: all cores; output is identical)");
     app.add_flag("--json", json, "print machine-readable statistics on stdout");
-    app.add_flag("-q,--quiet", quiet, "print nothing but errors");
+    app.add_flag("--quiet", quiet, "print nothing but errors");
     CLI11_PARSE(app, argc, argv);
     if (paper) engine = "paper";
     if (engine == "paper") {
@@ -121,24 +122,18 @@ int main(int argc, char** argv) {
         params.progress_user = &bar;
 
         vqtex_image ex_img{example.width, example.height, example.channels, example.pixels.data()};
-        vqtex_image out{};
+        vqtex_cpp::Image out;  // owns the result
         vqtex_synth_stats stats{};
         vqtex_error err{};
         const double t0 = now_seconds();
-        if (vqtex_synthesize(&params, &ex_img, &out, &stats, &err) != VQTEX_OK) {
+        if (vqtex_synthesize(&params, &ex_img, out.out(), &stats, &err) != VQTEX_OK) {
             bar.finish();
             std::fprintf(stderr, "vqtex-synth: error: %s\n", err.detail);
             return 1;
         }
         const double t1 = now_seconds();
         bar.finish();
-        try {
-            save_image(output, out.width, out.height, out.channels, out.pixels);
-        } catch (...) {
-            vqtex_image_free(&out);
-            throw;
-        }
-        vqtex_image_free(&out);
+        save_image(output, out.width(), out.height(), out.channels(), out.data());
         const double t2 = now_seconds();
         if (json) {
             std::printf("{\"input\":%s,\"output\":%s,\"example_width\":%u,\"example_height\":%u,"

@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "dsp.hpp"
+#include "dsp/dsp.hpp"
 
 namespace vqtex::dsp::detail {
 namespace {

@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "dsp.hpp"
+#include "dsp/dsp.hpp"
 
 namespace vqtex::dsp {
 namespace {

@@ -72,11 +72,6 @@ struct Kernels {
     // descent uses it to compare a query with two children at once:
     // |q-a|^2 <= |q-b|^2  <=>  2 q.(a-b) >= |a|^2 - |b|^2.
     int32_t (*dot)(const uint8_t* a, const int16_t* w, std::size_t n);
-    // The distances from `query` to two vectors of n bytes stored one after
-    // the other at `pair` (two sibling codewords of a TSVQ node): the query
-    // is loaded once for both. out[0] = ssd(query, pair), out[1] =
-    // ssd(query, pair + n).
-    void (*ssd2)(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_t* out);
     // Dot products of a signed query (the query's bytes minus 128) with two
     // byte vectors stored one after the other at `pair`: out[0] =
     // sum q[i] * pair[i], out[1] = sum q[i] * pair[n + i]. With per-codeword

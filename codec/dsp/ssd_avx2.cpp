@@ -1,8 +1,8 @@
 // ssd_avx2.cpp - AVX2 distance kernels, compiled with -mavx2 and only called
 // after the dispatcher has seen AVX2 on the CPU. Bit-identical to the scalar
 // kernels.
-#include "descent.hpp"
-#include "dsp.hpp"
+#include "dsp/descent.hpp"
+#include "dsp/dsp.hpp"
 
 #if defined(__AVX2__) && !defined(VQTEX_SCALAR_ONLY)
 #include <immintrin.h>
@@ -69,24 +69,6 @@ int32_t dot_avx2(const uint8_t* a, const int16_t* w, std::size_t n) {
         acc = _mm256_add_epi32(acc, _mm256_madd_epi16(va, vw));
     }
     return int32_t(hsum(acc));
-}
-
-void ssd2_avx2(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_t* out) {
-    __m256i acc0 = _mm256_setzero_si256(), acc1 = _mm256_setzero_si256();
-    for (std::size_t i = 0; i < n; i += 16) {
-        const __m256i q = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(query + i)));
-        const __m256i a = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pair + i)));
-        const __m256i b = _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pair + n + i)));
-        const __m256i da = _mm256_sub_epi16(q, a), db = _mm256_sub_epi16(q, b);
-        acc0 = _mm256_add_epi32(acc0, _mm256_madd_epi16(da, da));
-        acc1 = _mm256_add_epi32(acc1, _mm256_madd_epi16(db, db));
-    }
-    // Both horizontal sums at once: lanes 0-3 from acc0, 4-7 from acc1.
-    const __m256i h = _mm256_hadd_epi32(acc0, acc1);  // a01 a23 b01 b23 | a45 a67 b45 b67
-    const __m128i s = _mm_add_epi32(_mm256_castsi256_si128(h), _mm256_extracti128_si256(h, 1));
-    const __m128i t = _mm_hadd_epi32(s, s);  // a, b, a, b
-    out[0] = uint32_t(_mm_cvtsi128_si32(t));
-    out[1] = uint32_t(_mm_extract_epi32(t, 1));
 }
 
 VQTEX_DSP_INLINE void dot2_avx2(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
@@ -172,7 +154,6 @@ const Kernels kAvx2 = {
     ssd_avx2,
     nearest_avx2,
     dot_avx2,
-    ssd2_avx2,
     dot2_avx2,
     detail::prepare_query_portable,
     detail::descend_with<dot2_avx2, detail::prepare_query_portable>,

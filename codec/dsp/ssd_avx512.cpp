@@ -1,8 +1,8 @@
 // ssd_avx512.cpp - AVX-512 (F+BW+DQ) distance kernels, compiled with its own
 // flags and only called when the CPU reports AVX-512BW and DQ. Bit-identical to the
 // scalar kernels.
-#include "descent.hpp"
-#include "dsp.hpp"
+#include "dsp/descent.hpp"
+#include "dsp/dsp.hpp"
 
 #if defined(__AVX512BW__) && defined(__AVX512DQ__) && !defined(VQTEX_SCALAR_ONLY)
 // GCC 12's own AVX-512 reduction helpers trip its uninitialised-value
@@ -80,25 +80,6 @@ int32_t dot_avx512(const uint8_t* a, const int16_t* w, std::size_t n) {
         acc = _mm512_add_epi32(acc, _mm512_zextsi256_si512(_mm256_madd_epi16(va, vw)));
     }
     return int32_t(_mm512_reduce_add_epi32(acc));
-}
-
-void ssd2_avx512(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_t* out) {
-    __m512i acc0 = _mm512_setzero_si512(), acc1 = _mm512_setzero_si512();
-    std::size_t i = 0;
-    for (; i + 32 <= n; i += 32) {
-        const __m512i q = _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(query + i)));
-        const __m512i a = _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(pair + i)));
-        const __m512i b = _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(pair + n + i)));
-        const __m512i da = _mm512_sub_epi16(q, a), db = _mm512_sub_epi16(q, b);
-        acc0 = _mm512_add_epi32(acc0, _mm512_madd_epi16(da, da));
-        acc1 = _mm512_add_epi32(acc1, _mm512_madd_epi16(db, db));
-    }
-    if (i < n) {
-        acc0 = _mm512_add_epi32(acc0, ssd16(query + i, pair + i));
-        acc1 = _mm512_add_epi32(acc1, ssd16(query + i, pair + n + i));
-    }
-    out[0] = uint32_t(_mm512_reduce_add_epi32(acc0));
-    out[1] = uint32_t(_mm512_reduce_add_epi32(acc1));
 }
 
 VQTEX_DSP_INLINE void dot2_avx512(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
@@ -185,7 +166,6 @@ const Kernels kAvx512 = {
     ssd_avx512,
     nearest_avx512,
     dot_avx512,
-    ssd2_avx512,
     dot2_avx512,
     detail::prepare_query_portable,
     detail::descend_with<dot2_avx512, detail::prepare_query_portable>,

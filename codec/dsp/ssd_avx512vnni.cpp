@@ -2,8 +2,8 @@
 // unsigned-by-signed byte dot product (vpdpbusd): 64 byte products summed
 // into 16 lanes per instruction, exactly. Compiled with its own flags and
 // only called when the CPU reports AVX-512 VNNI; bit-identical to scalar.
-#include "descent.hpp"
-#include "dsp.hpp"
+#include "dsp/descent.hpp"
+#include "dsp/dsp.hpp"
 
 #if defined(__AVX512VNNI__) && defined(__AVX512BW__) && defined(__AVX512DQ__) && !defined(VQTEX_SCALAR_ONLY)
 #pragma GCC diagnostic ignored "-Wuninitialized"

@@ -1,7 +1,7 @@
 // ssd_scalar.cpp - the reference distance kernels: plain C++, the definition
 // of what every SIMD version must reproduce bit for bit.
-#include "descent.hpp"
-#include "dsp.hpp"
+#include "dsp/descent.hpp"
+#include "dsp/dsp.hpp"
 
 namespace vqtex::dsp {
 namespace {
@@ -46,11 +46,6 @@ int32_t dot_scalar(const uint8_t* a, const int16_t* w, std::size_t n) {
     return sum;
 }
 
-void ssd2_scalar(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_t* out) {
-    out[0] = ssd_scalar(query, pair, n);
-    out[1] = ssd_scalar(query, pair + n, n);
-}
-
 VQTEX_DSP_INLINE void dot2_scalar(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
     int32_t first = 0, second = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -66,7 +61,6 @@ const Kernels kScalar = {
     ssd_scalar,
     nearest_scalar,
     dot_scalar,
-    ssd2_scalar,
     dot2_scalar,
     detail::prepare_query_portable,
     detail::descend_with<dot2_scalar, detail::prepare_query_portable>,

@@ -1,7 +1,7 @@
 // ssd_sse2.cpp - SSE2 distance kernels (every x86-64 CPU has them).
 // Bit-identical to ssd_scalar.cpp: exact 32-bit integer sums.
-#include "descent.hpp"
-#include "dsp.hpp"
+#include "dsp/descent.hpp"
+#include "dsp/dsp.hpp"
 
 #if defined(__SSE2__) && !defined(VQTEX_SCALAR_ONLY)
 #include <emmintrin.h>
@@ -69,25 +69,6 @@ int32_t dot_sse2(const uint8_t* a, const int16_t* w, std::size_t n) {
     return int32_t(hsum(acc));
 }
 
-void ssd2_sse2(const uint8_t* query, const uint8_t* pair, std::size_t n, uint32_t* out) {
-    const __m128i zero = _mm_setzero_si128();
-    __m128i acc0 = _mm_setzero_si128(), acc1 = _mm_setzero_si128();
-    for (std::size_t i = 0; i < n; i += 16) {
-        const __m128i q = _mm_loadu_si128(reinterpret_cast<const __m128i*>(query + i));
-        const __m128i qlo = _mm_unpacklo_epi8(q, zero), qhi = _mm_unpackhi_epi8(q, zero);
-        const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(pair + i));
-        const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(pair + n + i));
-        const __m128i alo = _mm_sub_epi16(qlo, _mm_unpacklo_epi8(a, zero));
-        const __m128i ahi = _mm_sub_epi16(qhi, _mm_unpackhi_epi8(a, zero));
-        const __m128i blo = _mm_sub_epi16(qlo, _mm_unpacklo_epi8(b, zero));
-        const __m128i bhi = _mm_sub_epi16(qhi, _mm_unpackhi_epi8(b, zero));
-        acc0 = _mm_add_epi32(acc0, _mm_add_epi32(_mm_madd_epi16(alo, alo), _mm_madd_epi16(ahi, ahi)));
-        acc1 = _mm_add_epi32(acc1, _mm_add_epi32(_mm_madd_epi16(blo, blo), _mm_madd_epi16(bhi, bhi)));
-    }
-    out[0] = hsum(acc0);
-    out[1] = hsum(acc1);
-}
-
 VQTEX_DSP_INLINE void dot2_sse2(const int8_t* query, const uint8_t* pair, std::size_t n, int32_t* out) {
     const __m128i zero = _mm_setzero_si128();
     __m128i acc0 = _mm_setzero_si128(), acc1 = _mm_setzero_si128();
@@ -113,7 +94,6 @@ const Kernels kSse2 = {
     ssd_sse2,
     nearest_sse2,
     dot_sse2,
-    ssd2_sse2,
     dot2_sse2,
     detail::prepare_query_portable,
     detail::descend_with<dot2_sse2, detail::prepare_query_portable>,

@@ -1,12 +1,12 @@
 // appearance.cpp - Gaussian stack and fixed-point PCA appearance vectors
 // (Lefebvre & Hoppe 2005 section 3.1, 2006 section 3). See appearance.hpp.
-#include "appearance.hpp"
+#include "engine/appearance.hpp"
 
 #include <algorithm>
 #include <cstdlib>
 
-#include "parallel.hpp"
-#include "pyramid.hpp"
+#include "common/parallel.hpp"
+#include "engine/pyramid.hpp"
 
 namespace vqtex {
 namespace {

@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "image.hpp"
+#include "common/image.hpp"
 
 namespace vqtex {
 

@@ -5,13 +5,13 @@
 // sorted by their first (strongest) appearance component, and each query
 // sweeps outwards from its own rank until that component alone is farther
 // than the k-th best full distance found.
-#include "coherence_sets.hpp"
+#include "engine/coherence_sets.hpp"
 
 #include <algorithm>
 #include <cstdlib>
 #include <numeric>
 
-#include "parallel.hpp"
+#include "common/parallel.hpp"
 
 namespace vqtex {
 namespace {

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "appearance.hpp"
+#include "engine/appearance.hpp"
 
 namespace vqtex {
 

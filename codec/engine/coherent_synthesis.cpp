@@ -1,16 +1,16 @@
 // coherent_synthesis.cpp - coordinate synthesis with k-coherence candidates
 // in appearance space (Lefebvre & Hoppe 2005 sections 3-4, 2006 section 4;
 // Tong et al. 2002; Ashikhmin 2001). See coherent_synthesis.hpp.
-#include "coherent_synthesis.hpp"
+#include "engine/coherent_synthesis.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
 
-#include "error.hpp"
-#include "parallel.hpp"
-#include "pyramid.hpp"
+#include "common/error.hpp"
+#include "common/parallel.hpp"
+#include "engine/pyramid.hpp"
 
 namespace vqtex {
 namespace {

@@ -19,9 +19,9 @@
 #include <functional>
 #include <vector>
 
-#include "appearance.hpp"
-#include "coherence_sets.hpp"
-#include "image.hpp"
+#include "engine/appearance.hpp"
+#include "engine/coherence_sets.hpp"
+#include "common/image.hpp"
 
 namespace vqtex {
 

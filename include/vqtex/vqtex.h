@@ -328,7 +328,7 @@ typedef struct vqtex_fill_params {
     uint32_t tolerance;         /* near-ties within best*(1+tolerance/256) are chosen among with
                                    the seed; 0 = nearest only [--tolerance] */
     uint64_t seed;              /* [--seed] */
-    vqtex_fill_method method;   /* [--causal] */
+    vqtex_fill_method method;   /* [--method two-pass|causal] */
     uint32_t threads;           /* 0 = all cores; the output is the same for any count [--threads] */
     vqtex_progress_fn progress; /* stages ANALYSE (trees built) and SYNTHESISE (pixels) */
     void* progress_user;

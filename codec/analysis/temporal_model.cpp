@@ -1,0 +1,181 @@
+// temporal_model.cpp - from an example frame sequence to a VolumeModel
+// (paper section 5.2, with the training of section 4).
+#include "analysis/temporal_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+#include "tsvq/search_exhaustive.hpp"
+#include "analysis/texture_model.hpp"
+#include "tsvq/tsvq_search.hpp"
+#include "tsvq/tsvq_train.hpp"
+
+namespace vqtex {
+
+int automatic_volume_levels(int width, int height, int frames) {
+    int levels = 3;
+    while (levels > 1 &&
+           ((std::min(width, height) >> (levels - 1)) < 8 || (frames >> (levels - 1)) < 2))
+        --levels;
+    return levels;
+}
+
+VolumePlan plan_volume_model(const vqtex_model_params& params, const std::vector<Shape3>& shapes, int width,
+                             int height, int frames) {
+    VolumePlan plan;
+    plan.levels = params.levels ? int(params.levels) : automatic_volume_levels(width, height, frames);
+    if (plan.levels < 1 || plan.levels > kMaxLevels)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 1 to " + std::to_string(kMaxLevels) + " (got " +
+                                               std::to_string(plan.levels) + ")");
+    plan.shapes = default_shapes3(plan.levels);
+    for (int l = 0; l < plan.levels && std::size_t(l) < shapes.size(); ++l) {
+        const Shape3& s = shapes[std::size_t(l)];
+        if (s.rows == 0 && s.cols == 0 && s.frames == 0 && s.levels == 0) continue;
+        if (s.rows % 2 == 0 || s.cols % 2 == 0 || s.frames % 2 == 0 || s.levels < 1 || s.rows > 31 || s.cols > 31 ||
+            s.frames > 31)
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "neighbourhood at level " + std::to_string(l) +
+                                                   " must be odd RxCxD up to 31x31x31 with k >= 1 (got " +
+                                                   shape3_to_string(s) + ")");
+        plan.shapes[std::size_t(l)] = Shape3{s.rows, s.cols, s.frames, s.levels, true};
+    }
+    for (int l = 0; l < plan.levels; ++l) {
+        Shape3& s = plan.shapes[std::size_t(l)];
+        s.levels = std::min(s.levels, plan.levels - l);
+        if (shape3_taps(s).empty())
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "neighbourhood " + shape3_to_string(s) + " at level " +
+                                                   std::to_string(l) + " reads no pixel: use D >= 3, 1x3 or k >= 2");
+    }
+    return plan;
+}
+
+namespace {
+
+constexpr std::size_t kMinTraining = 2048;
+
+
+BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, const vqtex_model_params& params,
+                           vqtex_search search, uint32_t backtrack, int threads, int level, int kind) {
+    // kind: 0 the causal tree, 1 loop closing, 2 frame-seam closing.
+    const bool closing = kind != 0;
+    BuiltMatcher built;
+    const int predecessor = layout.predecessor_offset();
+    if (search == VQTEX_SEARCH_EXHAUSTIVE) {
+        if (predecessor >= 0) {
+            // Each example pixel followed by its predecessor, as a TSVQ
+            // entry's pixel is followed by its key (temporal_synthesis.hpp).
+            const std::size_t ch = std::size_t(set.channels);
+            std::vector<uint8_t> pairs(set.count() * 2 * ch);
+            for (std::size_t i = 0; i < set.count(); ++i) {
+                std::copy(set.pixel(i), set.pixel(i) + ch, pairs.data() + 2 * i * ch);
+                std::copy(set.vector(i) + predecessor, set.vector(i) + std::size_t(predecessor) + ch,
+                          pairs.data() + (2 * i + 1) * ch);
+            }
+            set.pixels = std::move(pairs);
+            set.channels *= 2;
+        }
+        built.bytes = set.vectors.size() + set.pixels.size();
+        built.matcher = std::make_shared<ExhaustiveMatcher>(std::move(set));
+        return built;
+    }
+    // The paper trains on a random 10% of the neighbourhoods; the coarse
+    // levels of a small example have only a few hundred, and 10% of those
+    // leaves the coarsest level a handful of codewords, from which every
+    // output collapses into a flat field (measured on corpus/flicker_32_anim
+    // decoded at 128x128). So the fraction applies above kMinTraining.
+    std::size_t subset_size = set.count();
+    if (params.train_fraction > 0 && params.train_fraction < 1)
+        subset_size = std::max<std::size_t>(std::min(set.count(), kMinTraining),
+                                            std::size_t(std::llround(double(subset_size) * params.train_fraction)));
+    if (params.train_count > 0) subset_size = std::min<std::size_t>(subset_size, params.train_count);
+    const std::vector<uint32_t> subset =
+        choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level) + 64u * uint64_t(kind));
+    TrainParams tp = train_params_for(params, level, subset.size(), closing, threads);
+    // Every entry carries its predecessor as its key, whatever
+    // params.no_entry_keys says (neighborhood3d.hpp).
+    tp.key_offsets = layout.entry_key_offsets();
+    tp.keys_on_single_entries = true;
+    built.codebook = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
+    built.bytes = built.codebook->memory_bytes();
+    built.matcher = std::make_shared<TsvqMatcher>(built.codebook, backtrack);
+    return built;
+}
+
+}  // namespace
+
+VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& params,
+                              const std::vector<Shape3>& shapes, vqtex_search search, uint32_t backtrack,
+                              int threads, const ProgressFn& progress) {
+    if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence is empty");
+    const VolumePlan plan = plan_volume_model(params, shapes, example.width, example.height, example.frames);
+    const bool tileable = params.example_tileable != 0;
+    const std::vector<Volume> pyramid =
+        build_volume_pyramid(example, plan.levels, tileable ? EdgeMode::Wrap : EdgeMode::Mirror);
+
+    VolumeAnalysis result;
+    result.model.channels = example.channels;
+    result.model.levels.resize(std::size_t(plan.levels));
+    result.codebooks.resize(std::size_t(plan.levels));
+    result.closing_codebooks.resize(std::size_t(plan.levels));
+    result.seam_codebooks.resize(std::size_t(plan.levels));
+    result.training_vectors.resize(std::size_t(plan.levels));
+    for (int l = plan.levels - 1; l >= 0; --l) {
+        const NeighborhoodLayout3 layout(plan.shapes[std::size_t(l)], example.channels, l, plan.levels);
+        ExampleSet set = collect_volume_examples(layout, pyramid, tileable);
+        const Volume& v = pyramid[std::size_t(l)];
+        if (set.count() == 0)
+            fail(VQTEX_ERROR_IMAGE_TOO_SMALL,
+                 "example sequence " + std::to_string(example.width) + "x" + std::to_string(example.height) + "x" +
+                     std::to_string(example.frames) + " is too small for neighbourhood " +
+                     shape3_to_string(layout.shape()) + " at pyramid level " + std::to_string(l) + " (" +
+                     std::to_string(v.width) + "x" + std::to_string(v.height) + "x" + std::to_string(v.frames) +
+                     "): use fewer --levels, more frames, or --tileable-example");
+        result.training_vectors[std::size_t(l)] = set.count();
+        VolumeLevelModel& lm = result.model.levels[std::size_t(l)];
+        lm.shape = layout.shape();
+        lm.histogram = histogram_of(v.stack);
+        BuiltMatcher causal = build_matcher(set, layout, params, search, backtrack, threads, l, 0);
+        lm.matcher = causal.matcher;
+        result.codebooks[std::size_t(l)] = causal.codebook;
+        result.model_bytes += causal.bytes;
+        if (params.seam_closing) {
+            Shape3 closing_shape = layout.shape();
+            if (params.closing_window) {
+                closing_shape.rows = std::min<int>(closing_shape.rows, int(params.closing_window));
+                closing_shape.cols = std::min<int>(closing_shape.cols, int(params.closing_window));
+            }
+            closing_shape.frames = std::max(3, closing_shape.frames);
+            closing_shape.causal = false;
+            const NeighborhoodLayout3 closing_layout(closing_shape, example.channels, l, plan.levels);
+            ExampleSet closing_set = collect_volume_examples(closing_layout, pyramid, tileable);
+            if (closing_set.count() > 0) {
+                BuiltMatcher closing =
+                    build_matcher(closing_set, closing_layout, params, search, backtrack, threads, l, 1);
+                lm.closing_shape = closing_layout.shape();
+                lm.closing = closing.matcher;
+                result.closing_codebooks[std::size_t(l)] = closing.codebook;
+                result.model_bytes += closing.bytes;
+            }
+            // Frame-seam closing: the causal shape with the whole current
+            // frame's window (temporal_synthesis.hpp).
+            Shape3 seam_shape = layout.shape();
+            seam_shape.rows = closing_layout.shape().rows;
+            seam_shape.cols = closing_layout.shape().cols;
+            seam_shape.whole_frame = true;
+            const NeighborhoodLayout3 seam_layout(seam_shape, example.channels, l, plan.levels);
+            ExampleSet seam_set = collect_volume_examples(seam_layout, pyramid, tileable);
+            if (seam_set.count() > 0) {
+                BuiltMatcher seam = build_matcher(seam_set, seam_layout, params, search, backtrack, threads, l, 2);
+                lm.seam_shape = seam_layout.shape();
+                lm.seam = seam.matcher;
+                result.seam_codebooks[std::size_t(l)] = seam.codebook;
+                result.model_bytes += seam.bytes;
+            }
+        }
+        if (progress && !progress(uint64_t(plan.levels - l), uint64_t(plan.levels)))
+            fail(VQTEX_ERROR_CANCELLED, "analysis cancelled by the progress callback");
+    }
+    return result;
+}
+
+}  // namespace vqtex

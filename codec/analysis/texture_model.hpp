@@ -1,0 +1,54 @@
+// texture_model.hpp - analysis: an example image becomes a TextureModel
+// (pyramid, neighbourhood shapes, noise histograms, and per level either the
+// exhaustive candidate set or a trained TSVQ codebook; paper sections 2-4).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "engine/synthesis.hpp"
+#include "tsvq/tsvq_train.hpp"
+#include "tsvq/tsvq_tree.hpp"
+#include "vqtex/vqtex.h"
+
+namespace vqtex {
+
+struct ModelPlan {
+    int levels = 0;
+    std::vector<Shape> shapes;  // [0] = finest
+};
+
+// Resolves automatic depth and default shapes, and checks them against the
+// example size; throws a clear error when the example is too small.
+ModelPlan plan_model(const vqtex_model_params& params, int width, int height);
+
+// Leaves wanted at `level` for `training_vectors` vectors.
+uint32_t codewords_for_level(const vqtex_model_params& params, int level,
+                             std::size_t training_vectors);
+
+// Exhaustive candidates or a trained codebook for one level's example set.
+struct BuiltMatcher {
+    std::shared_ptr<const Matcher> matcher;
+    std::shared_ptr<const Codebook> codebook;  // TSVQ only
+    std::size_t bytes = 0;
+};
+
+// The training settings of a level's tree from the model parameters:
+// leaves (closing trees get fewer), stopping threshold, leaf representative
+// and entries per leaf. Callers add the entry keys their shapes define.
+TrainParams train_params_for(const vqtex_model_params& params, int level, std::size_t training_vectors,
+                             bool closing, int threads);
+
+struct AnalysisResult {
+    TextureModel model;
+    std::vector<std::shared_ptr<const Codebook>> codebooks;          // TSVQ only; [0] = finest
+    std::vector<std::shared_ptr<const Codebook>> closing_codebooks;  // TSVQ with seam closing
+    std::vector<std::size_t> training_vectors;
+    std::size_t model_bytes = 0;
+};
+
+AnalysisResult analyse_example(const Image& example, const vqtex_model_params& params,
+                               vqtex_search search, uint32_t backtrack, int threads,
+                               const ProgressFn& progress);
+
+}  // namespace vqtex

@@ -1,0 +1,182 @@
+// decode_api.cpp - the exported decoder and inspector, still and animated
+// (paper section 6: "decompression would consist of texture synthesis"):
+// validation, then format/ reads the trees, engine/ builds the matchers and
+// synthesises. Everything here is in the decoder-only library.
+#include <cstdlib>
+#include <cstring>
+#include <new>
+
+#include "api/api_support.hpp"
+#include "api/validate.hpp"
+#include "common/error.hpp"
+#include "engine/pyramid.hpp"
+#include "engine/synthesis.hpp"
+#include "engine/temporal_synthesis.hpp"
+#include "engine/tree_model.hpp"
+#include "format/model_codec.hpp"
+#include "format/volume_codec.hpp"
+#include "vqtex/vqtex.h"
+
+using namespace vqtex;
+
+namespace {
+
+constexpr uint32_t kMaxOutputFrames = 16384;
+
+// Decodes and synthesises; returns the whole synthesised pyramid.
+std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
+    validate(p);
+    const std::size_t limit = memory_limit_of(p);
+    const DecodedFile f = decode_file(data, size, limit);
+    const uint32_t w = p->width ? p->width : f.header.exemplar_width;
+    const uint32_t h = p->height ? p->height : f.header.exemplar_height;
+    if (w > kMaxOutputSide || h > kMaxOutputSide)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) +
+                                               " is out of range: give an explicit size");
+    // The output pyramid is at most 4/3 of the texture; check it against
+    // what the trees left of the limit before allocating it.
+    const uint64_t needed = uint64_t(w) * h * f.header.channels * 4 / 3 + f.model_bytes;
+    if (needed > limit)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "a " + std::to_string(w) + "x" + std::to_string(h) +
+                                             " output needs about " + std::to_string(needed >> 20) +
+                                             " MiB, above the memory limit of " + std::to_string(limit >> 20) +
+                                             " MiB: raise memory_limit (--memory-limit)");
+    SynthesisOptions opt;
+    opt.width = int(w);
+    opt.height = int(h);
+    opt.seed = p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed;
+    opt.threads = resolve_threads(p->threads);
+    opt.init = f.init;
+    opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
+    return synthesize_pyramid(texture_model_of(f.model, f.header.backtrack), opt);
+}
+
+// vqtex_inspect for an animated texture.
+void describe_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit, vqtex_file_info* info) {
+    const DecodedVolumeFile f = decode_volume_file(data, size, memory_limit);
+    describe_container(f.header, f.sections, size, f.precision, f.pixel_precision, info);
+    info->exemplar_frames = f.model.exemplar_frames;
+    for (std::size_t l = 0; l < f.model.levels.size(); ++l) {
+        const auto& lv = f.model.levels[l];
+        info->shapes[l] = vqtex_shape{uint8_t(lv.shape.rows), uint8_t(lv.shape.cols), uint8_t(lv.shape.levels)};
+        info->window_frames[l] = uint8_t(lv.shape.frames);
+        info->codewords[l] = uint32_t(lv.causal->leaf_count());
+        info->entries[l] = uint32_t(lv.causal->total_entries());
+        info->closing_codewords[l] = lv.closing ? uint32_t(lv.closing->leaf_count()) : 0;
+    }
+}
+
+}  // namespace
+
+extern "C" {
+
+void vqtex_decode_params_init(vqtex_decode_params* p) {
+    if (!p) return;
+    *p = vqtex_decode_params{};
+    p->struct_size = sizeof(vqtex_decode_params);
+    p->seed = VQTEX_SEED_FROM_FILE;
+    p->memory_limit = kDefaultMemoryLimit;
+}
+
+vqtex_status vqtex_decode(const vqtex_decode_params* params, const uint8_t* data, size_t size,
+                          vqtex_image* out, vqtex_error* error) {
+    return guarded(error, [&] {
+        if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output image pointer is NULL");
+        *out = vqtex_image{};
+        std::vector<Image> pyramid = decode_pyramid(params, data, size);
+        // The coarser levels go before the copy to the caller's buffer: the
+        // peak is then twice the output, not two and a third times.
+        pyramid.resize(1);
+        image_to_c(std::move(pyramid[0]), out);
+    });
+}
+
+vqtex_status vqtex_decode_mips(const vqtex_decode_params* params, const uint8_t* data, size_t size,
+                               vqtex_image* levels, uint32_t capacity, uint32_t* count, vqtex_error* error) {
+    return guarded(error, [&] {
+        if (!levels || !count) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output pointers are NULL");
+        *count = 0;
+        std::vector<Image> pyramid = decode_pyramid(params, data, size);
+        while (pyramid.back().width > 1 || pyramid.back().height > 1)
+            pyramid.push_back(downsample(pyramid.back(), EdgeMode::Wrap));
+        if (capacity < pyramid.size())
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "the mip chain has " + std::to_string(pyramid.size()) +
+                                                   " levels; capacity is " + std::to_string(capacity));
+        for (std::size_t i = 0; i < pyramid.size(); ++i) {
+            try {
+                image_to_c(std::move(pyramid[i]), &levels[i]);
+            } catch (...) {
+                for (std::size_t j = 0; j < i; ++j) vqtex_image_free(&levels[j]);
+                throw;
+            }
+        }
+        *count = uint32_t(pyramid.size());
+    });
+}
+
+vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_limit, vqtex_file_info* info,
+                           vqtex_error* error) {
+    return guarded(error, [&] {
+        if (!info) fail(VQTEX_ERROR_INVALID_ARGUMENT, "info pointer is NULL");
+        *info = vqtex_file_info{};
+        if (is_volume_file(data, size)) {
+            describe_volume_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit), info);
+            return;
+        }
+        const DecodedFile f = decode_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit));
+        describe_container(f.header, f.sections, size, f.precision, f.pixel_precision, info);
+        for (std::size_t l = 0; l < f.model.levels.size(); ++l) {
+            const auto& lv = f.model.levels[l];
+            info->shapes[l] = vqtex_shape{uint8_t(lv.shape.rows), uint8_t(lv.shape.cols), uint8_t(lv.shape.levels)};
+            info->codewords[l] = uint32_t(lv.causal->leaf_count());
+            info->entries[l] = uint32_t(lv.causal->total_entries());
+            info->closing_codewords[l] = lv.closing ? uint32_t(lv.closing->leaf_count()) : 0;
+        }
+    });
+}
+
+vqtex_status vqtex_decode_volume(const vqtex_decode_params* p, uint32_t frames, const uint8_t* data, size_t size,
+                                 vqtex_volume* out, vqtex_error* error) {
+    return guarded(error, [&] {
+        if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output volume pointer is NULL");
+        *out = vqtex_volume{};
+        validate(p);
+        if (frames > kMaxOutputFrames)
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(p->width) + "x" + std::to_string(p->height) +
+                                                   " with " + std::to_string(frames) + " frames is out of range (1 to " +
+                                                   std::to_string(kMaxOutputSide) + " per side, 1 to " +
+                                                   std::to_string(kMaxOutputFrames) + " frames)");
+        const std::size_t limit = memory_limit_of(p);
+        const DecodedVolumeFile f = decode_volume_file(data, size, limit);
+        const uint32_t w = p->width ? p->width : f.header.exemplar_width;
+        const uint32_t h = p->height ? p->height : f.header.exemplar_height;
+        const uint32_t n = frames ? frames : f.model.exemplar_frames;
+        if (w > kMaxOutputSide || h > kMaxOutputSide || n > kMaxOutputFrames)
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) + "x" +
+                                                   std::to_string(n) + " is out of range: give an explicit size");
+        // The 3D output pyramid is at most 8/7 of the animation, plus the
+        // copy handed to the caller, beside what the trees took.
+        const uint64_t needed = uint64_t(w) * h * n * f.header.channels * 15 / 7 + f.model_bytes;
+        if (needed > limit)
+            fail(VQTEX_ERROR_LIMIT_EXCEEDED, "a " + std::to_string(w) + "x" + std::to_string(h) + " animation of " +
+                                                 std::to_string(n) + " frames needs about " + std::to_string(needed >> 20) +
+                                                 " MiB, above the memory limit of " + std::to_string(limit >> 20) +
+                                                 " MiB: raise memory_limit (--memory-limit)");
+        VolumeSynthesisOptions opt;
+        opt.width = int(w);
+        opt.height = int(h);
+        opt.frames = int(n);
+        opt.seed = p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed;
+        opt.threads = resolve_threads(p->threads);
+        opt.init = f.init;
+        opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
+        std::vector<Volume> pyramid = synthesize_volume_pyramid(volume_model_of(f.model, f.header.backtrack), opt);
+        const Volume& v = pyramid[0];
+        uint8_t* pixels = static_cast<uint8_t*>(std::malloc(v.byte_count()));
+        if (!pixels) throw std::bad_alloc();
+        std::memcpy(pixels, v.stack.pixels.data(), v.byte_count());
+        *out = vqtex_volume{uint32_t(v.width), uint32_t(v.height), uint32_t(v.frames), uint32_t(v.channels), pixels};
+    });
+}
+
+}  // extern "C"

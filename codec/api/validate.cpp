@@ -1,0 +1,121 @@
+// validate.cpp - the checks of validate.hpp, one function per params struct.
+#include "api/validate.hpp"
+
+#include <string>
+
+#include "api/api_support.hpp"
+#include "common/error.hpp"
+#include "engine/neighborhood.hpp"
+#include "tsvq/tsvq_search.hpp"
+
+namespace vqtex {
+namespace {
+
+void check_init(vqtex_init init) {
+    if (init != VQTEX_INIT_PARENT && init != VQTEX_INIT_NOISE) fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown init mode");
+}
+
+void check_search(vqtex_search search) {
+    if (search != VQTEX_SEARCH_TSVQ && search != VQTEX_SEARCH_EXHAUSTIVE)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown search kind");
+}
+
+// Synthesis and filling visit at least one leaf; a file stores the count in a byte.
+void check_backtrack(uint32_t backtrack, uint32_t most, const char* what) {
+    if (backtrack < 1 || backtrack > most)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "backtrack must be 1 to " + std::to_string(most) + " leaves" + what +
+                                               " (got " + std::to_string(backtrack) + ")");
+}
+
+void check_tolerance(uint32_t tolerance) {
+    if (tolerance > 4096)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "tolerance must be 0 to 4096 (in 1/256 of the best distance)");
+}
+
+// `least` is 0 where 0 means the example's size.
+void check_output_side(uint32_t width, uint32_t height, uint32_t least) {
+    if (width < least || height < least || width > kMaxOutputSide || height > kMaxOutputSide)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(width) + "x" + std::to_string(height) +
+                                               " is out of range (1 to " +
+                                               std::to_string(kMaxOutputSide) + " per side)");
+}
+
+constexpr uint32_t kNoLimit = ~uint32_t(0);
+
+}  // namespace
+
+void validate(const vqtex_model_params& p) {
+    if (p.levels > uint32_t(kMaxLevels))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 1 to " + std::to_string(kMaxLevels) + " (got " +
+                                               std::to_string(p.levels) + ")");
+    // The file stores closing windows of 3 to 63, odd; a 1x1 one reads no pixel.
+    if (p.closing_window && (p.closing_window % 2 == 0 || p.closing_window < 3 || p.closing_window > 63))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT,
+             "closing window must be odd, 3 to 63 (got " + std::to_string(p.closing_window) + ")");
+    if (p.entries_per_leaf > TsvqMatcher::kMaxEntries)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "entries per leaf must be 1 to " + std::to_string(TsvqMatcher::kMaxEntries));
+    if (p.leaf != VQTEX_LEAF_MEDOID && p.leaf != VQTEX_LEAF_CENTROID)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown leaf representative");
+}
+
+void validate(const vqtex_synth_params* p) {
+    if (!p || p->struct_size != sizeof(vqtex_synth_params))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_synth_params not initialised with vqtex_synth_params_init()");
+    if (p->engine != VQTEX_ENGINE_COHERENT && p->engine != VQTEX_ENGINE_PAPER)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown synthesis engine");
+    if (p->coherence < 1 || p->coherence > 16)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "coherence must be 1 to 16 candidates per neighbour");
+    if (p->passes < 1 || p->passes > 8)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "passes must be 1 to 8 correction passes per level");
+    if (p->jitter > 1024) fail(VQTEX_ERROR_INVALID_ARGUMENT, "jitter must be 0 to 1024 (1/256 of a level's spacing)");
+    validate(p->model);
+    check_search(p->search);
+    check_backtrack(p->backtrack, kNoLimit, "");
+    check_output_side(p->width, p->height, 1);
+    check_init(p->init);
+    check_tolerance(p->tolerance);
+}
+
+void validate(const vqtex_encode_params* p) {
+    if (!p || p->struct_size != sizeof(vqtex_encode_params))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_encode_params not initialised with vqtex_encode_params_init()");
+    validate(p->model);
+    if (p->precision < 1 || p->precision > 8 || p->pixel_precision < 1 || p->pixel_precision > 8)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision and pixel precision must be 1 to 8 bits");
+    if (p->smoothing < 1 || p->smoothing > 8) fail(VQTEX_ERROR_INVALID_ARGUMENT, "smoothing must be 1 to 8");
+    check_backtrack(p->backtrack, 255, " for an encoded file");
+    check_init(p->init);
+}
+
+void validate(const vqtex_volume_encode_params* p) {
+    if (!p || p->struct_size != sizeof(vqtex_volume_encode_params) ||
+        p->codec.struct_size != sizeof(vqtex_encode_params))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT,
+             "vqtex_volume_encode_params not initialised with vqtex_volume_encode_params_init()");
+    validate(&p->codec);
+    if (p->codec.target_size != 0)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "a target size is not supported for animated textures: choose a quality");
+}
+
+void validate(const vqtex_fill_params* p) {
+    if (!p || p->struct_size != sizeof(vqtex_fill_params))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_fill_params not initialised with vqtex_fill_params_init()");
+    check_search(p->search);
+    if (p->method != VQTEX_FILL_TWO_PASS && p->method != VQTEX_FILL_CAUSAL)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown fill method");
+    if (p->levels > VQTEX_MAX_LEVELS)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 0 (automatic) to " + std::to_string(VQTEX_MAX_LEVELS) +
+                                               " (got " + std::to_string(p->levels) + ")");
+    check_backtrack(p->backtrack, kNoLimit, "");
+    if (!(p->codeword_fraction > 0.0f && p->codeword_fraction <= 1.0f))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "codeword fraction must be in (0, 1]");
+    check_tolerance(p->tolerance);
+}
+
+void validate(const vqtex_decode_params* p) {
+    if (!p || p->struct_size != sizeof(vqtex_decode_params))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_decode_params not initialised with vqtex_decode_params_init()");
+    check_output_side(p->width, p->height, 0);  // 0 = the example's size
+}
+
+}  // namespace vqtex

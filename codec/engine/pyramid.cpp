@@ -1,0 +1,69 @@
+// pyramid.cpp - integer Gaussian pyramid (paper section 2.3).
+#include "engine/pyramid.hpp"
+
+#include <cstdint>
+
+namespace vqtex {
+namespace {
+
+constexpr int kTaps[5] = {1, 4, 6, 4, 1};
+
+int edge_index(int i, int size, EdgeMode edges) {
+    return edges == EdgeMode::Wrap ? Image::wrap(i, size) : reflect_index(i, size);
+}
+
+}  // namespace
+
+int reflect_index(int i, int size) {
+    if (size == 1) return 0;
+    // Reflect repeatedly, so even windows wider than a tiny image are defined.
+    const int period = 2 * (size - 1);
+    i = Image::wrap(i, period);
+    return i < size ? i : period - i;
+}
+
+int pyramid_level_size(int size, int level) {
+    for (int l = 0; l < level; ++l) size = (size + 1) / 2;
+    return size;
+}
+
+Image downsample(const Image& src, EdgeMode edges) {
+    const int w = src.width, h = src.height, c = src.channels;
+    const int dw = (w + 1) / 2, dh = (h + 1) / 2;
+    // Horizontal pass at the kept columns only: values up to 255 * 16.
+    std::vector<uint16_t> rows(std::size_t(h) * dw * c);
+    for (int y = 0; y < h; ++y) {
+        for (int dx = 0; dx < dw; ++dx) {
+            for (int ch = 0; ch < c; ++ch) {
+                int sum = 0;
+                for (int t = 0; t < 5; ++t)
+                    sum += kTaps[t] * src.at(edge_index(2 * dx + t - 2, w, edges), y)[ch];
+                rows[(std::size_t(y) * dw + dx) * c + ch] = uint16_t(sum);
+            }
+        }
+    }
+    Image dst(dw, dh, c);
+    for (int dy = 0; dy < dh; ++dy) {
+        for (int dx = 0; dx < dw; ++dx) {
+            for (int ch = 0; ch < c; ++ch) {
+                int sum = 0;
+                for (int t = 0; t < 5; ++t) {
+                    const int y = edge_index(2 * dy + t - 2, h, edges);
+                    sum += kTaps[t] * rows[(std::size_t(y) * dw + dx) * c + ch];
+                }
+                dst.at(dx, dy)[ch] = uint8_t((sum + 128) >> 8);
+            }
+        }
+    }
+    return dst;
+}
+
+std::vector<Image> build_pyramid(const Image& image, int levels, EdgeMode edges) {
+    std::vector<Image> pyramid;
+    pyramid.reserve(std::size_t(levels));
+    pyramid.push_back(image);
+    for (int l = 1; l < levels; ++l) pyramid.push_back(downsample(pyramid.back(), edges));
+    return pyramid;
+}
+
+}  // namespace vqtex

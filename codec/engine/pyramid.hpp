@@ -1,0 +1,32 @@
+// pyramid.hpp - Gaussian pyramids in integer arithmetic (paper section 2.3).
+//
+// Level 0 is the image; level L+1 is level L blurred by the separable binomial
+// filter [1 4 6 4 1]/16 and decimated by 2 (sizes round up, so any size works).
+// Every value is defined exactly: the two 1D passes accumulate in integers and
+// the result is (sum + 128) >> 8, rounding halves up.
+#pragma once
+
+#include <vector>
+
+#include "common/image.hpp"
+
+namespace vqtex {
+
+enum class EdgeMode {
+    Mirror,  // example images: reflect at the border (no duplicated edge pixel)
+    Wrap,    // tileable examples and synthesised textures: toroidal
+};
+
+// Index i reflected into [0, size) the way EdgeMode::Mirror reads past the
+// border (no duplicated edge pixel; repeated for windows wider than the image).
+int reflect_index(int i, int size);
+
+// Size of pyramid level `level` for a level-0 size (ceil division by 2^level).
+int pyramid_level_size(int size, int level);
+
+Image downsample(const Image& image, EdgeMode edges);
+
+// levels >= 1 images, [0] the input itself.
+std::vector<Image> build_pyramid(const Image& image, int levels, EdgeMode edges);
+
+}  // namespace vqtex

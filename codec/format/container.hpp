@@ -1,0 +1,96 @@
+// container.hpp - the vqtex file container (docs/FORMAT.md): header,
+// section table, section payloads and CRC-32 trailer. Knows nothing about
+// codebooks; model_codec.* gives the sections their meaning.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vqtex {
+
+inline constexpr uint8_t kMagic[8] = {0x89, 'V', 'Q', 'T', '\r', '\n', 0x1A, '\n'};
+inline constexpr uint16_t kFormatVersion = 1;
+// Animated textures (docs/FORMAT.md section 7) are version 2, so that a
+// reader that knows only version 1 says the file needs a newer vqtex
+// (UNSUPPORTED_VERSION) instead of calling it damaged. Still textures stay
+// version 1, byte for byte.
+inline constexpr uint16_t kVolumeFormatVersion = 2;
+inline constexpr std::size_t kHeaderSize = 40;
+inline constexpr std::size_t kSectionHeaderSize = 16;
+inline constexpr std::size_t kTrailerSize = 4;
+
+enum HeaderFlags : uint16_t {
+    kFlagSeamClosing = 1u << 0,  // at least one level has a closing tree
+    kFlagVolume = 1u << 1,       // an animated texture: 3D model (volume_codec.hpp)
+    kKnownFlags = kFlagSeamClosing | kFlagVolume,
+};
+
+enum class SectionCoding : uint8_t { Stored = 0, Zstd = 1 };
+
+struct FileHeader {
+    uint16_t version = kFormatVersion;
+    uint16_t flags = 0;
+    uint32_t exemplar_width = 0;
+    uint32_t exemplar_height = 0;
+    uint8_t channels = 0;
+    uint8_t levels = 0;
+    uint8_t init = 0;       // 0 parent, 1 noise
+    uint8_t backtrack = 1;  // TSVQ leaves visited per search
+    uint64_t seed = 0;      // default seed
+    uint32_t section_count = 0;
+    uint32_t reserved = 0;  // must be 0 (read_container checks it)
+};
+
+struct Section {
+    std::array<char, 4> tag{};
+    uint8_t level = 0;
+    uint8_t kind = 0;  // 0 causal tree, 1 closing tree, else 0
+    SectionCoding coding = SectionCoding::Zstd;
+    std::size_t raw_size = 0;
+    std::size_t stored_size = 0;
+    std::size_t offset = 0;  // of the payload, in the file
+    std::string name() const;
+};
+
+// Writing: sections are added with their raw bytes; write() compresses
+// each (keeping it stored when zstd does not help) and assembles the file.
+class ContainerWriter {
+public:
+    explicit ContainerWriter(const FileHeader& header, int zstd_level = 19)
+        : header_(header), zstd_level_(zstd_level) {}
+    void add(const char tag[4], uint8_t level, uint8_t kind, std::vector<uint8_t> raw);
+    std::vector<uint8_t> write();
+
+private:
+    FileHeader header_;
+    int zstd_level_;
+    struct Pending {
+        Section section;
+        std::vector<uint8_t> raw;
+    };
+    std::vector<Pending> sections_;
+};
+
+struct Container {
+    FileHeader header;
+    std::vector<Section> sections;
+    std::size_t file_size = 0;
+};
+
+// The header's fields as read, after the signature, the version and the
+// header's length are checked (TRUNCATED, BAD_MAGIC, UNSUPPORTED_VERSION);
+// read_container checks the rest.
+FileHeader read_header(const uint8_t* data, std::size_t size);
+
+// Parses and verifies the header, section table, total length and CRC, in
+// that order, so each kind of damage gets its own error. `memory_limit`
+// caps every declared raw section size before anything is allocated.
+Container read_container(const uint8_t* data, std::size_t size, std::size_t memory_limit);
+
+// The raw bytes of a section (decompressed).
+std::vector<uint8_t> section_bytes(const uint8_t* file, const Section& section);
+
+}  // namespace vqtex

@@ -1,0 +1,532 @@
+// model_codec.cpp - the codebook coding of docs/FORMAT.md: quantisation,
+// prediction, and the section layout. zstd (container.cpp) does the rest.
+//
+// What is predicted from what:
+//   - Leaf codewords are quantised to `precision` bits and, visiting the
+//     leaves depth-first so that neighbours in the tree are neighbours in
+//     the stream, each is coded as its difference from the previous leaf.
+//     The stream is planar (all leaves' first sample, then the second ...),
+//     which is the layout zstd models best.
+//   - Entry keys are the same pixels as some samples of the codeword (the
+//     taps next to the centre), so each is coded as its difference from the
+//     leaf codeword at that tap; entry 0's key usually is the codeword's.
+//   - Entry pixels are predicted from their own key (or the codeword) with
+//     the median edge detector of LOCO-I: left, above and upper-left; the
+//     entries of a keyless leaf are stored in ascending order, and each
+//     after the first is predicted by the previous one.
+#include "format/model_codec.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <tuple>
+#include <cstring>
+
+#include "common/bitstream.hpp"
+#include "common/error.hpp"
+#include "engine/neighborhood.hpp"
+#include "engine/noise.hpp"
+#include "tsvq/tsvq_search.hpp"
+
+namespace vqtex {
+namespace {
+
+
+constexpr uint32_t kMaxLeaves = 1u << 24;
+
+bool tag_is(const Section& s, const char tag[4]) { return std::memcmp(s.tag.data(), tag, 4) == 0; }
+
+// Leaves in depth-first order (first child first).
+std::vector<uint32_t> depth_first_leaves(const std::vector<int32_t>& first_child) {
+    std::vector<uint32_t> leaves, stack{0};
+    uint32_t leaf = 0;
+    std::vector<uint32_t> leaf_of(first_child.size(), 0);
+    for (std::size_t n = 0; n < first_child.size(); ++n)
+        if (first_child[n] < 0) leaf_of[n] = leaf++;
+    while (!stack.empty()) {
+        const uint32_t n = stack.back();
+        stack.pop_back();
+        if (first_child[n] < 0) {
+            leaves.push_back(leaf_of[n]);
+        } else {
+            stack.push_back(uint32_t(first_child[n]) + 1);
+            stack.push_back(uint32_t(first_child[n]));
+        }
+    }
+    return leaves;
+}
+
+std::vector<int32_t> topology_of(const Codebook& b) {
+    std::vector<int32_t> fc(b.node_count());
+    for (std::size_t n = 0; n < b.node_count(); ++n) fc[n] = b.node(n).first_child;
+    return fc;
+}
+
+// Encoder-side simplification of the codewords, invisible to the format:
+// away from the pixel (beyond the ring of adjacent taps), taps are averaged
+// in blocks of `smoothing` x `smoothing` per channel. Search then matches on
+// the coarse structure there (fine detail nearby still counts, and entries
+// carry the exact adjacent pixels), and the repeated values cost almost
+// nothing after the planar layout and zstd.
+std::vector<uint8_t> smoothed_codewords(const Codebook& b, const TreeLayout& layout, int smoothing) {
+    const std::size_t k = b.leaf_count(), dim = b.dimension(), ch = std::size_t(layout.channels);
+    std::vector<uint8_t> out(k * dim);
+    for (std::size_t l = 0; l < k; ++l) std::memcpy(out.data() + l * dim, b.leaf_codeword(l), dim);
+    if (smoothing <= 1) return out;
+    const auto& taps = layout.taps;
+    auto floor_div = [](int a, int g) { return a >= 0 ? a / g : -((-a + g - 1) / g); };
+    std::vector<std::vector<std::size_t>> members;
+    std::vector<std::tuple<int, int, int, int>> keys;
+    for (std::size_t t = 0; t < taps.size(); ++t) {
+        const TreeLayout::Tap& tap = taps[t];
+        std::tuple<int, int, int, int> key;
+        if (tap.depth == 0 && std::abs(tap.dt) <= 1 && std::abs(tap.dx) <= 1 && std::abs(tap.dy) <= 1)
+            key = {-1 - int(t), 0, 0, 0};  // its own group
+        else
+            key = {tap.depth, tap.dt, floor_div(tap.dy, smoothing), floor_div(tap.dx, smoothing)};
+        auto it = std::find(keys.begin(), keys.end(), key);
+        if (it == keys.end()) {
+            keys.push_back(key);
+            members.emplace_back();
+            it = keys.end() - 1;
+        }
+        members[std::size_t(it - keys.begin())].push_back(t);
+    }
+    for (std::size_t l = 0; l < k; ++l) {
+        uint8_t* cw = out.data() + l * dim;
+        for (const auto& m : members)
+            for (std::size_t c = 0; c < ch; ++c) {
+                unsigned sum = 0;
+                for (std::size_t t : m) sum += cw[t * ch + c];
+                const uint8_t mean = uint8_t((sum + m.size() / 2) / m.size());
+                for (std::size_t t : m) cw[t * ch + c] = mean;
+            }
+    }
+    return out;
+}
+
+}  // namespace
+
+TreeLayout tree_layout_of(const NeighborhoodLayout& layout) {
+    TreeLayout t;
+    t.dimension = layout.dimension();
+    t.stride = layout.stride();
+    t.channels = layout.channels();
+    t.key_offsets = layout.entry_key_offsets();
+    t.predictor = layout.pixel_predictor();
+    for (const Tap& tap : layout.taps()) t.taps.push_back({tap.depth, 0, tap.dy, tap.dx});
+    return t;
+}
+
+TreeSections encode_tree(const Codebook& b, const TreeLayout& layout, const EncodeSettings& s) {
+    TreeSections out;
+    const std::size_t k = b.leaf_count(), dim = b.dimension(), ch = std::size_t(b.channels());
+    const std::size_t key_len = b.key_length();
+    std::size_t max_entries = 1;
+    for (std::size_t l = 0; l < k; ++l) max_entries = std::max(max_entries, b.entry_count(l));
+
+    ByteWriter topo;
+    topo.varint(k);
+    topo.varint(max_entries);
+    topo.u8(key_len ? 1 : 0);  // whether entries carry keys
+    // Breadth-first node order: one bit per node, 1 = internal.
+    std::vector<uint8_t> bits((b.node_count() + 7) / 8, 0);
+    for (std::size_t n = 0; n < b.node_count(); ++n)
+        if (b.node(n).first_child >= 0) bits[n / 8] |= uint8_t(1u << (n % 8));
+    topo.bytes(bits);
+    for (std::size_t l = 0; l < k; ++l) topo.varint(b.leaf_count_of(l));
+    if (max_entries > 1)
+        for (std::size_t l = 0; l < k; ++l) topo.u8(uint8_t(b.entry_count(l) - 1));
+    out.topology = std::move(topo.data());
+
+    const std::vector<uint32_t> order = depth_first_leaves(topology_of(b));
+    const int p = s.precision, pp = s.pixel_precision;
+    const uint8_t mask = uint8_t((1u << p) - 1), pixel_mask = uint8_t((1u << pp) - 1);
+    const std::vector<uint8_t> leaf_codewords = smoothed_codewords(b, layout, s.smoothing);
+    // Codewords: planar, delta to the previous leaf depth-first.
+    out.codewords.resize(k * dim);
+    std::vector<uint8_t> dequantised(k * dim);
+    for (std::size_t d = 0; d < dim; ++d) {
+        uint8_t previous = 0;
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint8_t q = quantise(leaf_codewords[order[i] * dim + d], p);
+            out.codewords[d * k + i] = uint8_t((q - previous) & mask);
+            previous = q;
+            dequantised[order[i] * dim + d] = dequantise(q, p);
+        }
+    }
+    // Entries: keys (planar per key position), then pixels (planar per channel).
+    const PixelPredictor taps = layout.predictor;
+    const auto& key_offsets = b.key_offsets();
+    std::vector<uint8_t> keys, pixels;
+    const int kp = layout.keys_at_pixel_precision ? pp : p;
+    const uint8_t key_mask = layout.keys_at_pixel_precision ? pixel_mask : mask;
+    for (std::size_t kpos = 0; kpos < key_len; ++kpos)
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint32_t leaf = order[i];
+            const uint8_t base = layout.keys_at_pixel_precision
+                                     ? quantise(dequantised[leaf * dim + key_offsets[kpos]], pp)
+                                     : quantise(b.leaf_codeword(leaf)[key_offsets[kpos]], p);
+            for (std::size_t e = 0; e < b.entry_count(leaf); ++e)
+                keys.push_back(uint8_t((quantise(b.entry(leaf, e)[ch + kpos], kp) - base) & key_mask));
+        }
+    std::vector<uint8_t> source(dim);
+    for (std::size_t c = 0; c < ch; ++c)
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint32_t leaf = order[i];
+            for (std::size_t e = 0; e < b.entry_count(leaf); ++e) {
+                // Predict from what the decoder will have: the dequantised
+                // codeword, with this entry's dequantised key over it.
+                std::memcpy(source.data(), dequantised.data() + leaf * dim, dim);
+                for (std::size_t kpos = 0; kpos < key_len; ++kpos)
+                    source[key_offsets[kpos]] = dequantise(quantise(b.entry(leaf, e)[ch + kpos], kp), kp);
+                // Keyless entries are stored sorted (see tsvq_train.cpp), so
+                // each is best predicted by the one before it.
+                const uint8_t predicted = (key_len == 0 && e > 0)
+                                              ? quantise(b.entry(leaf, e - 1)[c], pp)
+                                              : quantise(taps.predict(source.data(), int(c)), pp);
+                const uint8_t actual = quantise(b.entry(leaf, e)[c], pp);
+                pixels.push_back(uint8_t((actual - predicted) & pixel_mask));
+            }
+        }
+    out.entries = std::move(keys);
+    out.entries.insert(out.entries.end(), pixels.begin(), pixels.end());
+    return out;
+}
+
+std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology_bytes,
+                                            const std::vector<uint8_t>& codeword_bytes,
+                                            const std::vector<uint8_t>& entry_bytes,
+                                            const TreeLayout& layout, int precision,
+                                            int pixel_precision, const std::string& where,
+                                            std::size_t& memory_budget) {
+    ByteReader topo(topology_bytes.data(), topology_bytes.size(), "topology of " + where);
+    // Each leaf costs at least two topology bits and one weight byte, so a
+    // leaf count above the section size is a lie; check before allocating.
+    const uint64_t k = topo.varint_in("leaf count", 1, std::min<uint64_t>(kMaxLeaves, topology_bytes.size()));
+    const uint64_t max_entries = topo.varint_in("entries per leaf", 1, TsvqMatcher::kMaxEntries);
+    const uint8_t has_keys = topo.u8("key flag");
+    if (has_keys > 1) topo.corrupt("key flag must be 0 or 1");
+    const std::size_t nodes = std::size_t(2 * k - 1);
+    // What the rebuilt tree will hold, checked before anything is allocated,
+    // against what the trees before it left of the limit.
+    {
+        const std::size_t entry_size = std::size_t(layout.channels) + (has_keys ? layout.key_offsets.size() : 0);
+        // Codewords with room for the search's per-node data (two more
+        // bytes a sample, an upper bound), the decoded entries twice (here and in the tree), and
+        // finalize()'s 64-bit sums along the deepest path.
+        const uint64_t depth_bound = std::min<uint64_t>(k, kMaxTreeDepth + 1);
+        const uint64_t tree_bytes = uint64_t(nodes) * (3 * layout.stride + 64) + 2 * k * max_entries * entry_size +
+                                    depth_bound * (8 * layout.dimension + 32);
+        if (tree_bytes > memory_budget)
+            fail(VQTEX_ERROR_LIMIT_EXCEEDED, where + " would need " + std::to_string(tree_bytes) +
+                                                 " bytes; " + std::to_string(memory_budget) +
+                                                 " are left of the memory limit: raise the limit if the file is trusted");
+        memory_budget -= std::size_t(tree_bytes);
+    }
+    const uint8_t* bits = topo.bytes((nodes + 7) / 8, "topology bits");
+    std::vector<int32_t> first_child(nodes, -1);
+    std::vector<uint16_t> depth(nodes, 0);
+    std::size_t next = 1, leaves = 0;
+    for (std::size_t n = 0; n < nodes; ++n) {
+        if (n >= next) topo.corrupt("topology is not a tree (node " + std::to_string(n) + " unreachable)");
+        if (bits[n / 8] & (1u << (n % 8))) {
+            if (next + 2 > nodes) topo.corrupt("topology has more nodes than 2 x leaves - 1");
+            if (depth[n] >= kMaxTreeDepth)
+                topo.corrupt("tree is deeper than " + std::to_string(kMaxTreeDepth) + " levels (node " +
+                             std::to_string(n) + ")");
+            first_child[n] = int32_t(next);
+            depth[next] = depth[next + 1] = uint16_t(depth[n] + 1);
+            next += 2;
+        } else {
+            ++leaves;
+        }
+    }
+    if (leaves != k || next != nodes) topo.corrupt("topology does not have the declared " + std::to_string(k) + " leaves");
+    for (std::size_t n = nodes; n < ((nodes + 7) / 8) * 8; ++n)
+        if (bits[n / 8] & (1u << (n % 8))) topo.corrupt("padding bits after the topology are not zero");
+    std::vector<uint32_t> weights(k), entry_counts(k, 1);
+    for (auto& w : weights) w = uint32_t(topo.varint_in("leaf weight", 1, UINT32_MAX));
+    if (max_entries > 1)
+        for (auto& e : entry_counts) {
+            e = uint32_t(topo.u8("entry count")) + 1;
+            if (e > max_entries) topo.corrupt("a leaf has more entries than the declared maximum");
+        }
+    topo.expect_end();
+
+    const std::size_t dim = layout.dimension, ch = std::size_t(layout.channels);
+    const std::vector<uint16_t> key_offsets = has_keys ? layout.key_offsets : std::vector<uint16_t>{};
+    const std::size_t key_len = key_offsets.size();
+    if (codeword_bytes.size() != k * dim)
+        fail(VQTEX_ERROR_CORRUPT, "codewords of " + where + ": " + std::to_string(codeword_bytes.size()) +
+                                      " bytes for " + std::to_string(k) + " leaves of " + std::to_string(dim) +
+                                      " samples");
+    uint64_t total_entries = 0;
+    for (uint32_t e : entry_counts) total_entries += e;
+    if (entry_bytes.size() != total_entries * (key_len + ch))
+        fail(VQTEX_ERROR_CORRUPT, "entries of " + where + ": " + std::to_string(entry_bytes.size()) +
+                                      " bytes for " + std::to_string(total_entries) + " entries");
+
+    const std::vector<uint32_t> order = depth_first_leaves(first_child);
+    const uint8_t mask = uint8_t((1u << precision) - 1), pixel_mask = uint8_t((1u << pixel_precision) - 1);
+    std::vector<uint8_t> quantised(k * dim), codewords(k * dim);
+    for (std::size_t d = 0; d < dim; ++d) {
+        uint8_t previous = 0;
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint8_t q = uint8_t((previous + codeword_bytes[d * k + i]) & mask);
+            quantised[order[i] * dim + d] = q;
+            codewords[order[i] * dim + d] = dequantise(q, precision);
+            previous = q;
+        }
+    }
+    // Entry storage: per leaf, entry_counts[leaf] entries of (pixel, key).
+    std::vector<std::size_t> entry_start(k + 1, 0);
+    for (std::size_t l = 0; l < k; ++l) entry_start[l + 1] = entry_start[l] + entry_counts[l];
+    const std::size_t entry_size = ch + key_len;
+    std::vector<uint8_t> entries(total_entries * entry_size);
+    std::size_t pos = 0;
+    const int key_precision = layout.keys_at_pixel_precision ? pixel_precision : precision;
+    const uint8_t key_mask = layout.keys_at_pixel_precision ? pixel_mask : mask;
+    for (std::size_t kpos = 0; kpos < key_len; ++kpos)
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint32_t leaf = order[i];
+            const uint8_t base = layout.keys_at_pixel_precision
+                                     ? quantise(codewords[leaf * dim + key_offsets[kpos]], pixel_precision)
+                                     : quantised[leaf * dim + key_offsets[kpos]];
+            for (std::size_t e = 0; e < entry_counts[leaf]; ++e) {
+                const uint8_t q = uint8_t((base + entry_bytes[pos++]) & key_mask);
+                entries[(entry_start[leaf] + e) * entry_size + ch + kpos] = dequantise(q, key_precision);
+            }
+        }
+    const PixelPredictor taps = layout.predictor;
+    std::vector<uint8_t> source(dim);
+    for (std::size_t c = 0; c < ch; ++c)
+        for (std::size_t i = 0; i < k; ++i) {
+            const uint32_t leaf = order[i];
+            for (std::size_t e = 0; e < entry_counts[leaf]; ++e) {
+                uint8_t* entry = entries.data() + (entry_start[leaf] + e) * entry_size;
+                std::memcpy(source.data(), codewords.data() + leaf * dim, dim);
+                for (std::size_t kpos = 0; kpos < key_len; ++kpos) source[key_offsets[kpos]] = entry[ch + kpos];
+                // (The previous entry's sample: entry - entry_size, never
+                // entry[c - entry_size], whose unsigned index wraps.)
+                const uint8_t predicted = (key_len == 0 && e > 0)
+                                              ? quantise((entry - entry_size)[c], pixel_precision)
+                                              : quantise(taps.predict(source.data(), int(c)), pixel_precision);
+                entry[c] = dequantise(uint8_t((predicted + entry_bytes[pos++]) & pixel_mask), pixel_precision);
+            }
+        }
+
+    Codebook book(dim, layout.stride, layout.channels, key_offsets);
+    book.add_root();
+    for (std::size_t n = 0; n < nodes; ++n)
+        if (first_child[n] >= 0) book.split(n);  // appends children in breadth-first order
+    std::size_t leaf = 0;
+    for (std::size_t n = 0; n < nodes; ++n) {
+        if (first_child[n] >= 0) continue;
+        // Ties between equal distances go to the lower leaf index.
+        book.set_leaf(n, codewords.data() + leaf * dim, weights[leaf], uint32_t(leaf),
+                      entries.data() + entry_start[leaf] * entry_size, entry_counts[leaf]);
+        ++leaf;
+    }
+    book.finalize();
+    return std::make_shared<const Codebook>(std::move(book));
+}
+
+std::vector<uint8_t> encode_histogram(const LevelHistogram& h) {
+    ByteWriter w;
+    for (int c = 0; c < h.channels; ++c)
+        for (int v = 0; v < 256; ++v) w.varint(h.channel(c)[v]);
+    return std::move(w.data());
+}
+
+LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels, const std::string& where) {
+    ByteReader r(bytes.data(), bytes.size(), "histogram of " + where);
+    LevelHistogram h;
+    h.channels = channels;
+    h.counts.resize(std::size_t(channels) * 256);
+    for (auto& n : h.counts) n = uint32_t(r.varint_in("histogram count", 0, UINT32_MAX));
+    r.expect_end();
+    for (int c = 0; c < channels; ++c) {
+        uint64_t total = 0;
+        for (int v = 0; v < 256; ++v) total += h.channel(c)[v];
+        if (total == 0) fail(VQTEX_ERROR_CORRUPT, "histogram of " + where + " is empty");
+    }
+    return h;
+}
+
+const Section& require_section(const Container& c, const char tag[4], int level, int kind,
+                               const std::string& kind_name) {
+    const Section* found = nullptr;
+    for (const Section& s : c.sections) {
+        if (!tag_is(s, tag) || s.level != level || s.kind != kind) continue;
+        if (found) fail(VQTEX_ERROR_CORRUPT, "section " + s.name() + " appears twice");
+        found = &s;
+    }
+    if (!found)
+        fail(VQTEX_ERROR_CORRUPT, "missing section " + std::string(tag, 4) + "[level " + std::to_string(level) +
+                                      (kind_name.empty() ? "]" : ", " + kind_name + "]"));
+    return *found;
+}
+
+void write_tree(ContainerWriter& writer, int level, int kind, const Codebook& book, const TreeLayout& layout,
+                const EncodeSettings& settings) {
+    TreeSections t = encode_tree(book, layout, settings);
+    writer.add(kTagTopology, uint8_t(level), uint8_t(kind), std::move(t.topology));
+    writer.add(kTagCodewords, uint8_t(level), uint8_t(kind), std::move(t.codewords));
+    writer.add(kTagEntries, uint8_t(level), uint8_t(kind), std::move(t.entries));
+}
+
+std::shared_ptr<const Codebook> read_tree(const Container& c, const uint8_t* file, int level, int kind,
+                                          const std::string& kind_name, const TreeLayout& layout, int precision,
+                                          int pixel_precision, const std::string& where, std::size_t& memory_budget) {
+    const auto topology = section_bytes(file, require_section(c, kTagTopology, level, kind, kind_name));
+    const auto codewords = section_bytes(file, require_section(c, kTagCodewords, level, kind, kind_name));
+    const auto entries = section_bytes(file, require_section(c, kTagEntries, level, kind, kind_name));
+    return decode_tree(topology, codewords, entries, layout, precision, pixel_precision, where, memory_budget);
+}
+
+void check_file_complete(const Container& c, bool any_closing, std::size_t used_sections) {
+    if (any_closing != bool(c.header.flags & kFlagSeamClosing))
+        fail(VQTEX_ERROR_CORRUPT, "the header's seam-closing flag disagrees with the closing trees present");
+    if (used_sections != c.sections.size())
+        fail(VQTEX_ERROR_CORRUPT, "file has " + std::to_string(c.sections.size() - used_sections) +
+                                      " sections this decoder does not know");
+}
+
+std::size_t tree_budget_of(const Container& c, std::size_t memory_limit) {
+    std::size_t section_total = 0;
+    for (const Section& s : c.sections) section_total += s.raw_size;
+    return memory_limit - std::min(memory_limit, section_total);
+}
+
+std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& s) {
+    FileHeader h;
+    h.exemplar_width = model.exemplar_width;
+    h.exemplar_height = model.exemplar_height;
+    h.channels = uint8_t(model.channels);
+    h.levels = uint8_t(model.levels.size());
+    h.init = s.init == LevelInit::Noise ? 1 : 0;
+    h.backtrack = s.backtrack;
+    h.seed = s.seed;
+    for (const auto& lv : model.levels)
+        if (lv.closing) h.flags |= kFlagSeamClosing;
+    ContainerWriter writer(h, s.zstd_level);
+    const int levels = int(model.levels.size());
+    for (int l = 0; l < levels; ++l) {
+        const CodecModel::Level& lv = model.levels[std::size_t(l)];
+        if (!lv.causal) fail(VQTEX_ERROR_INVALID_ARGUMENT, "level " + std::to_string(l) + " has no codebook");
+        ByteWriter lw;
+        lw.u8(uint8_t(lv.shape.rows));
+        lw.u8(uint8_t(lv.shape.cols));
+        lw.u8(uint8_t(lv.shape.levels));
+        lw.u8(uint8_t(s.precision));
+        lw.u8(uint8_t(s.pixel_precision));
+        lw.u8(lv.closing ? 1 : 0);
+        if (lv.closing) {
+            lw.u8(uint8_t(lv.closing_shape.rows));
+            lw.u8(uint8_t(lv.closing_shape.cols));
+        }
+        writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
+        const bool needs_histogram = s.init == LevelInit::Noise || l == levels - 1;
+        if (needs_histogram) writer.add(kTagHistogram, uint8_t(l), 0, encode_histogram(lv.histogram));
+        for (int kind = 0; kind < 2; ++kind) {
+            const Codebook* book = kind == 0 ? lv.causal.get() : lv.closing.get();
+            if (!book) continue;
+            Shape shape = kind == 0 ? lv.shape : lv.closing_shape;
+            shape.causal = kind == 0;
+            const NeighborhoodLayout layout(shape, model.channels, l, levels);
+            write_tree(writer, l, kind, *book, tree_layout_of(layout), s);
+        }
+    }
+    return writer.write();
+}
+
+DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
+    DecodedFile f;
+    const Container c = read_container(data, size, memory_limit);
+    if (c.header.flags & kFlagVolume)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "file holds an animated texture (frames of " + std::to_string(c.header.exemplar_width) +
+                                               "x" + std::to_string(c.header.exemplar_height) +
+                                               "): decode it with vqtex_decode_volume (vqtex-decode --frames)");
+    f.header = c.header;
+    f.sections = c.sections;
+    const int levels = c.header.levels, ch = c.header.channels;
+    f.init = c.header.init == 1 ? LevelInit::Noise : LevelInit::Parent;
+    f.model.channels = ch;
+    f.model.exemplar_width = c.header.exemplar_width;
+    f.model.exemplar_height = c.header.exemplar_height;
+    f.model.levels.resize(std::size_t(levels));
+
+    auto require = [&](const char tag[4], int level, int kind) -> const Section& {
+        return require_section(c, tag, level, kind, kind ? "closing" : "");
+    };
+    // Every section must be one the decoder uses: anything else is damage.
+    std::size_t expected_sections = 0;
+
+    // The output shares the memory limit with the trees (model_bytes), once
+    // the sections are freed.
+    const std::size_t tree_budget_start = tree_budget_of(c, memory_limit);
+    std::size_t tree_budget = tree_budget_start;
+
+    for (int l = 0; l < levels; ++l) {
+        const std::vector<uint8_t> level_bytes = section_bytes(data, require(kTagLevel, l, 0));
+        ++expected_sections;
+        ByteReader lr(level_bytes.data(), level_bytes.size(), "level " + std::to_string(l) + " parameters");
+        Shape shape;
+        shape.rows = lr.u8("window rows");
+        shape.cols = lr.u8("window columns");
+        shape.levels = lr.u8("window levels");
+        const int precision = lr.u8("precision"), pixel_precision = lr.u8("pixel precision");
+        const int has_closing = lr.u8("closing flag");
+        Shape closing_shape = shape;
+        closing_shape.causal = false;
+        if (has_closing == 1) {
+            closing_shape.rows = lr.u8("closing window rows");
+            closing_shape.cols = lr.u8("closing window columns");
+            if (closing_shape.rows % 2 == 0 || closing_shape.cols % 2 == 0 || closing_shape.rows > 63 ||
+                closing_shape.cols > 63 || closing_shape.rows < 3 || closing_shape.cols < 3)
+                fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has an invalid closing window");
+        }
+        lr.expect_end();
+        if (shape.rows % 2 == 0 || shape.cols % 2 == 0 || shape.rows > 63 || shape.cols > 63 ||
+            shape.levels < 1 || shape.levels > levels - l || shape_taps(shape).empty())
+            fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has an invalid neighbourhood " +
+                                          shape_to_string(shape));
+        if (precision < 1 || precision > 8 || pixel_precision < 1 || pixel_precision > 8 || has_closing > 1)
+            fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has invalid precision or flags");
+        if (has_closing && !(c.header.flags & kFlagSeamClosing))
+            fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has a closing tree the header does not announce");
+        if (l == 0) f.precision = precision, f.pixel_precision = pixel_precision;
+
+        CodecModel::Level& lv = f.model.levels[std::size_t(l)];
+        lv.shape = shape;
+        const bool needs_histogram = f.init == LevelInit::Noise || l == levels - 1;
+        if (needs_histogram) {
+            const LevelHistogram h =
+                decode_histogram(section_bytes(data, require(kTagHistogram, l, 0)), ch, "level " + std::to_string(l));
+            ++expected_sections;
+            lv.histogram = h;
+        }
+        for (int kind = 0; kind < 1 + has_closing; ++kind) {
+            Shape s = kind == 0 ? shape : closing_shape;
+            s.causal = kind == 0;
+            const NeighborhoodLayout layout(s, ch, l, levels);
+            const std::string where = std::string(kind ? "closing" : "causal") + " tree of level " + std::to_string(l);
+            auto book = read_tree(c, data, l, kind, kind ? "closing" : "", tree_layout_of(layout), precision,
+                                  pixel_precision, where, tree_budget);
+            expected_sections += kSectionsPerTree;
+            if (kind == 0) {
+                lv.causal = book;
+            } else {
+                lv.closing = book;
+                lv.closing_shape = s;
+            }
+        }
+    }
+    bool any_closing = false;
+    for (const auto& lv : f.model.levels) any_closing = any_closing || lv.closing != nullptr;
+    check_file_complete(c, any_closing, expected_sections);
+    f.model_bytes = tree_budget_start - tree_budget;
+    return f;
+}
+
+}  // namespace vqtex

@@ -1,0 +1,122 @@
+// model_codec.hpp - turning a trained texture model into the sections of a
+// vqtex file and back (docs/FORMAT.md; paper section 6, "only the codebook
+// would be transmitted"). The file holds, per pyramid level, the
+// neighbourhood shape and the TSVQ codebooks (tree topology, leaf weights,
+// quantised leaf codewords, leaf entries), plus the histograms that seed the
+// noise. Never the example's pixels as an image.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/neighborhood.hpp"
+#include "engine/noise.hpp"
+#include "engine/tree_model.hpp"
+#include "format/container.hpp"
+#include "tsvq/tsvq_tree.hpp"
+
+namespace vqtex {
+
+struct EncodeSettings {
+    int precision = 5;        // bits per codeword and key sample, 1..8
+    int pixel_precision = 8;  // bits per entry pixel, 1..8
+    int smoothing = 1;        // codeword taps averaged in blocks of this size (encoder only)
+    uint8_t backtrack = 1;
+    LevelInit init = LevelInit::Parent;
+    uint64_t seed = 1;
+    int zstd_level = 19;
+};
+
+std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& settings);
+
+// What the tree coding needs to know of a neighbourhood shape, 2D or 3D
+// (temporal shapes have dt != 0; volume_codec.cpp): sizes, the taps (for the
+// encoder's smoothing), the entry keys and the pixel predictor.
+struct TreeLayout {
+    struct Tap {
+        int depth, dt, dy, dx;
+    };
+    std::size_t dimension = 0, stride = 0;
+    int channels = 0;
+    std::vector<Tap> taps;
+    std::vector<uint16_t> key_offsets;
+    PixelPredictor predictor;
+    // Keys quantised like the entry pixels (pixel precision, coded against
+    // the dequantised codeword re-quantised so), not like the codewords: a
+    // temporal key must decode equal to its pixel when the example pixel did
+    // not change (neighborhood3d.hpp, docs/FORMAT.md section 7).
+    bool keys_at_pixel_precision = false;
+};
+TreeLayout tree_layout_of(const NeighborhoodLayout& layout);
+
+// One TSVQ tree as its TOPO, CODE and ENTR payloads, and back.
+struct TreeSections {
+    std::vector<uint8_t> topology, codewords, entries;
+};
+TreeSections encode_tree(const Codebook& book, const TreeLayout& layout, const EncodeSettings& settings);
+std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology, const std::vector<uint8_t>& codewords,
+                                            const std::vector<uint8_t>& entries, const TreeLayout& layout,
+                                            int precision, int pixel_precision, const std::string& where,
+                                            std::size_t& memory_budget);
+
+// Section tags shared by still and animated files (docs/FORMAT.md).
+inline constexpr char kTagLevel[4] = {'L', 'E', 'V', 'L'};
+inline constexpr char kTagHistogram[4] = {'H', 'I', 'S', 'T'};
+inline constexpr char kTagTopology[4] = {'T', 'O', 'P', 'O'};
+inline constexpr char kTagCodewords[4] = {'C', 'O', 'D', 'E'};
+inline constexpr char kTagEntries[4] = {'E', 'N', 'T', 'R'};
+
+// The one section of `c` with this tag, level and kind; a missing or repeated
+// one is CORRUPT. `kind_name` names the kind in the message ("" for kind 0).
+const Section& require_section(const Container& c, const char tag[4], int level, int kind,
+                               const std::string& kind_name);
+
+// A tree of a level and kind as its three sections: encode_tree into the
+// writer, and require_section + decode_tree out of a read container.
+void write_tree(ContainerWriter& writer, int level, int kind, const Codebook& book, const TreeLayout& layout,
+                const EncodeSettings& settings);
+std::shared_ptr<const Codebook> read_tree(const Container& c, const uint8_t* file, int level, int kind,
+                                          const std::string& kind_name, const TreeLayout& layout, int precision,
+                                          int pixel_precision, const std::string& where, std::size_t& memory_budget);
+inline constexpr std::size_t kSectionsPerTree = 3;
+
+// A HIST payload: 256 counts per channel, as varints.
+std::vector<uint8_t> encode_histogram(const LevelHistogram& h);
+LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels, const std::string& where);
+
+// The last checks of a decoded file: the header's seam-closing flag agrees
+// with the closing trees found, and every section was one the decoder used.
+void check_file_complete(const Container& c, bool any_closing, std::size_t used_sections);
+
+// What the decoded trees may take of the memory limit: the trees share it
+// with the sections (counted in full, as read_container checked them).
+std::size_t tree_budget_of(const Container& c, std::size_t memory_limit);
+
+struct DecodedFile {
+    FileHeader header;
+    std::vector<Section> sections;
+    CodecModel model;
+    int precision = 0, pixel_precision = 0;  // of level 0
+    LevelInit init = LevelInit::Parent;
+    // Of the memory limit, what the decoded trees may take (an upper bound):
+    // the output must fit in the rest.
+    std::size_t model_bytes = 0;
+};
+
+// Parses, verifies and rebuilds everything; throws a specific error for any
+// damage. Nothing larger than `memory_limit` bytes is allocated.
+DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memory_limit);
+
+// Quantisation to `bits` and back, exactly invertible at 8 bits.
+inline uint8_t quantise(uint8_t v, int bits) {
+    const unsigned m = (1u << bits) - 1;
+    return uint8_t((v * m + 127) / 255);
+}
+inline uint8_t dequantise(uint8_t q, int bits) {
+    const unsigned m = (1u << bits) - 1;
+    return uint8_t((q * 255u + m / 2) / m);
+}
+
+}  // namespace vqtex

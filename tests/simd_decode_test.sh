@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Whole decodes under every kernel set: the golden still and animated files,
+# and a file encoded here (seam closing, several entries), decoded with
+# VQTEX_SIMD forced to each level (dsp/dispatch.cpp takes the best available
+# set not above it) must give the bytes of the default set. test_dsp checks
+# the kernels one by one; this checks that nothing around them depends on
+# the set. The set is chosen once per process, hence one process per set.
+# Usage: simd_decode_test.sh ENCODE_EXE DECODE_EXE GOLDEN_DIR CORPUS_DIR
+set -euo pipefail
+encode="$1"
+decode="$2"
+golden="$3"
+corpus="$4"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+"$encode" "$corpus/leaves_rgba_64.png" "$work/leaves.vqt" -q 80 --quiet
+
+decode_all() {  # $1 = output directory
+  mkdir -p "$1/anim"
+  "$decode" "$golden/cellular_v1.vqt" "$1/cellular.png" --size 300x200 --seed 9 --quiet
+  "$decode" "$work/leaves.vqt" "$1/leaves.png" --size 96x160 --mips --quiet
+  "$decode" "$golden/flicker_v2.vqt" "$1/anim/f_%03d.png" --frames 10 --size 48x40 --seed 3 --quiet
+}
+
+decode_all "$work/default"
+compared=0
+for set in scalar sse2 avx2 avx512 avx512vnni; do
+  VQTEX_SIMD="$set" decode_all "$work/$set"
+  if ! diff -r "$work/default" "$work/$set" >/dev/null; then
+    echo "decoding with VQTEX_SIMD=$set differs from the default kernel set" >&2
+    exit 1
+  fi
+  compared=$((compared + 1))
+done
+files=$(find "$work/default" -type f | wc -l)
+echo "simd decode test: $files output files identical under $compared forced kernel levels"
