@@ -38,6 +38,10 @@ inline uint64_t rank_hash(uint64_t salt, uint32_t key) {
 // many bytes, so kernels never need a scalar tail.
 inline constexpr std::size_t kVectorAlign = 16;
 
+// Values per tap of the coherent engine's windows (Kernels::window_ssd):
+// an appearance vector, or a pixel's channels padded with zeros.
+inline constexpr int kWindowTapValues = 8;
+
 // Candidates one ranking covers at most (the bits of its `allowed` mask).
 inline constexpr uint32_t kMaxRanked = 64;
 
@@ -112,6 +116,15 @@ struct Kernels {
     // random by design, so a compare-and-branch per candidate would
     // mispredict about every other time.
     uint32_t (*lowest_ranked)(const uint64_t* ranks, uint32_t n, uint64_t allowed);
+    // Sum of squared differences between a query of side x side taps of
+    // kWindowTapValues signed 16-bit values (stored one after the other) and
+    // the taps of an example window: tap (r, c) at example + r * row_step +
+    // c * tap_step. Differences must fit 16 bits. The sum is taken row by
+    // row, modulo 2^32, and returned as soon as a row ends above `bound`
+    // (so a caller comparing with the bound gets the same answer from every
+    // set). The coherent engine's one hot loop (coherent_synthesis.cpp).
+    uint32_t (*window_ssd)(const int16_t* query, const int16_t* example, std::ptrdiff_t tap_step,
+                           std::ptrdiff_t row_step, int side, uint32_t bound);
 };
 
 // The kernels chosen for this CPU, once. The environment variable

@@ -5,6 +5,7 @@
 #include "dsp/dsp.hpp"
 
 #if defined(__AVX2__) && !defined(VQTEX_SCALAR_ONLY)
+#include "dsp/window_ssd.hpp"
 #include <immintrin.h>
 
 namespace vqtex::dsp {
@@ -159,6 +160,7 @@ const Kernels kAvx2 = {
     detail::descend_with<dot2_avx2, detail::prepare_query_portable>,
     rank_candidates_avx2,
     lowest_ranked_avx2,
+    detail::window_ssd_sse2,
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "dsp/dsp.hpp"
 
 #if defined(__AVX512BW__) && defined(__AVX512DQ__) && !defined(VQTEX_SCALAR_ONLY)
+#include "dsp/window_ssd.hpp"
 // GCC 12's own AVX-512 reduction helpers trip its uninitialised-value
 // warnings (they start from _mm256_undefined); the code is correct.
 #pragma GCC diagnostic ignored "-Wuninitialized"
@@ -171,6 +172,7 @@ const Kernels kAvx512 = {
     detail::descend_with<dot2_avx512, detail::prepare_query_portable>,
     rank_candidates_avx512,
     lowest_ranked_avx512,
+    detail::window_ssd_sse2,
 };
 
 }  // namespace

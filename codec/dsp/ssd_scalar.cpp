@@ -56,6 +56,22 @@ VQTEX_DSP_INLINE void dot2_scalar(const int8_t* query, const uint8_t* pair, std:
     out[1] = second;
 }
 
+// The definition of Kernels::window_ssd.
+uint32_t window_ssd_scalar(const int16_t* query, const int16_t* example, std::ptrdiff_t tap_step,
+                           std::ptrdiff_t row_step, int side, uint32_t bound) {
+    uint32_t total = 0;
+    for (int r = 0; r < side; ++r) {
+        const int16_t* row = example + r * row_step;
+        for (int c = 0; c < side; ++c, query += kWindowTapValues)
+            for (int i = 0; i < kWindowTapValues; ++i) {
+                const int32_t d = int32_t(row[c * tap_step + i]) - query[i];
+                total += uint32_t(d * d);
+            }
+        if (total > bound) return total;
+    }
+    return total;
+}
+
 const Kernels kScalar = {
     "scalar",
     ssd_scalar,
@@ -66,6 +82,7 @@ const Kernels kScalar = {
     detail::descend_with<dot2_scalar, detail::prepare_query_portable>,
     detail::rank_candidates_portable,
     detail::lowest_ranked_portable,
+    window_ssd_scalar,
 };
 
 }  // namespace

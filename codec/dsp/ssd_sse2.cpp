@@ -4,6 +4,7 @@
 #include "dsp/dsp.hpp"
 
 #if defined(__SSE2__) && !defined(VQTEX_SCALAR_ONLY)
+#include "dsp/window_ssd.hpp"
 #include <emmintrin.h>
 
 namespace vqtex::dsp {
@@ -99,6 +100,7 @@ const Kernels kSse2 = {
     detail::descend_with<dot2_sse2, detail::prepare_query_portable>,
     detail::rank_candidates_portable,
     detail::lowest_ranked_portable,
+    detail::window_ssd_sse2,
 };
 
 }  // namespace

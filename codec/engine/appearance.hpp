@@ -21,7 +21,7 @@
 namespace vqtex {
 
 // Appearance vectors have this many components; PCA keeps the strongest.
-inline constexpr int kAppearanceDims = 8;
+inline constexpr int kAppearanceDims = 8;  // = dsp::kWindowTapValues
 // Components are clamped to this magnitude, so that a sum of squared
 // differences over up to 128 components fits a signed 32-bit integer.
 inline constexpr int kAppearanceClamp = 2047;

@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "common/parallel.hpp"
+#include "dsp/dsp.hpp"
 #include "engine/pyramid.hpp"
 
 namespace vqtex {
@@ -19,6 +20,7 @@ namespace {
 // vectors (each already summarises a 5x5 window of its level).
 constexpr int kRadius = 2;
 constexpr int kSide = 2 * kRadius + 1;
+static_assert(kAppearanceDims == dsp::kWindowTapValues, "windows are compared by dsp::Kernels::window_ssd");
 constexpr int kTaps = kSide * kSide;
 constexpr int kMaxCandidates = kTaps * 16;
 
@@ -48,6 +50,7 @@ struct LevelView {
     int spacing;
     const int16_t* features;  // kAppearanceDims per example pixel
     int k;           // coherence candidates per neighbour
+    const dsp::Kernels& kernels;
 
     const int16_t* feature(int x, int y) const {
         return features + (std::size_t(y) * space.width + x) * kAppearanceDims;
@@ -55,21 +58,25 @@ struct LevelView {
     const int16_t* feature(uint32_t p) const { return feature(position_x(p), position_y(p)); }
 
     // Distance between the query (kTaps vectors) and the example's window at
-    // p, stopping once it exceeds `bound`.
-    int32_t distance(const int16_t* query, int x, int y, int32_t bound) const {
+    // (x, y), stopping once it exceeds `bound` (Kernels::window_ssd).
+    uint32_t distance(const int16_t* query, int x, int y, uint32_t bound) const {
         const int w = space.width, h = space.height;
-        const bool inside = x - kRadius * spacing >= 0 && x + kRadius * spacing < w &&
-                            y - kRadius * spacing >= 0 && y + kRadius * spacing < h;
-        int32_t d = 0;
+        const std::ptrdiff_t tap = std::ptrdiff_t(spacing) * kAppearanceDims;
+        if (x - kRadius * spacing >= 0 && x + kRadius * spacing < w && y - kRadius * spacing >= 0 &&
+            y + kRadius * spacing < h)
+            return kernels.window_ssd(query, feature(x - kRadius * spacing, y - kRadius * spacing), tap,
+                                      tap * w, kSide, bound);
+        // Windows across the example's edge read it folded: tap by tap, the
+        // same sums in the same order as the kernel's.
+        uint32_t d = 0;
         int t = 0;
         for (int dy = -kRadius; dy <= kRadius; ++dy) {
             for (int dx = -kRadius; dx <= kRadius; ++dx, ++t) {
-                const int sx = x + dx * spacing, sy = y + dy * spacing;
-                const int16_t* f = inside ? feature(sx, sy) : feature(space.fold_x(sx), space.fold_y(sy));
+                const int16_t* f = feature(space.fold_x(x + dx * spacing), space.fold_y(y + dy * spacing));
                 const int16_t* q = query + t * kAppearanceDims;
                 for (int i = 0; i < kAppearanceDims; ++i) {
                     const int32_t diff = int32_t(f[i]) - q[i];
-                    d += diff * diff;
+                    d += uint32_t(diff * diff);
                 }
             }
             if (d > bound) return d;
@@ -138,12 +145,12 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     // The pixel's own position competes too, first and unbiased (its source
     // may be off the example's edge for every neighbour).
     uint32_t best = own_position;
-    int32_t best_d = v.distance(query, position_x(best), position_y(best), INT32_MAX);
+    uint32_t best_d = v.distance(query, position_x(best), position_y(best), UINT32_MAX);
     for (int i = 0; i < count; ++i) {
         // An alternative must beat the best by the bias: d (1 + bias/256) < best.
-        const int32_t bound = continues[i] ? best_d : int32_t((int64_t(best_d) * 256) / (256 + bias));
-        int32_t d = v.distance(query, position_x(candidates[i]), position_y(candidates[i]), bound);
-        if (!continues[i]) d = int32_t(std::min<int64_t>(INT32_MAX, int64_t(d) + (int64_t(d) * bias) / 256));
+        const uint32_t bound = continues[i] ? best_d : uint32_t((uint64_t(best_d) * 256) / uint64_t(256 + bias));
+        uint32_t d = v.distance(query, position_x(candidates[i]), position_y(candidates[i]), bound);
+        if (!continues[i]) d = uint32_t(std::min<uint64_t>(UINT32_MAX, uint64_t(d) + (uint64_t(d) * uint64_t(bias)) / 256));
         if (d < best_d) {
             best_d = d;
             best = candidates[i];
@@ -245,7 +252,7 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
                         p = folded(space, position_x(p) + int(jx), position_y(p) + int(jy));
                     }
         }
-        const LevelView view{space, sets, l, spacing, space.levels[std::size_t(l)].features.data(), sets.k};
+        const LevelView view{space, sets, l, spacing, space.levels[std::size_t(l)].features.data(), sets.k, dsp::kernels()};
         const int passes = l == top ? options.coarse_passes : options.passes;
         for (int pass = 0; pass < passes; ++pass) {
             correction_pass(view, map, options);
@@ -256,7 +263,7 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
         if (l == 0 && options.polish_passes > 0) {
             // Seams between coherent copies are placed by colours at last:
             // the coherence of the output's own pixels is what a viewer sees.
-            const LevelView polish{space, sets, 0, 1, space.pixels.data(), 1};
+            const LevelView polish{space, sets, 0, 1, space.pixels.data(), 1, dsp::kernels()};
             for (int pass = 0; pass < options.polish_passes; ++pass) correction_pass(polish, map, options);
         }
         if (levels) (*levels)[std::size_t(l)] = map;
