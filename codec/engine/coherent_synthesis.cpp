@@ -95,6 +95,21 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
         for (int c = 0; c < kSide; ++c, ++t) sources[t] = row[xs[c]];
     }
     const uint32_t own_position = sources[kTaps / 2];
+    {
+        // Inside a coherent copy every neighbour's source is the pixel's own
+        // shifted by the neighbour's offset: then every candidate is the
+        // pixel's own position, and there is nothing to compare. Checked
+        // first, branch-free, because it holds for most pixels.
+        const int ox = position_x(own_position), oy = position_y(own_position);
+        const int reach = kRadius * v.spacing;
+        if (ox >= reach && oy >= reach && ox + reach < v.space.width && oy + reach < v.space.height) {
+            uint32_t differ = 0;
+            for (int dy = -kRadius, t = 0; dy <= kRadius; ++dy)
+                for (int dx = -kRadius; dx <= kRadius; ++dx, ++t)
+                    differ |= sources[t] ^ pack_position(ox + dx * v.spacing, oy + dy * v.spacing);
+            if (differ == 0 && v.k == 1) return own_position;
+        }
+    }
     uint32_t candidates[kMaxCandidates];
     bool continues[kMaxCandidates];
     int count = 0;
