@@ -7,6 +7,11 @@
 // allocates and not the program's libraries.
 //
 //   bench_scaling EXAMPLE.png [--sizes 128,256,...] [-j N] [--runs R] [--tsv FILE]
+//   bench_scaling EXAMPLE.png --synth [...]   # the coherent engine from the example
+//
+// With --synth the times are of vqtex_synthesize (the coherent engine, no
+// file): its synthesis alone and its analysis (stack, appearance vectors,
+// coherence sets) alone, medians of the runs, in columns of their own.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -85,6 +90,41 @@ int memory_child(const std::string& file_path, uint32_t side, uint32_t threads) 
     return 0;
 }
 
+// The coherent engine: synthesis and analysis times per output side.
+int synth_table(const vqtex_image& in, const std::string& example_path, const std::vector<uint32_t>& sizes,
+                uint32_t threads, uint32_t runs, const std::string& tsv_path) {
+    std::string table = "side\tpixels\tsynth_s\tanalyse_s\tns_per_pixel\n";
+    std::printf("example %s %ux%u, coherent engine, %s threads\n", example_path.c_str(), in.width, in.height,
+                threads ? std::to_string(threads).c_str() : "all");
+    std::printf("%6s %10s %10s %10s\n", "side", "synth s", "analyse s", "ns/pixel");
+    for (const uint32_t side : sizes) {
+        std::vector<double> synth, analyse;
+        for (uint32_t r = 0; r < std::max<uint32_t>(1, runs); ++r) {
+            vqtex_synth_params p;
+            vqtex_synth_params_init(&p);
+            p.width = p.height = side;
+            p.threads = threads;
+            vqtex_image out{};
+            vqtex_synth_stats stats{};
+            vqtex_error err{};
+            if (vqtex_synthesize(&p, &in, &out, &stats, &err) != VQTEX_OK) {
+                std::fprintf(stderr, "bench_scaling: synthesize %u: %s\n", side, err.detail);
+                return 1;
+            }
+            vqtex_image_free(&out);
+            synth.push_back(stats.synthesise_seconds);
+            analyse.push_back(stats.analyse_seconds);
+        }
+        const double t = median(synth), a = median(analyse), pixels = double(side) * side;
+        std::printf("%6u %10.4f %10.4f %10.1f\n", side, t, a, t / pixels * 1e9);
+        char line[160];
+        std::snprintf(line, sizeof line, "%u\t%.0f\t%.5f\t%.5f\t%.1f\n", side, pixels, t, a, t / pixels * 1e9);
+        table += line;
+    }
+    if (!tsv_path.empty()) std::ofstream(tsv_path) << table;
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -97,6 +137,8 @@ int main(int argc, char** argv) {
     app.add_option("--runs", runs, "runs per size (median)")->capture_default_str();
     app.add_option("--tsv", tsv_path, "also write the table here");
     bool child = false;
+    bool synth = false;
+    app.add_flag("--synth", synth, "time vqtex_synthesize from the example instead of encode and decode");
     app.add_flag("--memory-child", child, "internal: decode the file given as example once and print the peak growth");
     CLI11_PARSE(app, argc, argv);
 
@@ -115,6 +157,7 @@ int main(int argc, char** argv) {
         return 1;
     }
     vqtex_image in{ex.width, ex.height, ex.channels, ex.pixels.data()};
+    if (synth) return synth_table(in, example_path, sizes, threads, runs, tsv_path);
     vqtex_encode_params ep;
     vqtex_encode_params_init(&ep);
     ep.threads = threads;

@@ -8,8 +8,9 @@
 # Needs a build with the benchmarks (bench_scaling) and tools, and gmic
 # (scripts/setup-bench.sh). Textures: the 128x128 examples of the shared
 # corpus named in $VQTEX_PERF_TEXTURES (default: five of them). Sections:
-# $VQTEX_PERF_SECTIONS, any of "scaling gmic" (default both; the scaling
-# runs take most of the time). Times are wall clock, medians of
+# $VQTEX_PERF_SECTIONS, any of "scaling gmic synth" (default "scaling gmic";
+# the scaling runs take most of the time; synth times the coherent engine,
+# vqtex_synthesize, against G'MIC). Times are wall clock, medians of
 # $VQTEX_PERF_RUNS runs (default 5); run it on a quiet machine.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -137,6 +138,39 @@ if [[ $have_gmic == 1 && $sections == *" gmic "* ]]; then
         printf '| %s | %.3f | %.3f | %.3f | %.3f | %.4f | %.1fx | %.1fx | %s |\n' "$name" "$g" "$g0" "$v" "$v0" "$lib" \
             "$(awk -v a="$g" -v b="$v" 'BEGIN {print a / b}')" "$(awk -v a="$g" -v b="$lib" 'BEGIN {print a / b}')" \
             "$pairs" >>"$out/perf.md"
+    done
+    echo >>"$out/perf.md"
+fi
+if [[ $have_gmic == 1 && $sections == *" synth "* ]]; then
+    {
+        echo "## Coherent engine against G'MIC: 128x128 -> 512x512"
+        echo
+        echo "G'MIC: \`OMP_NUM_THREADS=1 gmic -v -1 IN syntexturize_matchpatch 512,512 o OUT.png\` (whole command)."
+        echo "vqtex: \`vqtex_synthesize\` with default parameters (the coherent engine), all cores, median of 3"
+        echo "in one process (\`bench_scaling IN --synth --sizes 512\`): the synthesis alone, and the analysis of the"
+        echo "example (Gaussian stack, appearance vectors) alone. Runs alternate with G'MIC's; ratios per pair:"
+        echo "median (lowest-highest)."
+        echo
+        echo "| texture | G'MIC s | vqtex synthesis s | vqtex analysis s | ratio, synthesis | ratio, analysis + synthesis |"
+        echo "|---|---|---|---|---|---|"
+    } >>"$out/perf.md"
+    for name in $textures; do
+        example="$corpus/${name}_128.png"
+        [[ -f "$example" ]] || continue
+        gmic_times=() synth_times=() analyse_times=() r1=() r2=()
+        for ((i = 0; i < runs; i++)); do
+            gmic_times+=("$(wall_time env OMP_NUM_THREADS=1 gmic -v -1 "$example" syntexturize_matchpatch 512,512 \
+                o "$out/${name}_gmic_512.png")")
+            "$build/bench/bench_scaling" "$example" --synth --sizes 512 --runs 3 --tsv "$out/synth_512.tsv" >/dev/null
+            synth_times+=("$(awk -F'\t' '$1==512 {print $3}' "$out/synth_512.tsv")")
+            analyse_times+=("$(awk -F'\t' '$1==512 {print $4}' "$out/synth_512.tsv")")
+            r1+=("$(awk -v a="${gmic_times[i]}" -v b="${synth_times[i]}" 'BEGIN {print a / b}')")
+            r2+=("$(awk -v a="${gmic_times[i]}" -v b="${synth_times[i]}" -v c="${analyse_times[i]}" 'BEGIN {print a / (b + c)}')")
+        done
+        summary() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {printf "%.1fx (%.1f-%.1f)", a[int((NR+1)/2)], a[1], a[NR]}'; }
+        printf '| %s | %.3f | %.4f | %.4f | %s | %s |\n' "$name" "$(median_of "${gmic_times[@]}")" \
+            "$(median_of "${synth_times[@]}")" "$(median_of "${analyse_times[@]}")" "$(summary "${r1[@]}")" \
+            "$(summary "${r2[@]}")" >>"$out/perf.md"
     done
     echo >>"$out/perf.md"
 fi
