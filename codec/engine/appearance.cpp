@@ -17,7 +17,9 @@ __extension__ typedef unsigned __int128 uint128;
 constexpr int kWindow = 5;  // appearance vectors summarise a 5x5 window
 constexpr int kWindowTaps = kWindow * kWindow;
 // Covariance sums are 32-bit: 255 * 255 * this many samples still fits.
-constexpr int kMaxPcaSamples = 65536;
+// The axes need far fewer: 4096 samples on a regular grid (every other
+// pixel of a 128x128 example) scored as all 16384 on the corpus.
+constexpr int kMaxPcaSamples = 4096;
 constexpr int kPowerIterations = 40;
 constexpr int kAxisShift = 30;  // unit vectors in Q30 while iterating
 
@@ -39,9 +41,12 @@ int fold(int i, int size, bool wraps) { return wraps ? Image::wrap(i, size) : re
 // channel, into out (kWindowTaps * channels values).
 void gather_window(const Image& img, int x, int y, int step, bool wraps, int16_t* out) {
     int xs[kWindow], ys[kWindow];
+    const int reach = kWindow / 2 * step;
+    const bool inside = x >= reach && y >= reach && x + reach < img.width && y + reach < img.height;
     for (int i = 0; i < kWindow; ++i) {
-        xs[i] = fold(x + (i - kWindow / 2) * step, img.width, wraps);
-        ys[i] = fold(y + (i - kWindow / 2) * step, img.height, wraps);
+        const int dx = x + (i - kWindow / 2) * step, dy = y + (i - kWindow / 2) * step;
+        xs[i] = inside ? dx : fold(dx, img.width, wraps);
+        ys[i] = inside ? dy : fold(dy, img.height, wraps);
     }
     for (int r = 0; r < kWindow; ++r)
         for (int c = 0; c < kWindow; ++c) {
@@ -155,7 +160,7 @@ AppearanceSpace build_appearance_space(const Image& example, int levels, bool wr
     const int w = example.width, h = example.height, ch = example.channels;
     const int dims = kWindowTaps * ch;
     const std::size_t n = example.pixel_count();
-    // PCA samples on a regular grid: all pixels of examples up to 256x256.
+    // PCA samples on a regular grid, at most kMaxPcaSamples of them.
     int stride = 1;
     while ((std::size_t((w + stride - 1) / stride) * std::size_t((h + stride - 1) / stride)) >
            std::size_t(kMaxPcaSamples))
