@@ -5,12 +5,15 @@
 # set not above it) must give the bytes of the default set. test_dsp checks
 # the kernels one by one; this checks that nothing around them depends on
 # the set. The set is chosen once per process, hence one process per set.
-# Usage: simd_decode_test.sh ENCODE_EXE DECODE_EXE GOLDEN_DIR CORPUS_DIR
+# The coherent engine (vqtex-synth) is checked the same way: it calls the
+# window-distance kernel.
+# Usage: simd_decode_test.sh ENCODE_EXE DECODE_EXE GOLDEN_DIR CORPUS_DIR SYNTH_EXE
 set -euo pipefail
 encode="$1"
 decode="$2"
 golden="$3"
 corpus="$4"
+synth="$5"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
@@ -21,6 +24,7 @@ decode_all() {  # $1 = output directory
   "$decode" "$golden/cellular_v1.vqt" "$1/cellular.png" --size 300x200 --seed 9 --quiet
   "$decode" "$work/leaves.vqt" "$1/leaves.png" --size 96x160 --mips --quiet
   "$decode" "$golden/flicker_v2.vqt" "$1/anim/f_%03d.png" --frames 10 --size 48x40 --seed 3 --quiet
+  "$synth" "$corpus/cellular_128.png" "$1/coherent.png" --size 210x150 --seed 4 -j 2 --quiet
 }
 
 decode_all "$work/default"
