@@ -85,12 +85,8 @@ RunStats runs(const Image& img) {
 }
 
 vqtex_synth_params coherent_params(int w, int h, uint64_t seed) {
-    vqtex_synth_params p;
-    vqtex_synth_params_init(&p);
-    p.width = uint32_t(w);
-    p.height = uint32_t(h);
-    p.seed = seed;
-    p.threads = 1;
+    vqtex_synth_params p = vqtex_test::default_params(w, h, seed);
+    p.engine = VQTEX_ENGINE_COHERENT;
     return p;
 }
 
