@@ -315,3 +315,69 @@ TEST(Coherent, TileableExampleKeepsItsPeriod) {
     EXPECT_GT(wrapped, 0.85);
     EXPECT_GT(wrapped, mirrored + 0.08);
 }
+
+namespace {
+
+// The definition of one correction of pixel (x, y), written plainly: the
+// candidates are the pixel's own position, then, in raster order of the 5x5
+// neighbours, each neighbour's source shifted back by its offset (when that
+// stays inside the example); the winner has the least full distance between
+// the 5x5 windows of appearance vectors, the earliest candidate on ties.
+uint32_t reference_correction(const AppearanceSpace& space, int level, const PositionMap& map, int x, int y) {
+    const int s = space.levels[std::size_t(level)].spacing;
+    auto source = [&](int dx, int dy) {
+        return map.positions[std::size_t(Image::wrap(y + dy, map.height)) * map.width + Image::wrap(x + dx, map.width)];
+    };
+    auto distance = [&](uint32_t c) {
+        int64_t d = 0;
+        for (int dy = -2; dy <= 2; ++dy)
+            for (int dx = -2; dx <= 2; ++dx) {
+                const uint32_t q = source(dx, dy);
+                const int16_t* fq = space.feature(level, position_x(q), position_y(q));
+                const int16_t* fc = space.feature(level, space.fold_x(position_x(c) + dx * s), space.fold_y(position_y(c) + dy * s));
+                for (int i = 0; i < kAppearanceDims; ++i) d += int64_t(fq[i] - fc[i]) * (fq[i] - fc[i]);
+            }
+        return d;
+    };
+    std::vector<uint32_t> candidates{source(0, 0)};
+    for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+            const uint32_t q = source(dx, dy);
+            const int ux = position_x(q) - dx * s, uy = position_y(q) - dy * s;
+            if (ux >= 0 && uy >= 0 && ux < space.width && uy < space.height) candidates.push_back(pack_position(ux, uy));
+        }
+    uint32_t best = candidates[0];
+    int64_t best_d = distance(best);
+    for (uint32_t c : candidates)
+        if (const int64_t d = distance(c); d < best_d) best = c, best_d = d;
+    return best;
+}
+
+}  // namespace
+
+TEST(Coherent, CorrectionEqualsItsDefinition) {
+    // Random positions (many candidates per pixel, ties included), on a
+    // small example and an odd-sized torus: one correction pass of the engine
+    // (four interleaved subsets, each reading the state before it) against
+    // the definition applied subset by subset.
+    const Image ex = textured(30, 26, 6);
+    const AppearanceSpace space = build_appearance_space(ex, 3, false, 1);
+    const CoherenceSets sets = build_coherence_sets(space, 1, 2, 1);
+    for (int level = 0; level < 3; ++level) {
+        PositionMap map{13, 11, {}};
+        Rng rng{uint64_t(level + 1)};
+        for (int i = 0; i < 13 * 11; ++i) map.positions.push_back(pack_position(int(rng.below(30)), int(rng.below(26))));
+        PositionMap expected = map;
+        static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+        for (const auto& [sx, sy] : kOrder) {
+            const PositionMap before = expected;
+            for (int y = sy; y < map.height; y += 2)
+                for (int x = sx; x < map.width; x += 2)
+                    expected.positions[std::size_t(y) * map.width + x] = reference_correction(space, level, before, x, y);
+        }
+        CoherentOptions options;
+        options.threads = 2;
+        correct_positions(space, sets, level, map, options);
+        EXPECT_EQ(map.positions, expected.positions) << "level " << level;
+    }
+}

@@ -218,6 +218,14 @@ void correction_pass(const LevelView& view, PositionMap& map, const CoherentOpti
 
 }  // namespace
 
+void correct_positions(const AppearanceSpace& space, const CoherenceSets& sets, int level, PositionMap& map,
+                       const CoherentOptions& options) {
+    const int spacing = space.levels[std::size_t(level)].spacing;
+    const LevelView view{space, sets, level, spacing, space.levels[std::size_t(level)].features.data(), sets.k,
+                         dsp::kernels()};
+    correction_pass(view, map, options);
+}
+
 PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& parent, int width, int height,
                                int spacing) {
     PositionMap out{width, height, std::vector<uint32_t>(std::size_t(width) * height)};

@@ -66,4 +66,9 @@ Image read_positions(const Image& example, const PositionMap& map);
 PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& parent, int width, int height,
                                int spacing);
 
+// One correction pass of `map` at `level` (what synthesize_positions runs
+// `passes` times per level). Exposed for tests.
+void correct_positions(const AppearanceSpace& space, const CoherenceSets& sets, int level, PositionMap& map,
+                       const CoherentOptions& options);
+
 }  // namespace vqtex
