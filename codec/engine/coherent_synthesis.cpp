@@ -190,7 +190,9 @@ void correction_pass(const LevelView& view, PositionMap& map, const CoherentOpti
     static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
     const int w = map.width, h = map.height;
     std::vector<uint32_t> next;
-    for (const auto& [sx, sy] : kOrder) {
+    for (const auto& subset : kOrder) {
+        // Plain ints: clang 14 cannot capture structured bindings in a lambda.
+        const int sx = subset[0], sy = subset[1];
         next = map.positions;
         const int rows = (h - sy + 1) / 2;
         parallel_for(options.threads, std::size_t(std::max(rows, 0)), 4, [&](std::size_t r0, std::size_t r1) {
