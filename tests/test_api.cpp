@@ -2,6 +2,8 @@
 // clear errors, cancellation, no output on failure.
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <cstring>
 
 #include "test_support.hpp"
@@ -167,7 +169,10 @@ TEST(Validation, EveryInvalidValueIsRefusedBeforeAnyWork) {
         {[](vqtex_synth_params& p) { p.search = vqtex_search(9); }, "unknown search kind"},
         {[](vqtex_synth_params& p) { p.width = 0; }, "out of range"},
     };
-    for (const auto& [edit, detail] : synth_cases) {
+    for (const auto& item : synth_cases) {
+        // Named references: clang 14 cannot capture structured bindings.
+        const auto& edit = std::get<0>(item);
+        const auto& detail = std::get<1>(item);
         expect_refused_before_work("synthesize", detail, [&](WorkSeen* seen, vqtex_error* err) {
             vqtex_synth_params p = vqtex_test::default_params(32, 32);
             p.progress = &WorkSeen::note;
@@ -189,7 +194,10 @@ TEST(Validation, EveryInvalidValueIsRefusedBeforeAnyWork) {
         {[](vqtex_encode_params& p) { p.model.entries_per_leaf = 100; }, "entries per leaf must be 1 to 64"},
         {[](vqtex_encode_params& p) { p.model.closing_window = 65; }, "closing window must be odd"},
     };
-    for (const auto& [edit, detail] : encode_cases) {
+    for (const auto& item : encode_cases) {
+        // Named references: clang 14 cannot capture structured bindings.
+        const auto& edit = std::get<0>(item);
+        const auto& detail = std::get<1>(item);
         expect_refused_before_work("encode", detail, [&](WorkSeen* seen, vqtex_error* err) {
             vqtex_encode_params p;
             vqtex_encode_params_init(&p);
@@ -222,7 +230,10 @@ TEST(Validation, EveryInvalidValueIsRefusedBeforeAnyWork) {
         {[](vqtex_fill_params& p) { p.tolerance = 4097; }, "tolerance must be 0 to 4096"},
         {[](vqtex_fill_params& p) { p.levels = 9; }, "levels must be 0 (automatic) to 8"},
     };
-    for (const auto& [edit, detail] : fill_cases) {
+    for (const auto& item : fill_cases) {
+        // Named references: clang 14 cannot capture structured bindings.
+        const auto& edit = std::get<0>(item);
+        const auto& detail = std::get<1>(item);
         expect_refused_before_work("extend", detail, [&](WorkSeen* seen, vqtex_error* err) {
             vqtex_fill_params p;
             vqtex_fill_params_init(&p);
