@@ -353,11 +353,19 @@ LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels,
     return h;
 }
 
-const Section& require_section(const Container& c, const char tag[4], int level, int kind,
-                               const std::string& kind_name) {
+const char* section_kind_name(TreeKind kind) {
+    return kind == TreeKind::Closing ? "closing" : kind == TreeKind::FrameSeam ? "frame seam" : "";
+}
+
+const char* tree_name(TreeKind kind) {
+    return kind == TreeKind::Closing ? "closing" : kind == TreeKind::FrameSeam ? "frame-seam" : "causal";
+}
+
+const Section& require_section(const Container& c, const char tag[4], int level, TreeKind kind) {
+    const std::string kind_name = section_kind_name(kind);
     const Section* found = nullptr;
     for (const Section& s : c.sections) {
-        if (!tag_is(s, tag) || s.level != level || s.kind != kind) continue;
+        if (!tag_is(s, tag) || s.level != level || s.kind != uint8_t(kind)) continue;
         if (found) fail(VQTEX_ERROR_CORRUPT, "section " + s.name() + " appears twice");
         found = &s;
     }
@@ -367,7 +375,7 @@ const Section& require_section(const Container& c, const char tag[4], int level,
     return *found;
 }
 
-void write_tree(ContainerWriter& writer, int level, int kind, const Codebook& book, const TreeLayout& layout,
+void write_tree(ContainerWriter& writer, int level, TreeKind kind, const Codebook& book, const TreeLayout& layout,
                 const EncodeSettings& settings) {
     TreeSections t = encode_tree(book, layout, settings);
     writer.add(kTagTopology, uint8_t(level), uint8_t(kind), std::move(t.topology));
@@ -375,12 +383,12 @@ void write_tree(ContainerWriter& writer, int level, int kind, const Codebook& bo
     writer.add(kTagEntries, uint8_t(level), uint8_t(kind), std::move(t.entries));
 }
 
-std::shared_ptr<const Codebook> read_tree(const Container& c, const uint8_t* file, int level, int kind,
-                                          const std::string& kind_name, const TreeLayout& layout, int precision,
-                                          int pixel_precision, const std::string& where, std::size_t& memory_budget) {
-    const auto topology = section_bytes(file, require_section(c, kTagTopology, level, kind, kind_name));
-    const auto codewords = section_bytes(file, require_section(c, kTagCodewords, level, kind, kind_name));
-    const auto entries = section_bytes(file, require_section(c, kTagEntries, level, kind, kind_name));
+std::shared_ptr<const Codebook> read_tree(const Container& c, const uint8_t* file, int level, TreeKind kind,
+                                          const TreeLayout& layout, int precision, int pixel_precision,
+                                          const std::string& where, std::size_t& memory_budget) {
+    const auto topology = section_bytes(file, require_section(c, kTagTopology, level, kind));
+    const auto codewords = section_bytes(file, require_section(c, kTagCodewords, level, kind));
+    const auto entries = section_bytes(file, require_section(c, kTagEntries, level, kind));
     return decode_tree(topology, codewords, entries, layout, precision, pixel_precision, where, memory_budget);
 }
 
@@ -428,11 +436,11 @@ std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings&
         writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
         const bool needs_histogram = s.init == LevelInit::Noise || l == levels - 1;
         if (needs_histogram) writer.add(kTagHistogram, uint8_t(l), 0, encode_histogram(lv.histogram));
-        for (int kind = 0; kind < 2; ++kind) {
-            const Codebook* book = kind == 0 ? lv.causal.get() : lv.closing.get();
+        for (const TreeKind kind : {TreeKind::Causal, TreeKind::Closing}) {
+            const Codebook* book = kind == TreeKind::Causal ? lv.causal.get() : lv.closing.get();
             if (!book) continue;
-            Shape shape = kind == 0 ? lv.shape : lv.closing_shape;
-            shape.causal = kind == 0;
+            Shape shape = kind == TreeKind::Causal ? lv.shape : lv.closing_shape;
+            shape.causal = kind == TreeKind::Causal;
             const NeighborhoodLayout layout(shape, model.channels, l, levels);
             write_tree(writer, l, kind, *book, tree_layout_of(layout), s);
         }
@@ -456,9 +464,6 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
     f.model.exemplar_height = c.header.exemplar_height;
     f.model.levels.resize(std::size_t(levels));
 
-    auto require = [&](const char tag[4], int level, int kind) -> const Section& {
-        return require_section(c, tag, level, kind, kind ? "closing" : "");
-    };
     // Every section must be one the decoder uses: anything else is damage.
     std::size_t expected_sections = 0;
 
@@ -468,7 +473,7 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
     std::size_t tree_budget = tree_budget_start;
 
     for (int l = 0; l < levels; ++l) {
-        const std::vector<uint8_t> level_bytes = section_bytes(data, require(kTagLevel, l, 0));
+        const std::vector<uint8_t> level_bytes = section_bytes(data, require_section(c, kTagLevel, l));
         ++expected_sections;
         ByteReader lr(level_bytes.data(), level_bytes.size(), "level " + std::to_string(l) + " parameters");
         Shape shape;
@@ -502,19 +507,20 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
         const bool needs_histogram = f.init == LevelInit::Noise || l == levels - 1;
         if (needs_histogram) {
             const LevelHistogram h =
-                decode_histogram(section_bytes(data, require(kTagHistogram, l, 0)), ch, "level " + std::to_string(l));
+                decode_histogram(section_bytes(data, require_section(c, kTagHistogram, l)), ch, "level " + std::to_string(l));
             ++expected_sections;
             lv.histogram = h;
         }
-        for (int kind = 0; kind < 1 + has_closing; ++kind) {
-            Shape s = kind == 0 ? shape : closing_shape;
-            s.causal = kind == 0;
+        for (int k = 0; k < 1 + has_closing; ++k) {
+            const TreeKind kind = TreeKind(k);
+            Shape s = kind == TreeKind::Causal ? shape : closing_shape;
+            s.causal = kind == TreeKind::Causal;
             const NeighborhoodLayout layout(s, ch, l, levels);
-            const std::string where = std::string(kind ? "closing" : "causal") + " tree of level " + std::to_string(l);
-            auto book = read_tree(c, data, l, kind, kind ? "closing" : "", tree_layout_of(layout), precision,
-                                  pixel_precision, where, tree_budget);
+            const std::string where = std::string(tree_name(kind)) + " tree of level " + std::to_string(l);
+            auto book = read_tree(c, data, l, kind, tree_layout_of(layout), precision, pixel_precision, where,
+                                  tree_budget);
             expected_sections += kSectionsPerTree;
-            if (kind == 0) {
+            if (kind == TreeKind::Causal) {
                 lv.causal = book;
             } else {
                 lv.closing = book;

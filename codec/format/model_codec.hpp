@@ -68,17 +68,29 @@ inline constexpr char kTagTopology[4] = {'T', 'O', 'P', 'O'};
 inline constexpr char kTagCodewords[4] = {'C', 'O', 'D', 'E'};
 inline constexpr char kTagEntries[4] = {'E', 'N', 'T', 'R'};
 
+// The trees a level may have, as the `kind` byte of their sections
+// (docs/FORMAT.md sections 3.1 and 7); a level's own sections (LEVL, HIST)
+// have kind 0.
+enum class TreeKind : uint8_t {
+    Causal = 0,     // the scan's tree
+    Closing = 1,    // seam closing (still) or loop closing (animated): symmetric shape
+    FrameSeam = 2,  // animated textures only: frame-seam closing
+};
+// The kind as section references name it: "" (causal), "closing", "frame seam".
+const char* section_kind_name(TreeKind kind);
+// The tree as messages name it: "causal", "closing", "frame-seam".
+const char* tree_name(TreeKind kind);
+
 // The one section of `c` with this tag, level and kind; a missing or repeated
-// one is CORRUPT. `kind_name` names the kind in the message ("" for kind 0).
-const Section& require_section(const Container& c, const char tag[4], int level, int kind,
-                               const std::string& kind_name);
+// one is CORRUPT.
+const Section& require_section(const Container& c, const char tag[4], int level, TreeKind kind = TreeKind::Causal);
 
 // A tree of a level and kind as its three sections: encode_tree into the
 // writer, and require_section + decode_tree out of a read container.
-void write_tree(ContainerWriter& writer, int level, int kind, const Codebook& book, const TreeLayout& layout,
+void write_tree(ContainerWriter& writer, int level, TreeKind kind, const Codebook& book, const TreeLayout& layout,
                 const EncodeSettings& settings);
-std::shared_ptr<const Codebook> read_tree(const Container& c, const uint8_t* file, int level, int kind,
-                                          const std::string& kind_name, const TreeLayout& layout, int precision,
+std::shared_ptr<const Codebook> read_tree(const Container& c, const uint8_t* file, int level, TreeKind kind,
+                                          const TreeLayout& layout, int precision,
                                           int pixel_precision, const std::string& where, std::size_t& memory_budget);
 inline constexpr std::size_t kSectionsPerTree = 3;
 

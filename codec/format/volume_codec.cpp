@@ -85,11 +85,15 @@ std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const En
             (lv.seam && seam_shape_of(lv.shape, lv.closing_shape) != lv.seam_shape))
             fail(VQTEX_ERROR_INVALID_ARGUMENT,
                  "level " + std::to_string(l) + ": loop-closing and frame-seam trees go together");
-        for (int kind = 0; kind < 3; ++kind) {
-            const Codebook* book = kind == 0 ? lv.causal.get() : kind == 1 ? lv.closing.get() : lv.seam.get();
+        for (const TreeKind kind : {TreeKind::Causal, TreeKind::Closing, TreeKind::FrameSeam}) {
+            const Codebook* book = kind == TreeKind::Causal    ? lv.causal.get()
+                                   : kind == TreeKind::Closing ? lv.closing.get()
+                                                               : lv.seam.get();
             if (!book) continue;
-            Shape3 shape = kind == 0 ? lv.shape : kind == 1 ? lv.closing_shape : lv.seam_shape;
-            shape.causal = kind != 1;
+            Shape3 shape = kind == TreeKind::Causal    ? lv.shape
+                           : kind == TreeKind::Closing ? lv.closing_shape
+                                                       : lv.seam_shape;
+            shape.causal = kind != TreeKind::Closing;
             const NeighborhoodLayout3 layout(shape, model.channels, l, levels);
             write_tree(writer, l, kind, *book, tree_layout_of(layout), s);
         }
@@ -124,12 +128,9 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     f.model.exemplar_height = c.header.exemplar_height;
     f.model.levels.resize(std::size_t(levels));
 
-    auto require = [&](const char tag[4], int level, int kind) -> const Section& {
-        return require_section(c, tag, level, kind, kind == 1 ? "closing" : kind == 2 ? "frame seam" : "");
-    };
     std::size_t expected_sections = 1;
     {
-        const std::vector<uint8_t> vb = section_bytes(data, require(kTagVolume, 0, 0));
+        const std::vector<uint8_t> vb = section_bytes(data, require_section(c, kTagVolume, 0));
         ByteReader vr(vb.data(), vb.size(), "animation parameters");
         f.model.exemplar_frames = uint32_t(vr.varint_in("exemplar frames", 1, kMaxExemplarFrames));
         const uint8_t factor = vr.u8("temporal pyramid factor");
@@ -139,7 +140,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     }
     for (int l = 0; l < levels; ++l) {
         const std::string where_level = "level " + std::to_string(l);
-        const std::vector<uint8_t> lb = section_bytes(data, require(kTagLevel, l, 0));
+        const std::vector<uint8_t> lb = section_bytes(data, require_section(c, kTagLevel, l));
         ++expected_sections;
         ByteReader lr(lb.data(), lb.size(), where_level + " parameters");
         Shape3 shape;
@@ -172,18 +173,21 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
         VolumeCodecModel::Level& lv = f.model.levels[std::size_t(l)];
         lv.shape = shape;
         if (f.init == LevelInit::Noise || l == levels - 1) {
-            const LevelHistogram h = decode_histogram(section_bytes(data, require(kTagHistogram, l, 0)), ch, where_level);
+            const LevelHistogram h = decode_histogram(section_bytes(data, require_section(c, kTagHistogram, l)), ch, where_level);
             ++expected_sections;
             lv.histogram = h;
         }
-        for (int kind = 0; kind < 1 + 2 * has_closing; ++kind) {
-            Shape3 s = kind == 0 ? shape : kind == 1 ? closing_shape : seam_shape_of(shape, closing_shape);
-            s.causal = kind != 1;
+        for (int k = 0; k < 1 + 2 * has_closing; ++k) {
+            const TreeKind kind = TreeKind(k);
+            Shape3 s = kind == TreeKind::Causal    ? shape
+                       : kind == TreeKind::Closing ? closing_shape
+                                                   : seam_shape_of(shape, closing_shape);
+            s.causal = kind != TreeKind::Closing;
             const NeighborhoodLayout3 layout(s, ch, l, levels);
             const std::string where =
-                std::string(kind == 0 ? "causal" : kind == 1 ? "closing" : "frame-seam") + " tree of " + where_level;
-            auto book = read_tree(c, data, l, kind, kind == 1 ? "closing" : kind == 2 ? "frame seam" : "",
-                                  tree_layout_of(layout), precision, pixel_precision, where, tree_budget);
+                std::string(tree_name(kind)) + " tree of " + where_level;
+            auto book = read_tree(c, data, l, kind, tree_layout_of(layout), precision, pixel_precision, where,
+                                  tree_budget);
             expected_sections += kSectionsPerTree;
             // The synthesis reads every entry's predecessor (its key) when
             // the shape has one (temporal_synthesis.cpp).
@@ -191,9 +195,9 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
                 fail(VQTEX_ERROR_CORRUPT, where + ": entries " +
                                               (book->key_length() ? "carry keys the shape does not define"
                                                                   : "lack their value in the previous frame"));
-            if (kind == 0) {
+            if (kind == TreeKind::Causal) {
                 lv.causal = book;
-            } else if (kind == 1) {
+            } else if (kind == TreeKind::Closing) {
                 lv.closing = book;
                 lv.closing_shape = s;
             } else {
