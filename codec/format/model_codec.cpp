@@ -77,7 +77,7 @@ std::vector<uint8_t> smoothed_codewords(const Codebook& b, const TreeLayout& lay
     std::vector<std::vector<std::size_t>> members;
     std::vector<std::tuple<int, int, int, int>> keys;
     for (std::size_t t = 0; t < taps.size(); ++t) {
-        const TreeLayout::Tap& tap = taps[t];
+        const Tap& tap = taps[t];
         std::tuple<int, int, int, int> key;
         if (tap.depth == 0 && std::abs(tap.dt) <= 1 && std::abs(tap.dx) <= 1 && std::abs(tap.dy) <= 1)
             key = {-1 - int(t), 0, 0, 0};  // its own group
@@ -113,7 +113,7 @@ TreeLayout tree_layout_of(const NeighborhoodLayout& layout) {
     t.channels = layout.channels();
     t.key_offsets = layout.entry_key_offsets();
     t.predictor = layout.pixel_predictor();
-    for (const Tap& tap : layout.taps()) t.taps.push_back({tap.depth, 0, tap.dy, tap.dx});
+    t.taps = layout.taps();
     return t;
 }
 

@@ -35,9 +35,6 @@ std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings&
 // (temporal shapes have dt != 0; volume_codec.cpp): sizes, the taps (for the
 // encoder's smoothing), the entry keys and the pixel predictor.
 struct TreeLayout {
-    struct Tap {
-        int depth, dt, dy, dx;
-    };
     std::size_t dimension = 0, stride = 0;
     int channels = 0;
     std::vector<Tap> taps;

@@ -24,7 +24,7 @@ TreeLayout tree_layout_of(const NeighborhoodLayout3& layout) {
     t.key_offsets = layout.entry_key_offsets();
     t.predictor = layout.pixel_predictor();
     t.keys_at_pixel_precision = true;
-    for (const Tap3& tap : layout.taps()) t.taps.push_back({tap.depth, tap.dt, tap.dy, tap.dx});
+    t.taps = layout.taps();
     return t;
 }
 
