@@ -44,18 +44,12 @@ Shape3 seam_shape_of(const Shape3& causal, const Shape3& closing) {
 }  // namespace
 
 std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const EncodeSettings& s) {
-    FileHeader h;
+    bool any_closing = false;
+    for (const auto& lv : model.levels) any_closing = any_closing || lv.closing != nullptr;
+    FileHeader h = model_header(model.channels, model.exemplar_width, model.exemplar_height, int(model.levels.size()),
+                                any_closing, s);
     h.version = kVolumeFormatVersion;
-    h.flags = kFlagVolume;
-    h.exemplar_width = model.exemplar_width;
-    h.exemplar_height = model.exemplar_height;
-    h.channels = uint8_t(model.channels);
-    h.levels = uint8_t(model.levels.size());
-    h.init = s.init == LevelInit::Noise ? 1 : 0;
-    h.backtrack = s.backtrack;
-    h.seed = s.seed;
-    for (const auto& lv : model.levels)
-        if (lv.closing) h.flags |= kFlagSeamClosing;
+    h.flags |= kFlagVolume;
     ContainerWriter writer(h, s.zstd_level);
     ByteWriter vw;
     vw.varint(model.exemplar_frames);
@@ -114,23 +108,21 @@ bool is_volume_file(const uint8_t* data, std::size_t size) {
 DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     DecodedVolumeFile f;
     const Container c = read_container(data, size, memory_limit);
-    const std::size_t tree_budget_start = tree_budget_of(c, memory_limit);
-    std::size_t tree_budget = tree_budget_start;
     if (!(c.header.flags & kFlagVolume))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "file holds a still texture, not an animation: decode it with vqtex_decode (vqtex-decode without --frames)");
+    LevelReader reader(c, data, memory_limit);
     f.header = c.header;
     f.sections = c.sections;
     const int levels = c.header.levels, ch = c.header.channels;
-    f.init = c.header.init == 1 ? LevelInit::Noise : LevelInit::Parent;
+    f.init = reader.init();
     f.model.channels = ch;
     f.model.exemplar_width = c.header.exemplar_width;
     f.model.exemplar_height = c.header.exemplar_height;
     f.model.levels.resize(std::size_t(levels));
 
-    std::size_t expected_sections = 1;
     {
-        const std::vector<uint8_t> vb = section_bytes(data, require_section(c, kTagVolume, 0));
+        const std::vector<uint8_t> vb = reader.section(kTagVolume, 0);
         ByteReader vr(vb.data(), vb.size(), "animation parameters");
         f.model.exemplar_frames = uint32_t(vr.varint_in("exemplar frames", 1, kMaxExemplarFrames));
         const uint8_t factor = vr.u8("temporal pyramid factor");
@@ -140,19 +132,17 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     }
     for (int l = 0; l < levels; ++l) {
         const std::string where_level = "level " + std::to_string(l);
-        const std::vector<uint8_t> lb = section_bytes(data, require_section(c, kTagLevel, l));
-        ++expected_sections;
+        const std::vector<uint8_t> lb = reader.section(kTagLevel, l);
         ByteReader lr(lb.data(), lb.size(), where_level + " parameters");
         Shape3 shape;
         shape.rows = lr.u8("window rows");
         shape.cols = lr.u8("window columns");
         shape.frames = lr.u8("window frames");
         shape.levels = lr.u8("window levels");
-        const int precision = lr.u8("precision"), pixel_precision = lr.u8("pixel precision");
-        const int has_closing = lr.u8("closing flag");
+        const LevelReader::Coding coding = LevelReader::read_coding(lr);
         Shape3 closing_shape = shape;
         closing_shape.causal = false;
-        if (has_closing == 1) {
+        if (coding.has_closing == 1) {
             closing_shape.rows = lr.u8("closing window rows");
             closing_shape.cols = lr.u8("closing window columns");
             closing_shape.frames = lr.u8("closing window frames");
@@ -164,20 +154,13 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
         if (!valid_extent(shape.rows, 1) || !valid_extent(shape.cols, 1) || !valid_extent(shape.frames, 1) ||
             shape.levels < 1 || shape.levels > levels - l || shape3_taps(shape).empty())
             fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid neighbourhood " + shape3_to_string(shape));
-        if (precision < 1 || precision > 8 || pixel_precision < 1 || pixel_precision > 8 || has_closing > 1)
-            fail(VQTEX_ERROR_CORRUPT, where_level + " has invalid precision or flags");
-        if (has_closing && !(c.header.flags & kFlagSeamClosing))
-            fail(VQTEX_ERROR_CORRUPT, where_level + " has a closing tree the header does not announce");
-        if (l == 0) f.precision = precision, f.pixel_precision = pixel_precision;
+        reader.check_coding(coding, where_level);
+        if (l == 0) f.precision = coding.precision, f.pixel_precision = coding.pixel_precision;
 
         VolumeCodecModel::Level& lv = f.model.levels[std::size_t(l)];
         lv.shape = shape;
-        if (f.init == LevelInit::Noise || l == levels - 1) {
-            const LevelHistogram h = decode_histogram(section_bytes(data, require_section(c, kTagHistogram, l)), ch, where_level);
-            ++expected_sections;
-            lv.histogram = h;
-        }
-        for (int k = 0; k < 1 + 2 * has_closing; ++k) {
+        lv.histogram = reader.histogram(l, f.init, where_level);
+        for (int k = 0; k < 1 + 2 * coding.has_closing; ++k) {
             const TreeKind kind = TreeKind(k);
             Shape3 s = kind == TreeKind::Causal    ? shape
                        : kind == TreeKind::Closing ? closing_shape
@@ -186,9 +169,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
             const NeighborhoodLayout3 layout(s, ch, l, levels);
             const std::string where =
                 std::string(tree_name(kind)) + " tree of " + where_level;
-            auto book = read_tree(c, data, l, kind, tree_layout_of(layout), precision, pixel_precision, where,
-                                  tree_budget);
-            expected_sections += kSectionsPerTree;
+            auto book = reader.tree(l, kind, tree_layout_of(layout), coding, where);
             // The synthesis reads every entry's predecessor (its key) when
             // the shape has one (temporal_synthesis.cpp).
             if (book->key_length() != layout.entry_key_offsets().size())
@@ -208,8 +189,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     }
     bool any_closing = false;
     for (const auto& lv : f.model.levels) any_closing = any_closing || lv.closing != nullptr;
-    check_file_complete(c, any_closing, expected_sections);
-    f.model_bytes = tree_budget_start - tree_budget;
+    f.model_bytes = reader.finish(any_closing);
     return f;
 }
 
