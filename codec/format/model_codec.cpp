@@ -456,6 +456,18 @@ FileHeader model_header(int channels, uint32_t exemplar_width, uint32_t exemplar
     return h;
 }
 
+void write_level_coding(ByteWriter& level, const EncodeSettings& s, bool has_closing) {
+    level.u8(uint8_t(s.precision));
+    level.u8(uint8_t(s.pixel_precision));
+    level.u8(has_closing ? 1 : 0);
+}
+
+void write_histogram(ContainerWriter& writer, int level, int levels, const EncodeSettings& s,
+                     const LevelHistogram& histogram) {
+    if (s.init == LevelInit::Noise || level == levels - 1)
+        writer.add(kTagHistogram, uint8_t(level), 0, encode_histogram(histogram));
+}
+
 std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& s) {
     bool any_closing = false;
     for (const auto& lv : model.levels) any_closing = any_closing || lv.closing != nullptr;
@@ -470,16 +482,13 @@ std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings&
         lw.u8(uint8_t(lv.shape.rows));
         lw.u8(uint8_t(lv.shape.cols));
         lw.u8(uint8_t(lv.shape.levels));
-        lw.u8(uint8_t(s.precision));
-        lw.u8(uint8_t(s.pixel_precision));
-        lw.u8(lv.closing ? 1 : 0);
+        write_level_coding(lw, s, lv.closing != nullptr);
         if (lv.closing) {
             lw.u8(uint8_t(lv.closing_shape.rows));
             lw.u8(uint8_t(lv.closing_shape.cols));
         }
         writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
-        const bool needs_histogram = s.init == LevelInit::Noise || l == levels - 1;
-        if (needs_histogram) writer.add(kTagHistogram, uint8_t(l), 0, encode_histogram(lv.histogram));
+        write_histogram(writer, l, levels, s, lv.histogram);
         for (const TreeKind kind : {TreeKind::Causal, TreeKind::Closing}) {
             const Codebook* book = kind == TreeKind::Causal ? lv.causal.get() : lv.closing.get();
             if (!book) continue;

@@ -97,6 +97,13 @@ LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels,
 FileHeader model_header(int channels, uint32_t exemplar_width, uint32_t exemplar_height, int levels,
                         bool any_closing, const EncodeSettings& settings);
 
+// The parts of a level both encoders write alike: the LEVL fields after the
+// shape (LevelReader::read_coding reads them back) and the HIST section,
+// which a file has at noise init and at its coarsest level.
+void write_level_coding(ByteWriter& level, const EncodeSettings& settings, bool has_closing);
+void write_histogram(ContainerWriter& writer, int level, int levels, const EncodeSettings& settings,
+                     const LevelHistogram& histogram);
+
 // The level reader of the still and animated decoders: it hands out the
 // sections a level needs, counts them (every section of the file must be
 // used), and charges the decoded trees to what the memory limit leaves once

@@ -64,17 +64,14 @@ std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const En
         lw.u8(uint8_t(lv.shape.cols));
         lw.u8(uint8_t(lv.shape.frames));
         lw.u8(uint8_t(lv.shape.levels));
-        lw.u8(uint8_t(s.precision));
-        lw.u8(uint8_t(s.pixel_precision));
-        lw.u8(lv.closing ? 1 : 0);
+        write_level_coding(lw, s, lv.closing != nullptr);
         if (lv.closing) {
             lw.u8(uint8_t(lv.closing_shape.rows));
             lw.u8(uint8_t(lv.closing_shape.cols));
             lw.u8(uint8_t(lv.closing_shape.frames));
         }
         writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
-        if (s.init == LevelInit::Noise || l == levels - 1)
-            writer.add(kTagHistogram, uint8_t(l), 0, encode_histogram(lv.histogram));
+        write_histogram(writer, l, levels, s, lv.histogram);
         if (bool(lv.closing) != bool(lv.seam) ||
             (lv.seam && seam_shape_of(lv.shape, lv.closing_shape) != lv.seam_shape))
             fail(VQTEX_ERROR_INVALID_ARGUMENT,
