@@ -179,7 +179,7 @@ TEST(Neighborhood3d, TapsOfThePaperShapes) {
     EXPECT_EQ(shape3_taps(Shape3{3, 3, 3, 2}).size(), std::size_t(9 + 4 + 1));
     // A symmetric 5x5x3 window: everything but the centre.
     EXPECT_EQ(shape3_taps(Shape3{5, 5, 3, 1, false}).size(), std::size_t(74));
-    for (const Tap3& t : shape3_taps(Shape3{5, 5, 5, 2})) {
+    for (const Tap& t : shape3_taps(Shape3{5, 5, 5, 2})) {
         if (t.depth != 0) continue;
         EXPECT_LE(t.dt, 0);
         if (t.dt == 0) {
@@ -231,7 +231,7 @@ TEST(TemporalSynthesis, CausalInSpaceAndTime) {
                 for (int x = 0; x < w; ++x) {
                     const uint32_t me = order(x, y, t);
                     const int index_in_row = Image::wrap(x - row_start(y, lag, w), w);
-                    for (const Tap3& tap : shape3_taps(shape)) {
+                    for (const Tap& tap : shape3_taps(shape)) {
                         if (tap.depth != 0) continue;
                         const bool through_time = t + tap.dt < 0;
                         const bool through_top = tap.dt == 0 && y + tap.dy < 0;

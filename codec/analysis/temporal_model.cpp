@@ -54,51 +54,37 @@ namespace {
 constexpr std::size_t kMinTraining = 2048;
 
 
-BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, const vqtex_model_params& params,
-                           vqtex_search search, uint32_t backtrack, int threads, int level, int kind) {
-    // kind: 0 the causal tree, 1 loop closing, 2 frame-seam closing.
-    const bool closing = kind != 0;
-    BuiltMatcher built;
+// The matcher of a level's tree; kind: 0 the causal tree, 1 loop closing,
+// 2 frame-seam closing.
+BuiltMatcher build_volume_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, const vqtex_model_params& params,
+                                  vqtex_search search, uint32_t backtrack, int threads, int level, int kind) {
     const int predecessor = layout.predecessor_offset();
-    if (search == VQTEX_SEARCH_EXHAUSTIVE) {
-        if (predecessor >= 0) {
-            // Each example pixel followed by its predecessor, as a TSVQ
-            // entry's pixel is followed by its key (temporal_synthesis.hpp).
-            const std::size_t ch = std::size_t(set.channels);
-            std::vector<uint8_t> pairs(set.count() * 2 * ch);
-            for (std::size_t i = 0; i < set.count(); ++i) {
-                std::copy(set.pixel(i), set.pixel(i) + ch, pairs.data() + 2 * i * ch);
-                std::copy(set.vector(i) + predecessor, set.vector(i) + std::size_t(predecessor) + ch,
-                          pairs.data() + (2 * i + 1) * ch);
-            }
-            set.pixels = std::move(pairs);
-            set.channels *= 2;
+    if (search == VQTEX_SEARCH_EXHAUSTIVE && predecessor >= 0) {
+        // Each example pixel followed by its predecessor, as a TSVQ entry's
+        // pixel is followed by its key (temporal_synthesis.hpp).
+        const std::size_t ch = std::size_t(set.channels);
+        std::vector<uint8_t> pairs(set.count() * 2 * ch);
+        for (std::size_t i = 0; i < set.count(); ++i) {
+            std::copy(set.pixel(i), set.pixel(i) + ch, pairs.data() + 2 * i * ch);
+            std::copy(set.vector(i) + predecessor, set.vector(i) + std::size_t(predecessor) + ch,
+                      pairs.data() + (2 * i + 1) * ch);
         }
-        built.bytes = set.vectors.size() + set.pixels.size();
-        built.matcher = std::make_shared<ExhaustiveMatcher>(std::move(set));
-        return built;
+        set.pixels = std::move(pairs);
+        set.channels *= 2;
     }
+    MatcherRecipe recipe;
     // The paper trains on a random 10% of the neighbourhoods; the coarse
     // levels of a small example have only a few hundred, and 10% of those
     // leaves the coarsest level a handful of codewords, from which every
     // output collapses into a flat field (measured on corpus/flicker_32_anim
     // decoded at 128x128). So the fraction applies above kMinTraining.
-    std::size_t subset_size = set.count();
-    if (params.train_fraction > 0 && params.train_fraction < 1)
-        subset_size = std::max<std::size_t>(std::min(set.count(), kMinTraining),
-                                            std::size_t(std::llround(double(subset_size) * params.train_fraction)));
-    if (params.train_count > 0) subset_size = std::min<std::size_t>(subset_size, params.train_count);
-    const std::vector<uint32_t> subset =
-        choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level) + 64u * uint64_t(kind));
-    TrainParams tp = train_params_for(params, level, subset.size(), closing, threads);
+    recipe.min_training = kMinTraining;
+    recipe.seed_offset = 64u * uint64_t(kind);
     // Every entry carries its predecessor as its key, whatever
     // params.no_entry_keys says (neighborhood3d.hpp).
-    tp.key_offsets = layout.entry_key_offsets();
-    tp.keys_on_single_entries = true;
-    built.codebook = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
-    built.bytes = built.codebook->memory_bytes();
-    built.matcher = std::make_shared<TsvqMatcher>(built.codebook, backtrack);
-    return built;
+    recipe.key_offsets = layout.entry_key_offsets();
+    recipe.keys_on_single_entries = true;
+    return build_matcher(set, params, search, backtrack, threads, level, kind != 0, recipe);
 }
 
 }  // namespace
@@ -134,7 +120,7 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
         VolumeLevelModel& lm = result.model.levels[std::size_t(l)];
         lm.shape = layout.shape();
         lm.histogram = histogram_of(v.stack);
-        BuiltMatcher causal = build_matcher(set, layout, params, search, backtrack, threads, l, 0);
+        BuiltMatcher causal = build_volume_matcher(set, layout, params, search, backtrack, threads, l, 0);
         lm.matcher = causal.matcher;
         result.codebooks[std::size_t(l)] = causal.codebook;
         result.model_bytes += causal.bytes;
@@ -150,7 +136,7 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
             ExampleSet closing_set = collect_volume_examples(closing_layout, pyramid, tileable);
             if (closing_set.count() > 0) {
                 BuiltMatcher closing =
-                    build_matcher(closing_set, closing_layout, params, search, backtrack, threads, l, 1);
+                    build_volume_matcher(closing_set, closing_layout, params, search, backtrack, threads, l, 1);
                 lm.closing_shape = closing_layout.shape();
                 lm.closing = closing.matcher;
                 result.closing_codebooks[std::size_t(l)] = closing.codebook;
@@ -165,7 +151,7 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
             const NeighborhoodLayout3 seam_layout(seam_shape, example.channels, l, plan.levels);
             ExampleSet seam_set = collect_volume_examples(seam_layout, pyramid, tileable);
             if (seam_set.count() > 0) {
-                BuiltMatcher seam = build_matcher(seam_set, seam_layout, params, search, backtrack, threads, l, 2);
+                BuiltMatcher seam = build_volume_matcher(seam_set, seam_layout, params, search, backtrack, threads, l, 2);
                 lm.seam_shape = seam_layout.shape();
                 lm.seam = seam.matcher;
                 result.seam_codebooks[std::size_t(l)] = seam.codebook;

@@ -72,11 +72,8 @@ TrainParams train_params_for(const vqtex_model_params& params, int level, std::s
     return tp;
 }
 
-namespace {
-
-BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout& layout,
-                           const vqtex_model_params& params, vqtex_search search, uint32_t backtrack,
-                           int threads, int level, bool closing) {
+BuiltMatcher build_matcher(ExampleSet& set, const vqtex_model_params& params, vqtex_search search,
+                           uint32_t backtrack, int threads, int level, bool closing, const MatcherRecipe& recipe) {
     BuiltMatcher built;
     if (search == VQTEX_SEARCH_EXHAUSTIVE) {
         built.bytes = set.vectors.size() + set.pixels.size();
@@ -85,20 +82,19 @@ BuiltMatcher build_matcher(ExampleSet& set, const NeighborhoodLayout& layout,
     }
     std::size_t subset_size = set.count();
     if (params.train_fraction > 0 && params.train_fraction < 1)
-        subset_size = std::max<std::size_t>(
-            1, std::size_t(std::llround(double(subset_size) * params.train_fraction)));
+        subset_size = std::max<std::size_t>(std::min(set.count(), recipe.min_training),
+                                            std::size_t(std::llround(double(subset_size) * params.train_fraction)));
     if (params.train_count > 0) subset_size = std::min<std::size_t>(subset_size, params.train_count);
     const std::vector<uint32_t> subset =
-        choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level));
+        choose_training_subset(set.count(), subset_size, params.training_seed + uint64_t(level) + recipe.seed_offset);
     TrainParams tp = train_params_for(params, level, subset.size(), closing, threads);
-    if (!params.no_entry_keys) tp.key_offsets = layout.entry_key_offsets();
+    tp.key_offsets = recipe.key_offsets;
+    tp.keys_on_single_entries = recipe.keys_on_single_entries;
     built.codebook = std::make_shared<const Codebook>(train_codebook(set, subset, tp));
     built.bytes = built.codebook->memory_bytes();
     built.matcher = std::make_shared<TsvqMatcher>(built.codebook, backtrack);
     return built;
 }
-
-}  // namespace
 
 AnalysisResult analyse_example(const Image& example, const vqtex_model_params& params,
                                vqtex_search search, uint32_t backtrack, int threads,
@@ -179,8 +175,9 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
             if (i >= tasks.size()) return;
             Task& t = tasks[i];
             try {
-                t.built = build_matcher(t.set, t.layout, params, search, backtrack, inner_threads, t.level,
-                                        t.closing);
+                MatcherRecipe recipe;
+                if (!params.no_entry_keys) recipe.key_offsets = t.layout.entry_key_offsets();
+                t.built = build_matcher(t.set, params, search, backtrack, inner_threads, t.level, t.closing, recipe);
             } catch (...) {
                 errors[i] = std::current_exception();
                 stop.store(true);

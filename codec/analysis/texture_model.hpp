@@ -39,6 +39,22 @@ struct BuiltMatcher {
 TrainParams train_params_for(const vqtex_model_params& params, int level, std::size_t training_vectors,
                              bool closing, int threads);
 
+// What differs between the trees of still and animated levels.
+struct MatcherRecipe {
+    // A training fraction below 1 keeps at least this many vectors (all of
+    // them when there are fewer).
+    std::size_t min_training = 1;
+    uint64_t seed_offset = 0;            // added to training_seed + level: one subset per tree kind
+    std::vector<uint16_t> key_offsets;   // the entries' keys (empty: none)
+    bool keys_on_single_entries = false;
+};
+
+// The matcher of one level and tree from its example set: the set itself
+// for the exhaustive search (moved out of `set`), or a TSVQ codebook trained
+// on a seeded subset of it.
+BuiltMatcher build_matcher(ExampleSet& set, const vqtex_model_params& params, vqtex_search search,
+                           uint32_t backtrack, int threads, int level, bool closing, const MatcherRecipe& recipe);
+
 struct AnalysisResult {
     TextureModel model;
     std::vector<std::shared_ptr<const Codebook>> codebooks;          // TSVQ only; [0] = finest

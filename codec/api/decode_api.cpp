@@ -23,6 +23,16 @@ namespace {
 
 constexpr uint32_t kMaxOutputFrames = 16384;
 
+// Refuses an output that would need more than the memory limit: `needed`
+// counts the output and what the trees took of the limit; `output` names
+// it ("a 64x64 output").
+void check_output_memory(uint64_t needed, std::size_t limit, const std::string& output) {
+    if (needed > limit)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, output + " needs about " + std::to_string(needed >> 20) +
+                                             " MiB, above the memory limit of " + std::to_string(limit >> 20) +
+                                             " MiB: raise memory_limit (--memory-limit)");
+}
+
 // Decodes and synthesises; returns the whole synthesised pyramid.
 std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
     validate(p);
@@ -35,12 +45,8 @@ std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* d
                                                " is out of range: give an explicit size");
     // The output pyramid is at most 4/3 of the texture; check it against
     // what the trees left of the limit before allocating it.
-    const uint64_t needed = uint64_t(w) * h * f.header.channels * 4 / 3 + f.model_bytes;
-    if (needed > limit)
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "a " + std::to_string(w) + "x" + std::to_string(h) +
-                                             " output needs about " + std::to_string(needed >> 20) +
-                                             " MiB, above the memory limit of " + std::to_string(limit >> 20) +
-                                             " MiB: raise memory_limit (--memory-limit)");
+    check_output_memory(uint64_t(w) * h * f.header.channels * 4 / 3 + f.model_bytes, limit,
+                        "a " + std::to_string(w) + "x" + std::to_string(h) + " output");
     SynthesisOptions opt;
     opt.width = int(w);
     opt.height = int(h);
@@ -156,12 +162,9 @@ vqtex_status vqtex_decode_volume(const vqtex_decode_params* p, uint32_t frames, 
                                                    std::to_string(n) + " is out of range: give an explicit size");
         // The 3D output pyramid is at most 8/7 of the animation, plus the
         // copy handed to the caller, beside what the trees took.
-        const uint64_t needed = uint64_t(w) * h * n * f.header.channels * 15 / 7 + f.model_bytes;
-        if (needed > limit)
-            fail(VQTEX_ERROR_LIMIT_EXCEEDED, "a " + std::to_string(w) + "x" + std::to_string(h) + " animation of " +
-                                                 std::to_string(n) + " frames needs about " + std::to_string(needed >> 20) +
-                                                 " MiB, above the memory limit of " + std::to_string(limit >> 20) +
-                                                 " MiB: raise memory_limit (--memory-limit)");
+        check_output_memory(uint64_t(w) * h * n * f.header.channels * 15 / 7 + f.model_bytes, limit,
+                            "a " + std::to_string(w) + "x" + std::to_string(h) + " animation of " +
+                                std::to_string(n) + " frames");
         VolumeSynthesisOptions opt;
         opt.width = int(w);
         opt.height = int(h);

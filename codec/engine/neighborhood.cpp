@@ -27,12 +27,12 @@ std::vector<Tap> shape_taps(const Shape& shape) {
                 if (shape.causal) break;  // causal: stop at the pixel itself
                 continue;                 // symmetric: everything but the centre
             }
-            taps.push_back({0, int16_t(dy), int16_t(dx)});
+            taps.push_back({0, 0, int16_t(dy), int16_t(dx)});
         }
     for (int d = 1; d < shape.levels; ++d) {
         const int r = coarser_extent(std::max(shape.rows, shape.cols), d) / 2;
         for (int dy = -r; dy <= r; ++dy)
-            for (int dx = -r; dx <= r; ++dx) taps.push_back({int8_t(d), int16_t(dy), int16_t(dx)});
+            for (int dx = -r; dx <= r; ++dx) taps.push_back({int8_t(d), 0, int16_t(dy), int16_t(dx)});
     }
     return taps;
 }

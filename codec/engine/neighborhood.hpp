@@ -36,8 +36,12 @@ struct Shape {
 // a {9x9,2} shape reads a 5x5 window one level down). 2D and 3D shapes alike.
 int coarser_extent(int size, int depth);
 
+// One sample of a neighbourhood, still or animated: the pixel at (dx, dy)
+// of frame dt relative to the current one (always 0 for still textures),
+// `depth` levels coarser (0 = the current level).
 struct Tap {
-    int8_t depth;  // 0 = current level, d = d levels coarser
+    int8_t depth;
+    int8_t dt;
     int16_t dy, dx;
 };
 

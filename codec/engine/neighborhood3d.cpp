@@ -10,8 +10,8 @@
 
 namespace vqtex {
 
-std::vector<Tap3> shape3_taps(const Shape3& shape) {
-    std::vector<Tap3> taps;
+std::vector<Tap> shape3_taps(const Shape3& shape) {
+    std::vector<Tap> taps;
     const int ry = shape.rows / 2, rx = shape.cols / 2, rt = shape.frames / 2;
     for (int dt = -rt; dt <= (shape.causal ? 0 : rt); ++dt)
         for (int dy = -ry; dy <= ry; ++dy)
@@ -60,7 +60,7 @@ NeighborhoodLayout3::NeighborhoodLayout3(const Shape3& shape, int channels, int 
     taps_ = shape3_taps(shape_);
     dimension_ = taps_.size() * std::size_t(channels);
     stride_ = dsp::padded_length(dimension_);
-    for (const Tap3& t : taps_) {
+    for (const Tap& t : taps_) {
         reach_xy_[t.depth] = std::max({reach_xy_[t.depth], int(std::abs(t.dx)), int(std::abs(t.dy))});
         reach_t_[t.depth] = std::max(reach_t_[t.depth], int(std::abs(t.dt)));
     }
@@ -68,7 +68,7 @@ NeighborhoodLayout3::NeighborhoodLayout3(const Shape3& shape, int channels, int 
 
 int NeighborhoodLayout3::predecessor_offset() const {
     for (std::size_t i = 0; i < taps_.size(); ++i) {
-        const Tap3& t = taps_[i];
+        const Tap& t = taps_[i];
         if (t.depth == 0 && t.dt == -1 && t.dy == 0 && t.dx == 0) return int(i) * channels_;
     }
     return -1;
@@ -93,7 +93,7 @@ PixelPredictor NeighborhoodLayout3::pixel_predictor() const {
         return p;
     }
     for (std::size_t i = 0; i < taps_.size(); ++i) {
-        const Tap3& t = taps_[i];
+        const Tap& t = taps_[i];
         if (t.depth != 0 || t.dt != 0) continue;
         const int off = int(i) * channels_;
         if (t.dx == -1 && t.dy == 0) p.left = off;
@@ -116,7 +116,7 @@ bool NeighborhoodLayout3::fits_inside(const std::vector<Volume>& pyramid, int x,
 void NeighborhoodLayout3::gather_wrapped(const std::vector<Volume>& pyramid, int x, int y, int t,
                                          uint8_t* out) const {
     uint8_t* o = out;
-    for (const Tap3& tap : taps_) {
+    for (const Tap& tap : taps_) {
         const Volume& v = pyramid[std::size_t(level_ + tap.depth)];
         const uint8_t* p = v.wrapped((x >> tap.depth) + tap.dx, (y >> tap.depth) + tap.dy, (t >> tap.depth) + tap.dt);
         for (int c = 0; c < channels_; ++c) *o++ = p[c];
@@ -131,7 +131,7 @@ void NeighborhoodLayout3::gather(const std::vector<Volume>& pyramid, int x, int 
     }
     uint8_t* o = out;
     const std::size_t ch = std::size_t(channels_);
-    for (const Tap3& tap : taps_) {
+    for (const Tap& tap : taps_) {
         const Volume& v = pyramid[std::size_t(level_ + tap.depth)];
         const uint8_t* p = v.at((x >> tap.depth) + tap.dx, (y >> tap.depth) + tap.dy, (t >> tap.depth) + tap.dt);
         for (std::size_t c = 0; c < ch; ++c) *o++ = p[c];

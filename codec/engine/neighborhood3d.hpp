@@ -43,15 +43,9 @@ struct Shape3 {
     bool operator==(const Shape3&) const = default;
 };
 
-struct Tap3 {
-    int8_t depth;  // 0 = current level, d = d levels coarser
-    int8_t dt;
-    int16_t dy, dx;
-};
-
 // Current-level taps first (dt ascending, raster within a frame), then each
 // coarser window (dt, dy, dx ascending).
-std::vector<Tap3> shape3_taps(const Shape3& shape);
+std::vector<Tap> shape3_taps(const Shape3& shape);
 std::string shape3_to_string(const Shape3& shape);  // "{5x5x5,2}"
 
 // Default shapes, [0] = the finest level: {5x5x5,2}, and {5x5x5,1} at the
@@ -67,7 +61,7 @@ public:
     int level() const { return level_; }
     std::size_t dimension() const { return dimension_; }
     std::size_t stride() const { return stride_; }
-    const std::vector<Tap3>& taps() const { return taps_; }
+    const std::vector<Tap>& taps() const { return taps_; }
 
     // Byte offset of the pixel's own position one frame earlier (tap
     // depth 0, dt -1, dy 0, dx 0), or -1 when the shape has no previous
@@ -95,7 +89,7 @@ private:
     int level_;
     std::size_t dimension_;
     std::size_t stride_;
-    std::vector<Tap3> taps_;
+    std::vector<Tap> taps_;
     int reach_xy_[kMaxLevels] = {};
     int reach_t_[kMaxLevels] = {};
 };

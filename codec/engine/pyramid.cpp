@@ -4,15 +4,6 @@
 #include <cstdint>
 
 namespace vqtex {
-namespace {
-
-constexpr int kTaps[5] = {1, 4, 6, 4, 1};
-
-int edge_index(int i, int size, EdgeMode edges) {
-    return edges == EdgeMode::Wrap ? Image::wrap(i, size) : reflect_index(i, size);
-}
-
-}  // namespace
 
 int reflect_index(int i, int size) {
     if (size == 1) return 0;
@@ -37,7 +28,7 @@ Image downsample(const Image& src, EdgeMode edges) {
             for (int ch = 0; ch < c; ++ch) {
                 int sum = 0;
                 for (int t = 0; t < 5; ++t)
-                    sum += kTaps[t] * src.at(edge_index(2 * dx + t - 2, w, edges), y)[ch];
+                    sum += kPyramidTaps[t] * src.at(edge_index(2 * dx + t - 2, w, edges), y)[ch];
                 rows[(std::size_t(y) * dw + dx) * c + ch] = uint16_t(sum);
             }
         }
@@ -49,7 +40,7 @@ Image downsample(const Image& src, EdgeMode edges) {
                 int sum = 0;
                 for (int t = 0; t < 5; ++t) {
                     const int y = edge_index(2 * dy + t - 2, h, edges);
-                    sum += kTaps[t] * rows[(std::size_t(y) * dw + dx) * c + ch];
+                    sum += kPyramidTaps[t] * rows[(std::size_t(y) * dw + dx) * c + ch];
                 }
                 dst.at(dx, dy)[ch] = uint8_t((sum + 128) >> 8);
             }

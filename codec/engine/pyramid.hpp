@@ -17,9 +17,19 @@ enum class EdgeMode {
     Wrap,    // tileable examples and synthesised textures: toroidal
 };
 
+// The binomial filter of every pyramid, along each axis: still images,
+// frame stacks (volume.cpp) and the masks of hole filling (constrained.cpp).
+// The weights sum to 16.
+inline constexpr int kPyramidTaps[5] = {1, 4, 6, 4, 1};
+
 // Index i reflected into [0, size) the way EdgeMode::Mirror reads past the
 // border (no duplicated edge pixel; repeated for windows wider than the image).
 int reflect_index(int i, int size);
+
+// Index i along an axis of `size` samples as `edges` reads past the border.
+inline int edge_index(int i, int size, EdgeMode edges) {
+    return edges == EdgeMode::Wrap ? Image::wrap(i, size) : reflect_index(i, size);
+}
 
 // Size of pyramid level `level` for a level-0 size (ceil division by 2^level).
 int pyramid_level_size(int size, int level);

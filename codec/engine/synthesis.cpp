@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "engine/pyramid.hpp"
+#include "engine/wavefront.hpp"
 
 namespace vqtex {
 
@@ -35,37 +36,13 @@ void upsample_parent(const Image& parent, Image& img) {
             copy_pixel(img.at(x, y), parent.at(x >> 1, y >> 1), img.channels);
 }
 
-// A row's count of finished pixels, alone on its cache line: the thread
-// writing it and the thread polling it for the next row would otherwise
-// fight over a line shared with other rows' counters.
-struct alignas(64) RowProgress {
-    std::atomic<int> done{0};
-};
-
-// Rows publish their progress every this many pixels (and at the end): the
-// row below only needs it to be far enough ahead, and publishing per pixel
-// would move the cache line between cores at every pixel.
-constexpr int kPublishEvery = 8;  // a power of two
-
-// A row trails the row above by this many pixels more than its window needs.
-// Without the slack the row above is read a few bytes behind where it is
-// being written, and the cache line under both moves between the two cores
-// at every pixel; with it the threads touch different lines. Waiting longer
-// never changes what is read (those pixels are final either way). Narrow
-// levels get less (an eighth of the row): on a 64-pixel row a 64-pixel slack
-// would leave no room for a second row at all, and on a 128-pixel one almost
-// none (measured: 8% faster at 256x256 output, 1-4% at 512x512).
-constexpr int kWavefrontSlack = 64;
-int wavefront_slack(int width) { return std::min(kWavefrontSlack, width / 8); }
-
 // Shared state of one level's wavefront.
 struct LevelRun {
+    WavefrontScan scan;
     const NeighborhoodGather* gather;
     const Matcher* matcher;
     std::vector<Image>* pyramid;
-    int level, width, height, lag, reach_x, reach_y, slack;
-    std::vector<RowProgress>* progress;  // pixels finished per row
-    std::atomic<bool>* stop;
+    int level;
     std::atomic<uint64_t>* pixels_done;
     std::vector<uint32_t>* trace;
     std::atomic<uint32_t>* trace_counter;
@@ -73,41 +50,18 @@ struct LevelRun {
     uint32_t tolerance;
 };
 
-void wait_for(const std::atomic<int>& value, int needed, const std::atomic<bool>& stop) {
-    int spins = 0;
-    while (value.load(std::memory_order_acquire) < needed) {
-        if (stop.load(std::memory_order_relaxed)) return;
-        if (++spins > 64) std::this_thread::yield();
-    }
-}
-
-// Synthesise row y of the level. `parallel` enables the wavefront waits.
-void run_row(const LevelRun& r, int y, bool parallel, std::vector<uint8_t>& query,
-             MatchScratch* scratch) {
+// Synthesise row y of the level.
+void run_row(const LevelRun& r, int y, std::vector<uint8_t>& query, MatchScratch* scratch) {
     Image& out = (*r.pyramid)[std::size_t(r.level)];
-    const int w = r.width;
-    const int start = row_start(y, r.lag, w);
-    std::atomic<int>& mine = (*r.progress)[std::size_t(y)].done;
-    if (parallel && y >= r.height - r.reach_y && r.reach_y > 0) {
-        // Rows at the bottom are read as noise by the first rows (top wrap);
-        // they may change only once those rows are finished.
-        wait_for((*r.progress)[std::size_t(r.reach_y - 1)].done, w, *r.stop);
-    }
-    for (int i = 0; i < w; ++i) {
-        if (parallel && y > 0)
-            wait_for((*r.progress)[std::size_t(y - 1)].done,
-                     std::min(w, i + r.lag + r.reach_x + 1 + r.slack), *r.stop);
-        if (r.stop->load(std::memory_order_relaxed)) return;
-        const int x = start + i < w ? start + i : start + i - w;
+    const int w = r.scan.width;
+    const bool finished = scan_row(r.scan, y, [&](int x) {
         r.gather->gather(x, y, query.data());
         const MatchContext context{pixel_salt(r.seed, r.level, 0, x, y), r.tolerance};
         const uint8_t* pixel = r.matcher->match(query.data(), context, scratch);
         copy_pixel(out.at(x, y), pixel, out.channels);
         if (r.trace) (*r.trace)[std::size_t(y) * w + x] = r.trace_counter->fetch_add(1);
-        if (parallel && (((i + 1) & (kPublishEvery - 1)) == 0 || i + 1 == w))
-            mine.store(i + 1, std::memory_order_release);
-    }
-    r.pixels_done->fetch_add(uint64_t(w), std::memory_order_relaxed);
+    });
+    if (finished) r.pixels_done->fetch_add(uint64_t(w), std::memory_order_relaxed);
 }
 
 // Seam closing. A causal scan on a torus must start somewhere: the first rows
@@ -220,31 +174,27 @@ std::vector<Image> synthesize_pyramid(const TextureModel& model, const Synthesis
         }
         const Shape& shape = layout.shape();
         const NeighborhoodGather gather(layout, pyramid);
-        LevelRun run{&gather, lm.matcher.get(), &pyramid, l, img.width, img.height,
-                     scan_lag(shape), causal_reach_x(shape), causal_reach_y(shape), wavefront_slack(img.width),
-                     &progress, &stop, &pixels_done, trace, &trace_counter,
-                     options.seed, options.tolerance};
-
         // The wavefront needs room: tiny levels (the coarsest ones of a small
         // output) run on one thread, which gives the same bytes anyway.
-        const bool parallel = threads > 1 && img.height >= 2 * run.reach_y + 2 && !options.trace;
+        const bool parallel = threads > 1 && img.height >= 2 * causal_reach_y(shape) + 2 && !options.trace;
         const int workers = parallel ? std::min(threads, img.height) : 1;
-
-        auto worker = [&](int index) {
-            std::vector<uint8_t> query(layout.stride());
-            std::unique_ptr<MatchScratch> scratch = lm.matcher->make_scratch();
-            for (int y = index; y < img.height; y += workers) {
-                if (stop.load()) return;
-                run_row(run, y, parallel, query, scratch.get());
+        const LevelRun run{{img.width, img.height, scan_lag(shape), causal_reach_x(shape), causal_reach_y(shape),
+                            wavefront_slack(img.width), parallel, &progress, &stop},
+                           &gather, lm.matcher.get(), &pyramid, l, &pixels_done, trace, &trace_counter,
+                           options.seed, options.tolerance};
+        struct WorkerState {
+            std::vector<uint8_t> query;
+            std::unique_ptr<MatchScratch> scratch;
+        };
+        run_rows(
+            workers, img.height, stop,
+            [&] { return WorkerState{std::vector<uint8_t>(layout.stride()), lm.matcher->make_scratch()}; },
+            [&](int index, int y, WorkerState& state) {
+                run_row(run, y, state.query, state.scratch.get());
                 if (index == 0 && options.progress &&
                     !options.progress(pixels_done.load(std::memory_order_relaxed), total_pixels))
                     stop.store(true);
-            }
-        };
-        std::vector<std::thread> pool;
-        for (int t = 1; t < workers; ++t) pool.emplace_back(worker, t);
-        worker(0);
-        for (auto& t : pool) t.join();
+            });
         if (lm.closing && !stop.load()) close_seam(lm, pyramid, l, levels, model.channels, options, threads);
         if (stop.load()) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     }

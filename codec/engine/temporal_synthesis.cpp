@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "common/parallel.hpp"
+#include "engine/wavefront.hpp"
 
 namespace vqtex {
 
@@ -30,14 +31,6 @@ void upsample_parent(const Volume& parent, Volume& v) {
                           v.at(x, y, t));
 }
 
-void wait_for(const std::atomic<int>& value, int needed, const std::atomic<bool>& stop) {
-    int spins = 0;
-    while (value.load(std::memory_order_acquire) < needed) {
-        if (stop.load(std::memory_order_relaxed)) return;
-        if (++spins > 64) std::this_thread::yield();
-    }
-}
-
 uint64_t voxel_salt(uint64_t seed, int level, int pass, int x, int y) {
     // Not a function of t: see temporal_synthesis.hpp.
     return pixel_salt(seed ^ 0x74656D706F72616Cull /* "temporal" */, level, pass, x, y);
@@ -50,34 +43,24 @@ bool still_in_example(const uint8_t* entry, int channels) {
     return std::equal(entry, entry + channels, entry + channels);
 }
 
+// Shared state of one frame's wavefront (wavefront.hpp, as a still level's).
 struct FrameRun {
+    WavefrontScan scan;
     const NeighborhoodLayout3* layout;
     const Matcher* matcher;
     std::vector<Volume>* pyramid;
     bool keep_still;  // the pixel's previous frame is final (not an initial value)
-    int level, t, lag, reach_x, reach_y;
+    int level, t;
     uint64_t seed;
     uint32_t tolerance;
-    std::vector<std::atomic<int>>* progress;  // pixels finished per row of this frame
-    std::atomic<bool>* stop;
     std::vector<uint32_t>* trace;
     std::atomic<uint32_t>* trace_counter;
 };
 
-void run_row(const FrameRun& r, int y, bool parallel, std::vector<uint8_t>& query, MatchScratch* scratch) {
+void run_row(const FrameRun& r, int y, std::vector<uint8_t>& query, MatchScratch* scratch) {
     Volume& v = (*r.pyramid)[std::size_t(r.level)];
     const int w = v.width;
-    const int start = row_start(y, r.lag, w);
-    std::atomic<int>& mine = (*r.progress)[std::size_t(y)];
-    // The first rows read the last rows' initial values through the wrap:
-    // those may change only once the first rows are finished.
-    if (parallel && y >= v.height - r.reach_y && r.reach_y > 0)
-        wait_for((*r.progress)[std::size_t(r.reach_y - 1)], w, *r.stop);
-    for (int i = 0; i < w; ++i) {
-        if (parallel && y > 0)
-            wait_for((*r.progress)[std::size_t(y - 1)], std::min(w, i + r.lag + r.reach_x + 1), *r.stop);
-        if (r.stop->load(std::memory_order_relaxed)) return;
-        const int x = start + i < w ? start + i : start + i - w;
+    scan_row(r.scan, y, [&](int x) {
         r.layout->gather(*r.pyramid, x, y, r.t, query.data());
         const MatchContext context{voxel_salt(r.seed, r.level, 0, x, y), r.tolerance};
         const uint8_t* pixel = r.matcher->match(query.data(), context, scratch);
@@ -86,8 +69,7 @@ void run_row(const FrameRun& r, int y, bool parallel, std::vector<uint8_t>& quer
         if (r.trace)
             (*r.trace)[(std::size_t(r.t) * std::size_t(v.height) + std::size_t(y)) * std::size_t(w) + std::size_t(x)] =
                 r.trace_counter->fetch_add(1);
-        mine.store(i + 1, std::memory_order_release);
-    }
+    });
 }
 
 // Loop closing at one finished level (see temporal_synthesis.hpp). Each
@@ -198,25 +180,23 @@ std::vector<Volume> synthesize_volume_pyramid(const VolumeModel& model, const Vo
         const int lag = reach_x + 1;
         const bool parallel = threads > 1 && v.height >= 2 * reach_y + 2 && !options.trace;
         const int workers = parallel ? std::min(threads, v.height) : 1;
-        std::vector<std::atomic<int>> progress(std::size_t(v.height));
+        std::vector<RowProgress> progress(std::size_t(v.height));
+        struct WorkerState {
+            std::vector<uint8_t> query;
+            std::unique_ptr<MatchScratch> scratch;
+        };
 
         for (int t = 0; t < v.frames; ++t) {
-            for (auto& p : progress) p.store(0);
+            for (auto& p : progress) p.done.store(0);
             const bool keep_still = t > 0 && layout.predecessor_offset() >= 0;
-            const FrameRun run{&layout, lm.matcher.get(), &pyramid, keep_still, l, t, lag, reach_x, reach_y,
-                               options.seed, options.tolerance, &progress, &stop, trace, &trace_counter};
-            auto worker = [&](int index) {
-                std::vector<uint8_t> query(layout.stride());
-                std::unique_ptr<MatchScratch> scratch = lm.matcher->make_scratch();
-                for (int y = index; y < v.height; y += workers) {
-                    if (stop.load()) return;
-                    run_row(run, y, parallel, query, scratch.get());
-                }
-            };
-            std::vector<std::thread> pool;
-            for (int i = 1; i < workers; ++i) pool.emplace_back(worker, i);
-            worker(0);
-            for (auto& th : pool) th.join();
+            const FrameRun run{{v.width, v.height, lag, reach_x, reach_y, wavefront_slack(v.width), parallel,
+                                &progress, &stop},
+                               &layout, lm.matcher.get(), &pyramid, keep_still, l, t, options.seed,
+                               options.tolerance, trace, &trace_counter};
+            run_rows(
+                workers, v.height, stop,
+                [&] { return WorkerState{std::vector<uint8_t>(layout.stride()), lm.matcher->make_scratch()}; },
+                [&](int, int y, WorkerState& state) { run_row(run, y, state.query, state.scratch.get()); });
             if (lm.seam && !stop.load()) close_frame_seam(lm, pyramid, l, levels, model.channels, t, keep_still, options);
             done += v.frame_pixels();
             if (!stop.load() && options.progress && !options.progress(done, total)) stop.store(true);

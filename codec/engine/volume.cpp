@@ -5,19 +5,6 @@
 #include <cstring>
 
 namespace vqtex {
-namespace {
-
-constexpr int kTaps[5] = {1, 4, 6, 4, 1};
-
-int edge_index(int i, int size, EdgeMode edges) {
-    if (edges == EdgeMode::Wrap) return Image::wrap(i, size);
-    if (size == 1) return 0;
-    const int period = 2 * (size - 1);
-    i = Image::wrap(i, period);
-    return i < size ? i : period - i;
-}
-
-}  // namespace
 
 Image Volume::frame(int t) const {
     Image img(width, height, channels);
@@ -37,7 +24,7 @@ Volume downsample_volume(const Volume& src, EdgeMode edges) {
             for (int dx = 0; dx < dw; ++dx)
                 for (int k = 0; k < c; ++k) {
                     int sum = 0;
-                    for (int i = 0; i < 5; ++i) sum += kTaps[i] * src.at(edge_index(2 * dx + i - 2, w, edges), y, t)[k];
+                    for (int i = 0; i < 5; ++i) sum += kPyramidTaps[i] * src.at(edge_index(2 * dx + i - 2, w, edges), y, t)[k];
                     xs[((std::size_t(t) * std::size_t(h) + std::size_t(y)) * std::size_t(dw) + std::size_t(dx)) * ch + std::size_t(k)] = uint16_t(sum);
                 }
     std::vector<uint32_t> ys(std::size_t(n) * std::size_t(dh) * std::size_t(dw) * ch);
@@ -48,7 +35,7 @@ Volume downsample_volume(const Volume& src, EdgeMode edges) {
                     uint32_t sum = 0;
                     for (int i = 0; i < 5; ++i) {
                         const int y = edge_index(2 * dy + i - 2, h, edges);
-                        sum += uint32_t(kTaps[i]) *
+                        sum += uint32_t(kPyramidTaps[i]) *
                                xs[((std::size_t(t) * std::size_t(h) + std::size_t(y)) * std::size_t(dw) + std::size_t(dx)) * ch + std::size_t(k)];
                     }
                     ys[((std::size_t(t) * std::size_t(dh) + std::size_t(dy)) * std::size_t(dw) + std::size_t(dx)) * ch + std::size_t(k)] = sum;
@@ -61,7 +48,7 @@ Volume downsample_volume(const Volume& src, EdgeMode edges) {
                     uint32_t sum = 0;
                     for (int i = 0; i < 5; ++i) {
                         const int t = edge_index(2 * dt + i - 2, n, edges);
-                        sum += uint32_t(kTaps[i]) *
+                        sum += uint32_t(kPyramidTaps[i]) *
                                ys[((std::size_t(t) * std::size_t(dh) + std::size_t(dy)) * std::size_t(dw) + std::size_t(dx)) * ch + std::size_t(k)];
                     }
                     dst.at(dx, dy, dt)[k] = uint8_t((sum + 2048) >> 12);

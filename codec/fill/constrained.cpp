@@ -56,8 +56,6 @@ struct KnownLevel {
     std::size_t known_count() const { return std::size_t(std::count(known.begin(), known.end(), uint8_t(1))); }
 };
 
-constexpr int kFilterTaps[5] = {1, 4, 6, 4, 1};
-
 // Context pyramid of the target: which pixels of each coarser level are
 // usable as context, and with which values. A coarser pixel is usable when
 // at least `threshold`/256 of its filter weight falls on usable finer pixels;
@@ -88,7 +86,7 @@ std::vector<KnownLevel> context_known_pyramid(int width, int height, const std::
                 for (int t = 0; t < 5; ++t)
                     for (int s = 0; s < 5; ++s)
                         if (fine.is_known(reflect_index(2 * x + s - 2, fine.width), reflect_index(2 * y + t - 2, fine.height)))
-                            weight += kFilterTaps[t] * kFilterTaps[s];
+                            weight += kPyramidTaps[t] * kPyramidTaps[s];
                 k.known[std::size_t(y) * std::size_t(k.width) + std::size_t(x)] = weight >= threshold ? 1 : 0;
             }
         k.build_sums();
@@ -119,7 +117,7 @@ void apply_context_values(std::vector<Image>& pyramid, const std::vector<KnownLe
                     for (int s = 0; s < 5; ++s) {
                         const int fx = reflect_index(2 * x + s - 2, fine.width), fy = reflect_index(2 * y + t - 2, fine.height);
                         if (!fk.is_known(fx, fy)) continue;
-                        const uint32_t w = uint32_t(kFilterTaps[t] * kFilterTaps[s]);
+                        const uint32_t w = uint32_t(kPyramidTaps[t] * kPyramidTaps[s]);
                         weight += w;
                         for (int ch = 0; ch < c; ++ch) sum[ch] += w * fine.at(fx, fy)[ch];
                     }

@@ -47,7 +47,7 @@ struct FileHeader {
 struct Section {
     std::array<char, 4> tag{};
     uint8_t level = 0;
-    uint8_t kind = 0;  // 0 causal tree, 1 closing tree, else 0
+    uint8_t kind = 0;  // tree sections: a TreeKind (model_codec.hpp); other sections: 0
     SectionCoding coding = SectionCoding::Zstd;
     std::size_t raw_size = 0;
     std::size_t stored_size = 0;

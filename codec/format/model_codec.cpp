@@ -77,7 +77,7 @@ std::vector<uint8_t> smoothed_codewords(const Codebook& b, const TreeLayout& lay
     std::vector<std::vector<std::size_t>> members;
     std::vector<std::tuple<int, int, int, int>> keys;
     for (std::size_t t = 0; t < taps.size(); ++t) {
-        const TreeLayout::Tap& tap = taps[t];
+        const Tap& tap = taps[t];
         std::tuple<int, int, int, int> key;
         if (tap.depth == 0 && std::abs(tap.dt) <= 1 && std::abs(tap.dx) <= 1 && std::abs(tap.dy) <= 1)
             key = {-1 - int(t), 0, 0, 0};  // its own group
@@ -113,7 +113,7 @@ TreeLayout tree_layout_of(const NeighborhoodLayout& layout) {
     t.channels = layout.channels();
     t.key_offsets = layout.entry_key_offsets();
     t.predictor = layout.pixel_predictor();
-    for (const Tap& tap : layout.taps()) t.taps.push_back({tap.depth, 0, tap.dy, tap.dx});
+    t.taps = layout.taps();
     return t;
 }
 
@@ -353,11 +353,19 @@ LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels,
     return h;
 }
 
-const Section& require_section(const Container& c, const char tag[4], int level, int kind,
-                               const std::string& kind_name) {
+const char* section_kind_name(TreeKind kind) {
+    return kind == TreeKind::Closing ? "closing" : kind == TreeKind::FrameSeam ? "frame seam" : "";
+}
+
+const char* tree_name(TreeKind kind) {
+    return kind == TreeKind::Closing ? "closing" : kind == TreeKind::FrameSeam ? "frame-seam" : "causal";
+}
+
+const Section& require_section(const Container& c, const char tag[4], int level, TreeKind kind) {
+    const std::string kind_name = section_kind_name(kind);
     const Section* found = nullptr;
     for (const Section& s : c.sections) {
-        if (!tag_is(s, tag) || s.level != level || s.kind != kind) continue;
+        if (!tag_is(s, tag) || s.level != level || s.kind != uint8_t(kind)) continue;
         if (found) fail(VQTEX_ERROR_CORRUPT, "section " + s.name() + " appears twice");
         found = &s;
     }
@@ -367,7 +375,7 @@ const Section& require_section(const Container& c, const char tag[4], int level,
     return *found;
 }
 
-void write_tree(ContainerWriter& writer, int level, int kind, const Codebook& book, const TreeLayout& layout,
+void write_tree(ContainerWriter& writer, int level, TreeKind kind, const Codebook& book, const TreeLayout& layout,
                 const EncodeSettings& settings) {
     TreeSections t = encode_tree(book, layout, settings);
     writer.add(kTagTopology, uint8_t(level), uint8_t(kind), std::move(t.topology));
@@ -375,22 +383,7 @@ void write_tree(ContainerWriter& writer, int level, int kind, const Codebook& bo
     writer.add(kTagEntries, uint8_t(level), uint8_t(kind), std::move(t.entries));
 }
 
-std::shared_ptr<const Codebook> read_tree(const Container& c, const uint8_t* file, int level, int kind,
-                                          const std::string& kind_name, const TreeLayout& layout, int precision,
-                                          int pixel_precision, const std::string& where, std::size_t& memory_budget) {
-    const auto topology = section_bytes(file, require_section(c, kTagTopology, level, kind, kind_name));
-    const auto codewords = section_bytes(file, require_section(c, kTagCodewords, level, kind, kind_name));
-    const auto entries = section_bytes(file, require_section(c, kTagEntries, level, kind, kind_name));
-    return decode_tree(topology, codewords, entries, layout, precision, pixel_precision, where, memory_budget);
-}
-
-void check_file_complete(const Container& c, bool any_closing, std::size_t used_sections) {
-    if (any_closing != bool(c.header.flags & kFlagSeamClosing))
-        fail(VQTEX_ERROR_CORRUPT, "the header's seam-closing flag disagrees with the closing trees present");
-    if (used_sections != c.sections.size())
-        fail(VQTEX_ERROR_CORRUPT, "file has " + std::to_string(c.sections.size() - used_sections) +
-                                      " sections this decoder does not know");
-}
+namespace {
 
 std::size_t tree_budget_of(const Container& c, std::size_t memory_limit) {
     std::size_t section_total = 0;
@@ -398,17 +391,88 @@ std::size_t tree_budget_of(const Container& c, std::size_t memory_limit) {
     return memory_limit - std::min(memory_limit, section_total);
 }
 
-std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& s) {
+}  // namespace
+
+LevelReader::LevelReader(const Container& c, const uint8_t* file, std::size_t memory_limit)
+    : c_(c), file_(file), budget_start_(tree_budget_of(c, memory_limit)), budget_(budget_start_) {}
+
+std::vector<uint8_t> LevelReader::section(const char tag[4], int level) {
+    std::vector<uint8_t> bytes = section_bytes(file_, require_section(c_, tag, level));
+    ++used_;
+    return bytes;
+}
+
+LevelReader::Coding LevelReader::read_coding(ByteReader& r) {
+    Coding coding;
+    coding.precision = r.u8("precision");
+    coding.pixel_precision = r.u8("pixel precision");
+    coding.has_closing = r.u8("closing flag");
+    return coding;
+}
+
+void LevelReader::check_coding(const Coding& coding, const std::string& where_level) const {
+    if (coding.precision < 1 || coding.precision > 8 || coding.pixel_precision < 1 || coding.pixel_precision > 8 ||
+        coding.has_closing > 1)
+        fail(VQTEX_ERROR_CORRUPT, where_level + " has invalid precision or flags");
+    if (coding.has_closing && !(c_.header.flags & kFlagSeamClosing))
+        fail(VQTEX_ERROR_CORRUPT, where_level + " has a closing tree the header does not announce");
+}
+
+LevelHistogram LevelReader::histogram(int level, LevelInit init, const std::string& where_level) {
+    if (init != LevelInit::Noise && level != c_.header.levels - 1) return {};
+    return decode_histogram(section(kTagHistogram, level), c_.header.channels, where_level);
+}
+
+std::shared_ptr<const Codebook> LevelReader::tree(int level, TreeKind kind, const TreeLayout& layout,
+                                                  const Coding& coding, const std::string& where) {
+    const auto topology = section_bytes(file_, require_section(c_, kTagTopology, level, kind));
+    const auto codewords = section_bytes(file_, require_section(c_, kTagCodewords, level, kind));
+    const auto entries = section_bytes(file_, require_section(c_, kTagEntries, level, kind));
+    used_ += 3;
+    return decode_tree(topology, codewords, entries, layout, coding.precision, coding.pixel_precision, where,
+                       budget_);
+}
+
+std::size_t LevelReader::finish(bool any_closing) const {
+    if (any_closing != bool(c_.header.flags & kFlagSeamClosing))
+        fail(VQTEX_ERROR_CORRUPT, "the header's seam-closing flag disagrees with the closing trees present");
+    if (used_ != c_.sections.size())
+        fail(VQTEX_ERROR_CORRUPT, "file has " + std::to_string(c_.sections.size() - used_) +
+                                      " sections this decoder does not know");
+    return budget_start_ - budget_;
+}
+
+FileHeader model_header(int channels, uint32_t exemplar_width, uint32_t exemplar_height, int levels,
+                        bool any_closing, const EncodeSettings& s) {
     FileHeader h;
-    h.exemplar_width = model.exemplar_width;
-    h.exemplar_height = model.exemplar_height;
-    h.channels = uint8_t(model.channels);
-    h.levels = uint8_t(model.levels.size());
+    h.exemplar_width = exemplar_width;
+    h.exemplar_height = exemplar_height;
+    h.channels = uint8_t(channels);
+    h.levels = uint8_t(levels);
     h.init = s.init == LevelInit::Noise ? 1 : 0;
     h.backtrack = s.backtrack;
     h.seed = s.seed;
-    for (const auto& lv : model.levels)
-        if (lv.closing) h.flags |= kFlagSeamClosing;
+    if (any_closing) h.flags |= kFlagSeamClosing;
+    return h;
+}
+
+void write_level_coding(ByteWriter& level, const EncodeSettings& s, bool has_closing) {
+    level.u8(uint8_t(s.precision));
+    level.u8(uint8_t(s.pixel_precision));
+    level.u8(has_closing ? 1 : 0);
+}
+
+void write_histogram(ContainerWriter& writer, int level, int levels, const EncodeSettings& s,
+                     const LevelHistogram& histogram) {
+    if (s.init == LevelInit::Noise || level == levels - 1)
+        writer.add(kTagHistogram, uint8_t(level), 0, encode_histogram(histogram));
+}
+
+std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& s) {
+    bool any_closing = false;
+    for (const auto& lv : model.levels) any_closing = any_closing || lv.closing != nullptr;
+    const FileHeader h = model_header(model.channels, model.exemplar_width, model.exemplar_height,
+                                      int(model.levels.size()), any_closing, s);
     ContainerWriter writer(h, s.zstd_level);
     const int levels = int(model.levels.size());
     for (int l = 0; l < levels; ++l) {
@@ -418,21 +482,18 @@ std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings&
         lw.u8(uint8_t(lv.shape.rows));
         lw.u8(uint8_t(lv.shape.cols));
         lw.u8(uint8_t(lv.shape.levels));
-        lw.u8(uint8_t(s.precision));
-        lw.u8(uint8_t(s.pixel_precision));
-        lw.u8(lv.closing ? 1 : 0);
+        write_level_coding(lw, s, lv.closing != nullptr);
         if (lv.closing) {
             lw.u8(uint8_t(lv.closing_shape.rows));
             lw.u8(uint8_t(lv.closing_shape.cols));
         }
         writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
-        const bool needs_histogram = s.init == LevelInit::Noise || l == levels - 1;
-        if (needs_histogram) writer.add(kTagHistogram, uint8_t(l), 0, encode_histogram(lv.histogram));
-        for (int kind = 0; kind < 2; ++kind) {
-            const Codebook* book = kind == 0 ? lv.causal.get() : lv.closing.get();
+        write_histogram(writer, l, levels, s, lv.histogram);
+        for (const TreeKind kind : {TreeKind::Causal, TreeKind::Closing}) {
+            const Codebook* book = kind == TreeKind::Causal ? lv.causal.get() : lv.closing.get();
             if (!book) continue;
-            Shape shape = kind == 0 ? lv.shape : lv.closing_shape;
-            shape.causal = kind == 0;
+            Shape shape = kind == TreeKind::Causal ? lv.shape : lv.closing_shape;
+            shape.causal = kind == TreeKind::Causal;
             const NeighborhoodLayout layout(shape, model.channels, l, levels);
             write_tree(writer, l, kind, *book, tree_layout_of(layout), s);
         }
@@ -447,74 +508,52 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "file holds an animated texture (frames of " + std::to_string(c.header.exemplar_width) +
                                                "x" + std::to_string(c.header.exemplar_height) +
                                                "): decode it with vqtex_decode_volume (vqtex-decode --frames)");
+    LevelReader reader(c, data, memory_limit);
     f.header = c.header;
     f.sections = c.sections;
     const int levels = c.header.levels, ch = c.header.channels;
-    f.init = c.header.init == 1 ? LevelInit::Noise : LevelInit::Parent;
+    f.init = reader.init();
     f.model.channels = ch;
     f.model.exemplar_width = c.header.exemplar_width;
     f.model.exemplar_height = c.header.exemplar_height;
     f.model.levels.resize(std::size_t(levels));
 
-    auto require = [&](const char tag[4], int level, int kind) -> const Section& {
-        return require_section(c, tag, level, kind, kind ? "closing" : "");
-    };
-    // Every section must be one the decoder uses: anything else is damage.
-    std::size_t expected_sections = 0;
-
-    // The output shares the memory limit with the trees (model_bytes), once
-    // the sections are freed.
-    const std::size_t tree_budget_start = tree_budget_of(c, memory_limit);
-    std::size_t tree_budget = tree_budget_start;
-
     for (int l = 0; l < levels; ++l) {
-        const std::vector<uint8_t> level_bytes = section_bytes(data, require(kTagLevel, l, 0));
-        ++expected_sections;
-        ByteReader lr(level_bytes.data(), level_bytes.size(), "level " + std::to_string(l) + " parameters");
+        const std::string where_level = "level " + std::to_string(l);
+        const std::vector<uint8_t> level_bytes = reader.section(kTagLevel, l);
+        ByteReader lr(level_bytes.data(), level_bytes.size(), where_level + " parameters");
         Shape shape;
         shape.rows = lr.u8("window rows");
         shape.cols = lr.u8("window columns");
         shape.levels = lr.u8("window levels");
-        const int precision = lr.u8("precision"), pixel_precision = lr.u8("pixel precision");
-        const int has_closing = lr.u8("closing flag");
+        const LevelReader::Coding coding = LevelReader::read_coding(lr);
         Shape closing_shape = shape;
         closing_shape.causal = false;
-        if (has_closing == 1) {
+        if (coding.has_closing == 1) {
             closing_shape.rows = lr.u8("closing window rows");
             closing_shape.cols = lr.u8("closing window columns");
             if (closing_shape.rows % 2 == 0 || closing_shape.cols % 2 == 0 || closing_shape.rows > 63 ||
                 closing_shape.cols > 63 || closing_shape.rows < 3 || closing_shape.cols < 3)
-                fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has an invalid closing window");
+                fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid closing window");
         }
         lr.expect_end();
         if (shape.rows % 2 == 0 || shape.cols % 2 == 0 || shape.rows > 63 || shape.cols > 63 ||
             shape.levels < 1 || shape.levels > levels - l || shape_taps(shape).empty())
-            fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has an invalid neighbourhood " +
-                                          shape_to_string(shape));
-        if (precision < 1 || precision > 8 || pixel_precision < 1 || pixel_precision > 8 || has_closing > 1)
-            fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has invalid precision or flags");
-        if (has_closing && !(c.header.flags & kFlagSeamClosing))
-            fail(VQTEX_ERROR_CORRUPT, "level " + std::to_string(l) + " has a closing tree the header does not announce");
-        if (l == 0) f.precision = precision, f.pixel_precision = pixel_precision;
+            fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid neighbourhood " + shape_to_string(shape));
+        reader.check_coding(coding, where_level);
+        if (l == 0) f.precision = coding.precision, f.pixel_precision = coding.pixel_precision;
 
         CodecModel::Level& lv = f.model.levels[std::size_t(l)];
         lv.shape = shape;
-        const bool needs_histogram = f.init == LevelInit::Noise || l == levels - 1;
-        if (needs_histogram) {
-            const LevelHistogram h =
-                decode_histogram(section_bytes(data, require(kTagHistogram, l, 0)), ch, "level " + std::to_string(l));
-            ++expected_sections;
-            lv.histogram = h;
-        }
-        for (int kind = 0; kind < 1 + has_closing; ++kind) {
-            Shape s = kind == 0 ? shape : closing_shape;
-            s.causal = kind == 0;
+        lv.histogram = reader.histogram(l, f.init, where_level);
+        for (int k = 0; k < 1 + coding.has_closing; ++k) {
+            const TreeKind kind = TreeKind(k);
+            Shape s = kind == TreeKind::Causal ? shape : closing_shape;
+            s.causal = kind == TreeKind::Causal;
             const NeighborhoodLayout layout(s, ch, l, levels);
-            const std::string where = std::string(kind ? "closing" : "causal") + " tree of level " + std::to_string(l);
-            auto book = read_tree(c, data, l, kind, kind ? "closing" : "", tree_layout_of(layout), precision,
-                                  pixel_precision, where, tree_budget);
-            expected_sections += kSectionsPerTree;
-            if (kind == 0) {
+            auto book = reader.tree(l, kind, tree_layout_of(layout), coding,
+                                    std::string(tree_name(kind)) + " tree of " + where_level);
+            if (kind == TreeKind::Causal) {
                 lv.causal = book;
             } else {
                 lv.closing = book;
@@ -524,8 +563,7 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
     }
     bool any_closing = false;
     for (const auto& lv : f.model.levels) any_closing = any_closing || lv.closing != nullptr;
-    check_file_complete(c, any_closing, expected_sections);
-    f.model_bytes = tree_budget_start - tree_budget;
+    f.model_bytes = reader.finish(any_closing);
     return f;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/bitstream.hpp"
 #include "engine/neighborhood.hpp"
 #include "engine/noise.hpp"
 #include "engine/tree_model.hpp"
@@ -35,9 +36,6 @@ std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings&
 // (temporal shapes have dt != 0; volume_codec.cpp): sizes, the taps (for the
 // encoder's smoothing), the entry keys and the pixel predictor.
 struct TreeLayout {
-    struct Tap {
-        int depth, dt, dy, dx;
-    };
     std::size_t dimension = 0, stride = 0;
     int channels = 0;
     std::vector<Tap> taps;
@@ -68,31 +66,85 @@ inline constexpr char kTagTopology[4] = {'T', 'O', 'P', 'O'};
 inline constexpr char kTagCodewords[4] = {'C', 'O', 'D', 'E'};
 inline constexpr char kTagEntries[4] = {'E', 'N', 'T', 'R'};
 
-// The one section of `c` with this tag, level and kind; a missing or repeated
-// one is CORRUPT. `kind_name` names the kind in the message ("" for kind 0).
-const Section& require_section(const Container& c, const char tag[4], int level, int kind,
-                               const std::string& kind_name);
+// The trees a level may have, as the `kind` byte of their sections
+// (docs/FORMAT.md sections 3.1 and 7); a level's own sections (LEVL, HIST)
+// have kind 0.
+enum class TreeKind : uint8_t {
+    Causal = 0,     // the scan's tree
+    Closing = 1,    // seam closing (still) or loop closing (animated): symmetric shape
+    FrameSeam = 2,  // animated textures only: frame-seam closing
+};
+// The kind as section references name it: "" (causal), "closing", "frame seam".
+const char* section_kind_name(TreeKind kind);
+// The tree as messages name it: "causal", "closing", "frame-seam".
+const char* tree_name(TreeKind kind);
 
-// A tree of a level and kind as its three sections: encode_tree into the
-// writer, and require_section + decode_tree out of a read container.
-void write_tree(ContainerWriter& writer, int level, int kind, const Codebook& book, const TreeLayout& layout,
+// The one section of `c` with this tag, level and kind; a missing or repeated
+// one is CORRUPT.
+const Section& require_section(const Container& c, const char tag[4], int level, TreeKind kind = TreeKind::Causal);
+
+// A tree of a level and kind as its three sections, encode_tree into the
+// writer (LevelReader::tree reads it back).
+void write_tree(ContainerWriter& writer, int level, TreeKind kind, const Codebook& book, const TreeLayout& layout,
                 const EncodeSettings& settings);
-std::shared_ptr<const Codebook> read_tree(const Container& c, const uint8_t* file, int level, int kind,
-                                          const std::string& kind_name, const TreeLayout& layout, int precision,
-                                          int pixel_precision, const std::string& where, std::size_t& memory_budget);
-inline constexpr std::size_t kSectionsPerTree = 3;
 
 // A HIST payload: 256 counts per channel, as varints.
 std::vector<uint8_t> encode_histogram(const LevelHistogram& h);
 LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels, const std::string& where);
 
-// The last checks of a decoded file: the header's seam-closing flag agrees
-// with the closing trees found, and every section was one the decoder used.
-void check_file_complete(const Container& c, bool any_closing, std::size_t used_sections);
+// The header both encoders start from: the model's sizes and the settings;
+// the seam-closing flag when some level has a closing tree.
+FileHeader model_header(int channels, uint32_t exemplar_width, uint32_t exemplar_height, int levels,
+                        bool any_closing, const EncodeSettings& settings);
 
-// What the decoded trees may take of the memory limit: the trees share it
-// with the sections (counted in full, as read_container checked them).
-std::size_t tree_budget_of(const Container& c, std::size_t memory_limit);
+// The parts of a level both encoders write alike: the LEVL fields after the
+// shape (LevelReader::read_coding reads them back) and the HIST section,
+// which a file has at noise init and at its coarsest level.
+void write_level_coding(ByteWriter& level, const EncodeSettings& settings, bool has_closing);
+void write_histogram(ContainerWriter& writer, int level, int levels, const EncodeSettings& settings,
+                     const LevelHistogram& histogram);
+
+// The level reader of the still and animated decoders: it hands out the
+// sections a level needs, counts them (every section of the file must be
+// used), and charges the decoded trees to what the memory limit leaves once
+// the sections are counted in full (as read_container checked them).
+class LevelReader {
+public:
+    LevelReader(const Container& c, const uint8_t* file, std::size_t memory_limit);
+
+    // The payload of a level's own section (VOLU, LEVL, HIST: kind 0).
+    std::vector<uint8_t> section(const char tag[4], int level);
+
+    // The fields every LEVL has after its shape, read in order and checked
+    // once the shape is: precision, pixel precision, closing flag (a closing
+    // tree needs the header's seam-closing flag).
+    struct Coding {
+        int precision = 0, pixel_precision = 0, has_closing = 0;
+    };
+    static Coding read_coding(ByteReader& r);
+    void check_coding(const Coding& coding, const std::string& where_level) const;
+
+    // The level's HIST when the file has one (noise init, or the coarsest
+    // level), else an empty histogram.
+    LevelHistogram histogram(int level, LevelInit init, const std::string& where_level);
+
+    // One tree: its TOPO, CODE and ENTR sections decoded.
+    std::shared_ptr<const Codebook> tree(int level, TreeKind kind, const TreeLayout& layout, const Coding& coding,
+                                         const std::string& where);
+
+    // The last checks: the header's seam-closing flag agrees with the
+    // closing trees found, and every section was used. Returns what the
+    // trees took of the memory limit (an upper bound).
+    std::size_t finish(bool any_closing) const;
+
+    LevelInit init() const { return c_.header.init == 1 ? LevelInit::Noise : LevelInit::Parent; }
+
+private:
+    const Container& c_;
+    const uint8_t* file_;
+    std::size_t budget_start_, budget_;
+    std::size_t used_ = 0;
+};
 
 struct DecodedFile {
     FileHeader header;

@@ -24,7 +24,7 @@ TreeLayout tree_layout_of(const NeighborhoodLayout3& layout) {
     t.key_offsets = layout.entry_key_offsets();
     t.predictor = layout.pixel_predictor();
     t.keys_at_pixel_precision = true;
-    for (const Tap3& tap : layout.taps()) t.taps.push_back({tap.depth, tap.dt, tap.dy, tap.dx});
+    t.taps = layout.taps();
     return t;
 }
 
@@ -44,18 +44,12 @@ Shape3 seam_shape_of(const Shape3& causal, const Shape3& closing) {
 }  // namespace
 
 std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const EncodeSettings& s) {
-    FileHeader h;
+    bool any_closing = false;
+    for (const auto& lv : model.levels) any_closing = any_closing || lv.closing != nullptr;
+    FileHeader h = model_header(model.channels, model.exemplar_width, model.exemplar_height, int(model.levels.size()),
+                                any_closing, s);
     h.version = kVolumeFormatVersion;
-    h.flags = kFlagVolume;
-    h.exemplar_width = model.exemplar_width;
-    h.exemplar_height = model.exemplar_height;
-    h.channels = uint8_t(model.channels);
-    h.levels = uint8_t(model.levels.size());
-    h.init = s.init == LevelInit::Noise ? 1 : 0;
-    h.backtrack = s.backtrack;
-    h.seed = s.seed;
-    for (const auto& lv : model.levels)
-        if (lv.closing) h.flags |= kFlagSeamClosing;
+    h.flags |= kFlagVolume;
     ContainerWriter writer(h, s.zstd_level);
     ByteWriter vw;
     vw.varint(model.exemplar_frames);
@@ -70,26 +64,27 @@ std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const En
         lw.u8(uint8_t(lv.shape.cols));
         lw.u8(uint8_t(lv.shape.frames));
         lw.u8(uint8_t(lv.shape.levels));
-        lw.u8(uint8_t(s.precision));
-        lw.u8(uint8_t(s.pixel_precision));
-        lw.u8(lv.closing ? 1 : 0);
+        write_level_coding(lw, s, lv.closing != nullptr);
         if (lv.closing) {
             lw.u8(uint8_t(lv.closing_shape.rows));
             lw.u8(uint8_t(lv.closing_shape.cols));
             lw.u8(uint8_t(lv.closing_shape.frames));
         }
         writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
-        if (s.init == LevelInit::Noise || l == levels - 1)
-            writer.add(kTagHistogram, uint8_t(l), 0, encode_histogram(lv.histogram));
+        write_histogram(writer, l, levels, s, lv.histogram);
         if (bool(lv.closing) != bool(lv.seam) ||
             (lv.seam && seam_shape_of(lv.shape, lv.closing_shape) != lv.seam_shape))
             fail(VQTEX_ERROR_INVALID_ARGUMENT,
                  "level " + std::to_string(l) + ": loop-closing and frame-seam trees go together");
-        for (int kind = 0; kind < 3; ++kind) {
-            const Codebook* book = kind == 0 ? lv.causal.get() : kind == 1 ? lv.closing.get() : lv.seam.get();
+        for (const TreeKind kind : {TreeKind::Causal, TreeKind::Closing, TreeKind::FrameSeam}) {
+            const Codebook* book = kind == TreeKind::Causal    ? lv.causal.get()
+                                   : kind == TreeKind::Closing ? lv.closing.get()
+                                                               : lv.seam.get();
             if (!book) continue;
-            Shape3 shape = kind == 0 ? lv.shape : kind == 1 ? lv.closing_shape : lv.seam_shape;
-            shape.causal = kind != 1;
+            Shape3 shape = kind == TreeKind::Causal    ? lv.shape
+                           : kind == TreeKind::Closing ? lv.closing_shape
+                                                       : lv.seam_shape;
+            shape.causal = kind != TreeKind::Closing;
             const NeighborhoodLayout3 layout(shape, model.channels, l, levels);
             write_tree(writer, l, kind, *book, tree_layout_of(layout), s);
         }
@@ -110,26 +105,21 @@ bool is_volume_file(const uint8_t* data, std::size_t size) {
 DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     DecodedVolumeFile f;
     const Container c = read_container(data, size, memory_limit);
-    const std::size_t tree_budget_start = tree_budget_of(c, memory_limit);
-    std::size_t tree_budget = tree_budget_start;
     if (!(c.header.flags & kFlagVolume))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "file holds a still texture, not an animation: decode it with vqtex_decode (vqtex-decode without --frames)");
+    LevelReader reader(c, data, memory_limit);
     f.header = c.header;
     f.sections = c.sections;
     const int levels = c.header.levels, ch = c.header.channels;
-    f.init = c.header.init == 1 ? LevelInit::Noise : LevelInit::Parent;
+    f.init = reader.init();
     f.model.channels = ch;
     f.model.exemplar_width = c.header.exemplar_width;
     f.model.exemplar_height = c.header.exemplar_height;
     f.model.levels.resize(std::size_t(levels));
 
-    auto require = [&](const char tag[4], int level, int kind) -> const Section& {
-        return require_section(c, tag, level, kind, kind == 1 ? "closing" : kind == 2 ? "frame seam" : "");
-    };
-    std::size_t expected_sections = 1;
     {
-        const std::vector<uint8_t> vb = section_bytes(data, require(kTagVolume, 0, 0));
+        const std::vector<uint8_t> vb = reader.section(kTagVolume, 0);
         ByteReader vr(vb.data(), vb.size(), "animation parameters");
         f.model.exemplar_frames = uint32_t(vr.varint_in("exemplar frames", 1, kMaxExemplarFrames));
         const uint8_t factor = vr.u8("temporal pyramid factor");
@@ -139,19 +129,17 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     }
     for (int l = 0; l < levels; ++l) {
         const std::string where_level = "level " + std::to_string(l);
-        const std::vector<uint8_t> lb = section_bytes(data, require(kTagLevel, l, 0));
-        ++expected_sections;
+        const std::vector<uint8_t> lb = reader.section(kTagLevel, l);
         ByteReader lr(lb.data(), lb.size(), where_level + " parameters");
         Shape3 shape;
         shape.rows = lr.u8("window rows");
         shape.cols = lr.u8("window columns");
         shape.frames = lr.u8("window frames");
         shape.levels = lr.u8("window levels");
-        const int precision = lr.u8("precision"), pixel_precision = lr.u8("pixel precision");
-        const int has_closing = lr.u8("closing flag");
+        const LevelReader::Coding coding = LevelReader::read_coding(lr);
         Shape3 closing_shape = shape;
         closing_shape.causal = false;
-        if (has_closing == 1) {
+        if (coding.has_closing == 1) {
             closing_shape.rows = lr.u8("closing window rows");
             closing_shape.cols = lr.u8("closing window columns");
             closing_shape.frames = lr.u8("closing window frames");
@@ -163,37 +151,31 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
         if (!valid_extent(shape.rows, 1) || !valid_extent(shape.cols, 1) || !valid_extent(shape.frames, 1) ||
             shape.levels < 1 || shape.levels > levels - l || shape3_taps(shape).empty())
             fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid neighbourhood " + shape3_to_string(shape));
-        if (precision < 1 || precision > 8 || pixel_precision < 1 || pixel_precision > 8 || has_closing > 1)
-            fail(VQTEX_ERROR_CORRUPT, where_level + " has invalid precision or flags");
-        if (has_closing && !(c.header.flags & kFlagSeamClosing))
-            fail(VQTEX_ERROR_CORRUPT, where_level + " has a closing tree the header does not announce");
-        if (l == 0) f.precision = precision, f.pixel_precision = pixel_precision;
+        reader.check_coding(coding, where_level);
+        if (l == 0) f.precision = coding.precision, f.pixel_precision = coding.pixel_precision;
 
         VolumeCodecModel::Level& lv = f.model.levels[std::size_t(l)];
         lv.shape = shape;
-        if (f.init == LevelInit::Noise || l == levels - 1) {
-            const LevelHistogram h = decode_histogram(section_bytes(data, require(kTagHistogram, l, 0)), ch, where_level);
-            ++expected_sections;
-            lv.histogram = h;
-        }
-        for (int kind = 0; kind < 1 + 2 * has_closing; ++kind) {
-            Shape3 s = kind == 0 ? shape : kind == 1 ? closing_shape : seam_shape_of(shape, closing_shape);
-            s.causal = kind != 1;
+        lv.histogram = reader.histogram(l, f.init, where_level);
+        for (int k = 0; k < 1 + 2 * coding.has_closing; ++k) {
+            const TreeKind kind = TreeKind(k);
+            Shape3 s = kind == TreeKind::Causal    ? shape
+                       : kind == TreeKind::Closing ? closing_shape
+                                                   : seam_shape_of(shape, closing_shape);
+            s.causal = kind != TreeKind::Closing;
             const NeighborhoodLayout3 layout(s, ch, l, levels);
             const std::string where =
-                std::string(kind == 0 ? "causal" : kind == 1 ? "closing" : "frame-seam") + " tree of " + where_level;
-            auto book = read_tree(c, data, l, kind, kind == 1 ? "closing" : kind == 2 ? "frame seam" : "",
-                                  tree_layout_of(layout), precision, pixel_precision, where, tree_budget);
-            expected_sections += kSectionsPerTree;
+                std::string(tree_name(kind)) + " tree of " + where_level;
+            auto book = reader.tree(l, kind, tree_layout_of(layout), coding, where);
             // The synthesis reads every entry's predecessor (its key) when
             // the shape has one (temporal_synthesis.cpp).
             if (book->key_length() != layout.entry_key_offsets().size())
                 fail(VQTEX_ERROR_CORRUPT, where + ": entries " +
                                               (book->key_length() ? "carry keys the shape does not define"
                                                                   : "lack their value in the previous frame"));
-            if (kind == 0) {
+            if (kind == TreeKind::Causal) {
                 lv.causal = book;
-            } else if (kind == 1) {
+            } else if (kind == TreeKind::Closing) {
                 lv.closing = book;
                 lv.closing_shape = s;
             } else {
@@ -204,8 +186,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     }
     bool any_closing = false;
     for (const auto& lv : f.model.levels) any_closing = any_closing || lv.closing != nullptr;
-    check_file_complete(c, any_closing, expected_sections);
-    f.model_bytes = tree_budget_start - tree_budget;
+    f.model_bytes = reader.finish(any_closing);
     return f;
 }
 
