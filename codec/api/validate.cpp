@@ -1,6 +1,8 @@
 // validate.cpp - the checks of validate.hpp, one function per params struct.
 #include "api/validate.hpp"
 
+#include <cstring>
+#include <initializer_list>
 #include <string>
 
 #include "api/api_support.hpp"
@@ -11,12 +13,25 @@
 namespace vqtex {
 namespace {
 
-void check_init(vqtex_init init) {
-    if (init != VQTEX_INIT_PARENT && init != VQTEX_INIT_NOISE) fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown init mode");
+// Whether an enum field holds one of `values`. A C caller may store any int
+// in it, and C++ may not load an enum outside its range (UBSan reports it),
+// so the field is read as the int it is.
+template <typename Enum>
+bool is_one_of(const Enum& field, std::initializer_list<Enum> values) {
+    int raw;
+    static_assert(sizeof raw == sizeof field);
+    std::memcpy(&raw, &field, sizeof raw);
+    for (Enum v : values)
+        if (raw == int(v)) return true;
+    return false;
 }
 
-void check_search(vqtex_search search) {
-    if (search != VQTEX_SEARCH_TSVQ && search != VQTEX_SEARCH_EXHAUSTIVE)
+void check_init(const vqtex_init& init) {
+    if (!is_one_of(init, {VQTEX_INIT_PARENT, VQTEX_INIT_NOISE})) fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown init mode");
+}
+
+void check_search(const vqtex_search& search) {
+    if (!is_one_of(search, {VQTEX_SEARCH_TSVQ, VQTEX_SEARCH_EXHAUSTIVE}))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown search kind");
 }
 
@@ -54,14 +69,14 @@ void validate(const vqtex_model_params& p) {
              "closing window must be odd, 3 to 63 (got " + std::to_string(p.closing_window) + ")");
     if (p.entries_per_leaf > TsvqMatcher::kMaxEntries)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "entries per leaf must be 1 to " + std::to_string(TsvqMatcher::kMaxEntries));
-    if (p.leaf != VQTEX_LEAF_MEDOID && p.leaf != VQTEX_LEAF_CENTROID)
+    if (!is_one_of(p.leaf, {VQTEX_LEAF_MEDOID, VQTEX_LEAF_CENTROID}))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown leaf representative");
 }
 
 void validate(const vqtex_synth_params* p) {
     if (!p || p->struct_size != sizeof(vqtex_synth_params))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_synth_params not initialised with vqtex_synth_params_init()");
-    if (p->engine != VQTEX_ENGINE_COHERENT && p->engine != VQTEX_ENGINE_PAPER)
+    if (!is_one_of(p->engine, {VQTEX_ENGINE_COHERENT, VQTEX_ENGINE_PAPER}))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown synthesis engine");
     if (p->coherence < 1 || p->coherence > 16)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "coherence must be 1 to 16 candidates per neighbour");
@@ -101,7 +116,7 @@ void validate(const vqtex_fill_params* p) {
     if (!p || p->struct_size != sizeof(vqtex_fill_params))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_fill_params not initialised with vqtex_fill_params_init()");
     check_search(p->search);
-    if (p->method != VQTEX_FILL_TWO_PASS && p->method != VQTEX_FILL_CAUSAL)
+    if (!is_one_of(p->method, {VQTEX_FILL_TWO_PASS, VQTEX_FILL_CAUSAL}))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown fill method");
     if (p->levels > VQTEX_MAX_LEVELS)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 0 (automatic) to " + std::to_string(VQTEX_MAX_LEVELS) +
