@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -605,5 +606,37 @@ TEST(TemporalCodec, StillSequenceDecodesStill) {
                 EXPECT_LT(median, input_median) << "noise " << noise << " seed " << seed;
             }
         }
+    }
+}
+
+TEST(TemporalCodec, DefaultsEncodeSmallAndShortSequences) {
+    // Every sequence shape the encoder accepts encodes with the default
+    // settings and decodes: the default plan shrinks its windows in time and
+    // space, then its depth, to fit (64x64x16 once failed at its coarsest
+    // level, 16x16x4, against a 5-frame window).
+    for (const auto& size : std::vector<std::array<int, 3>>{{64, 64, 16}, {64, 64, 4}, {32, 32, 8}, {16, 16, 3},
+                                                            {8, 8, 2}, {24, 24, 1}, {9, 9, 7}, {40, 12, 6}}) {
+        const int w = size[0], h = size[1], f = size[2];
+        std::vector<uint8_t> pixels(std::size_t(w) * h * f * 3);
+        Rng rng(uint64_t(w * 1000 + h * 10 + f));
+        for (auto& v : pixels) v = uint8_t(rng.below(256));
+        vqtex_volume_encode_params p;
+        vqtex_volume_encode_params_init(&p);
+        p.codec.threads = 2;
+        const vqtex_volume in{uint32_t(w), uint32_t(h), uint32_t(f), 3, pixels.data()};
+        uint8_t* data = nullptr;
+        std::size_t bytes = 0;
+        vqtex_error err{};
+        ASSERT_EQ(vqtex_encode_volume(&p, &in, &data, &bytes, nullptr, &err), VQTEX_OK)
+            << w << "x" << h << "x" << f << ": " << err.detail;
+        vqtex_decode_params d;
+        vqtex_decode_params_init(&d);
+        d.width = 20;
+        d.height = 18;
+        vqtex_volume out{};
+        EXPECT_EQ(vqtex_decode_volume(&d, 3, data, bytes, &out, &err), VQTEX_OK) << err.detail;
+        EXPECT_EQ(out.frames, 3u);
+        vqtex_volume_free(&out);
+        vqtex_free(data);
     }
 }

@@ -87,16 +87,62 @@ BuiltMatcher build_volume_matcher(ExampleSet& set, const NeighborhoodLayout3& la
     return build_matcher(set, params, search, backtrack, threads, level, kind != 0, recipe);
 }
 
+// Whether some position of level `level` has the whole window of `shape`
+// inside the pyramid (a window that does not fit has no training example).
+bool window_fits(const Shape3& shape, int channels, int level, int levels, const std::vector<Volume>& pyramid) {
+    const NeighborhoodLayout3 layout(shape, channels, level, levels);
+    const Volume& v = pyramid[std::size_t(level)];
+    for (int t = 0; t < v.frames; ++t)
+        for (int y = 0; y < v.height; ++y)
+            for (int x = 0; x < v.width; ++x)
+                if (layout.fits_inside(pyramid, x, y, t)) return true;
+    return false;
+}
+
+int odd_at_most(int limit, int n) { return std::max(1, std::min(limit, n % 2 ? n : n - 1)); }
+
+// The default plan made to fit a small or short example, so that the
+// defaults encode every sequence the encoder accepts: first each level's
+// window no larger than its volume (fewer frames in time, then a smaller
+// square), then fewer levels. A sequence of 64x64x16 frames read its
+// coarsest level (16x16x4) with a 5-frame window and could not be encoded.
+void fit_default_plan(const Volume& example, const vqtex_model_params& params, VolumePlan& plan,
+                      std::vector<Volume>& pyramid) {
+    for (;;) {
+        bool fits = true;
+        for (int l = 0; l < plan.levels && fits; ++l) {
+            Shape3& s = plan.shapes[std::size_t(l)];
+            const Volume& v = pyramid[std::size_t(l)];
+            if (window_fits(s, example.channels, l, plan.levels, pyramid)) continue;
+            Shape3 smaller = s;
+            smaller.frames = odd_at_most(s.frames, v.frames);
+            smaller.rows = smaller.cols = odd_at_most(s.rows, std::min(v.width, v.height));
+            if (!shape3_taps(smaller).empty() && window_fits(smaller, example.channels, l, plan.levels, pyramid))
+                s = smaller;
+            else
+                fits = false;
+        }
+        if (fits || plan.levels == 1) return;
+        vqtex_model_params fewer = params;
+        fewer.levels = uint32_t(plan.levels - 1);
+        plan = plan_volume_model(fewer, {}, example.width, example.height, example.frames);
+        pyramid = build_volume_pyramid(example, plan.levels, EdgeMode::Mirror);
+    }
+}
+
 }  // namespace
 
 VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& params,
                               const std::vector<Shape3>& shapes, vqtex_search search, uint32_t backtrack,
                               int threads, const ProgressFn& progress) {
     if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence is empty");
-    const VolumePlan plan = plan_volume_model(params, shapes, example.width, example.height, example.frames);
+    VolumePlan plan = plan_volume_model(params, shapes, example.width, example.height, example.frames);
     const bool tileable = params.example_tileable != 0;
-    const std::vector<Volume> pyramid =
+    std::vector<Volume> pyramid =
         build_volume_pyramid(example, plan.levels, tileable ? EdgeMode::Wrap : EdgeMode::Mirror);
+    const bool chosen = params.levels != 0 ||
+                        std::any_of(shapes.begin(), shapes.end(), [](const Shape3& s) { return s.rows || s.cols || s.frames; });
+    if (!tileable && !chosen) fit_default_plan(example, params, plan, pyramid);
 
     VolumeAnalysis result;
     result.model.channels = example.channels;
@@ -134,14 +180,6 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
             closing_shape.causal = false;
             const NeighborhoodLayout3 closing_layout(closing_shape, example.channels, l, plan.levels);
             ExampleSet closing_set = collect_volume_examples(closing_layout, pyramid, tileable);
-            if (closing_set.count() > 0) {
-                BuiltMatcher closing =
-                    build_volume_matcher(closing_set, closing_layout, params, search, backtrack, threads, l, 1);
-                lm.closing_shape = closing_layout.shape();
-                lm.closing = closing.matcher;
-                result.closing_codebooks[std::size_t(l)] = closing.codebook;
-                result.model_bytes += closing.bytes;
-            }
             // Frame-seam closing: the causal shape with the whole current
             // frame's window (temporal_synthesis.hpp).
             Shape3 seam_shape = layout.shape();
@@ -150,7 +188,16 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
             seam_shape.whole_frame = true;
             const NeighborhoodLayout3 seam_layout(seam_shape, example.channels, l, plan.levels);
             ExampleSet seam_set = collect_volume_examples(seam_layout, pyramid, tileable);
-            if (seam_set.count() > 0) {
+            // The decoder runs both sweeps or neither (FORMAT.md): a sequence
+            // too short for one of the two windows gets neither.
+            const bool both = closing_set.count() > 0 && seam_set.count() > 0;
+            if (both) {
+                BuiltMatcher closing =
+                    build_volume_matcher(closing_set, closing_layout, params, search, backtrack, threads, l, 1);
+                lm.closing_shape = closing_layout.shape();
+                lm.closing = closing.matcher;
+                result.closing_codebooks[std::size_t(l)] = closing.codebook;
+                result.model_bytes += closing.bytes;
                 BuiltMatcher seam = build_volume_matcher(seam_set, seam_layout, params, search, backtrack, threads, l, 2);
                 lm.seam_shape = seam_layout.shape();
                 lm.seam = seam.matcher;
