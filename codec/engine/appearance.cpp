@@ -41,12 +41,10 @@ int fold(int i, int size, bool wraps) { return wraps ? Image::wrap(i, size) : re
 // channel, into out (kWindowTaps * channels values).
 void gather_window(const Image& img, int x, int y, int step, bool wraps, int16_t* out) {
     int xs[kWindow], ys[kWindow];
-    const int reach = kWindow / 2 * step;
-    const bool inside = x >= reach && y >= reach && x + reach < img.width && y + reach < img.height;
     for (int i = 0; i < kWindow; ++i) {
         const int dx = x + (i - kWindow / 2) * step, dy = y + (i - kWindow / 2) * step;
-        xs[i] = inside ? dx : fold(dx, img.width, wraps);
-        ys[i] = inside ? dy : fold(dy, img.height, wraps);
+        xs[i] = dx >= 0 && dx < img.width ? dx : fold(dx, img.width, wraps);
+        ys[i] = dy >= 0 && dy < img.height ? dy : fold(dy, img.height, wraps);
     }
     for (int r = 0; r < kWindow; ++r)
         for (int c = 0; c < kWindow; ++c) {

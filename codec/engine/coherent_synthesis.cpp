@@ -66,22 +66,20 @@ struct LevelView {
             y + kRadius * spacing < h)
             return kernels.window_ssd(query, feature(x - kRadius * spacing, y - kRadius * spacing), tap,
                                       tap * w, kSide, bound);
-        // Windows across the example's edge read it folded: tap by tap, the
-        // same sums in the same order as the kernel's.
-        uint32_t d = 0;
-        int t = 0;
-        for (int dy = -kRadius; dy <= kRadius; ++dy) {
-            for (int dx = -kRadius; dx <= kRadius; ++dx, ++t) {
-                const int16_t* f = feature(space.fold_x(x + dx * spacing), space.fold_y(y + dy * spacing));
-                const int16_t* q = query + t * kAppearanceDims;
-                for (int i = 0; i < kAppearanceDims; ++i) {
-                    const int32_t diff = int32_t(f[i]) - q[i];
-                    d += uint32_t(diff * diff);
-                }
-            }
-            if (d > bound) return d;
+        // Windows across the example's edge read it folded: their taps are
+        // gathered side by side first, for the same kernel and the same sums.
+        alignas(16) int16_t window[kTaps * kAppearanceDims];
+        int xs[kSide], ys[kSide];
+        for (int i = 0; i < kSide; ++i) {
+            const int sx = x + (i - kRadius) * spacing, sy = y + (i - kRadius) * spacing;
+            xs[i] = sx >= 0 && sx < w ? sx : space.fold_x(sx);
+            ys[i] = sy >= 0 && sy < h ? sy : space.fold_y(sy);
         }
-        return d;
+        for (int r = 0, t = 0; r < kSide; ++r)
+            for (int c = 0; c < kSide; ++c, ++t)
+                std::memcpy(window + t * kAppearanceDims, feature(xs[c], ys[r]), sizeof(int16_t) * kAppearanceDims);
+        return kernels.window_ssd(query, window, kAppearanceDims, std::ptrdiff_t(kSide) * kAppearanceDims, kSide,
+                                  bound);
     }
 };
 
