@@ -15,7 +15,7 @@ namespace vqtex {
 
 struct VolumePlan {
     int levels = 0;
-    std::vector<Shape3> shapes;  // [0] = finest
+    std::vector<Shape> shapes;  // [0] = finest
 };
 
 // Pyramid depth for an example volume when none is given: the paper's 3,
@@ -25,7 +25,7 @@ int automatic_volume_levels(int width, int height, int frames);
 
 // Resolves depth and shapes (an all-zero shape means the default) and checks
 // them; throws a clear error when they are out of range.
-VolumePlan plan_volume_model(const vqtex_model_params& params, const std::vector<Shape3>& shapes, int width,
+VolumePlan plan_volume_model(const vqtex_model_params& params, const std::vector<Shape>& shapes, int width,
                              int height, int frames);
 
 struct VolumeAnalysis {
@@ -40,7 +40,7 @@ struct VolumeAnalysis {
 // params.seam_closing builds the loop-closing and frame-seam matchers; params.shapes is
 // ignored (3D shapes come in `shapes`, [0] = finest, may be empty).
 VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& params,
-                              const std::vector<Shape3>& shapes, vqtex_search search, uint32_t backtrack,
+                              const std::vector<Shape>& shapes, vqtex_search search, uint32_t backtrack,
                               int threads, const ProgressFn& progress);
 
 }  // namespace vqtex
