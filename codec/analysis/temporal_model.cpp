@@ -13,42 +13,6 @@
 
 namespace vqtex {
 
-int automatic_volume_levels(int width, int height, int frames) {
-    int levels = 3;
-    while (levels > 1 &&
-           ((std::min(width, height) >> (levels - 1)) < 8 || (frames >> (levels - 1)) < 2))
-        --levels;
-    return levels;
-}
-
-VolumePlan plan_volume_model(const vqtex_model_params& params, const std::vector<Shape>& shapes, int width,
-                             int height, int frames) {
-    VolumePlan plan;
-    plan.levels = params.levels ? int(params.levels) : automatic_volume_levels(width, height, frames);
-    if (plan.levels < 1 || plan.levels > kMaxLevels)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 1 to " + std::to_string(kMaxLevels) + " (got " +
-                                               std::to_string(plan.levels) + ")");
-    plan.shapes = default_volume_shapes(plan.levels);
-    for (int l = 0; l < plan.levels && std::size_t(l) < shapes.size(); ++l) {
-        const Shape& s = shapes[std::size_t(l)];
-        if (s.rows == 0 && s.cols == 0 && s.frames == 0 && s.levels == 0) continue;
-        if (s.rows % 2 == 0 || s.cols % 2 == 0 || s.frames % 2 == 0 || s.levels < 1 || s.rows > 31 || s.cols > 31 ||
-            s.frames > 31)
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "neighbourhood at level " + std::to_string(l) +
-                                                   " must be odd RxCxD up to 31x31x31 with k >= 1 (got " +
-                                                   shape_to_string(s) + ")");
-        plan.shapes[std::size_t(l)] = Shape{.rows = s.rows, .cols = s.cols, .levels = s.levels, .frames = s.frames};
-    }
-    for (int l = 0; l < plan.levels; ++l) {
-        Shape& s = plan.shapes[std::size_t(l)];
-        s.levels = std::min(s.levels, plan.levels - l);
-        if (shape_taps(s).empty())
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "neighbourhood " + shape_to_string(s) + " at level " +
-                                                   std::to_string(l) + " reads no pixel: use D >= 3, 1x3 or k >= 2");
-    }
-    return plan;
-}
-
 namespace {
 
 constexpr std::size_t kMinTraining = 2048;
@@ -106,7 +70,7 @@ int odd_at_most(int limit, int n) { return std::max(1, std::min(limit, n % 2 ? n
 // window no larger than its volume (fewer frames in time, then a smaller
 // square), then fewer levels. A sequence of 64x64x16 frames read its
 // coarsest level (16x16x4) with a 5-frame window and could not be encoded.
-void fit_default_plan(const Volume& example, const vqtex_model_params& params, VolumePlan& plan,
+void fit_default_plan(const Volume& example, const vqtex_model_params& params, ModelPlan& plan,
                       std::vector<Volume>& pyramid) {
     for (;;) {
         bool fits = true;
@@ -125,7 +89,7 @@ void fit_default_plan(const Volume& example, const vqtex_model_params& params, V
         if (fits || plan.levels == 1) return;
         vqtex_model_params fewer = params;
         fewer.levels = uint32_t(plan.levels - 1);
-        plan = plan_volume_model(fewer, {}, example.width, example.height, example.frames);
+        plan = plan_model(fewer, {}, example.width, example.height, example.frames);
         pyramid = build_volume_pyramid(example, plan.levels, EdgeMode::Mirror);
     }
 }
@@ -136,7 +100,7 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
                               const std::vector<Shape>& shapes, vqtex_search search, uint32_t backtrack,
                               int threads, const ProgressFn& progress) {
     if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence is empty");
-    VolumePlan plan = plan_volume_model(params, shapes, example.width, example.height, example.frames);
+    ModelPlan plan = plan_model(params, shapes, example.width, example.height, example.frames);
     const bool tileable = params.example_tileable != 0;
     std::vector<Volume> pyramid =
         build_volume_pyramid(example, plan.levels, tileable ? EdgeMode::Wrap : EdgeMode::Mirror);
