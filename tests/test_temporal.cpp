@@ -507,6 +507,7 @@ TEST(TemporalCodec, DamagedFilesAreRejectedWithSpecificErrors) {
     vqtex_decode_params_init(&d);
     d.width = d.height = 8;
     d.threads = 1;
+    std::string detail;  // the last failure's message
     auto decode = [&](const std::vector<uint8_t>& bytes) {
         vqtex_volume v{};
         vqtex_error err{};
@@ -516,6 +517,7 @@ TEST(TemporalCodec, DamagedFilesAreRejectedWithSpecificErrors) {
         } else {
             EXPECT_EQ(v.pixels, nullptr);
             EXPECT_NE(err.detail[0], '\0');
+            detail = err.detail;
         }
         return st;
     };
@@ -550,6 +552,14 @@ TEST(TemporalCodec, DamagedFilesAreRejectedWithSpecificErrors) {
     EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 4, 2, 4, 7, 1, 5, 5, 5})), VQTEX_ERROR_CORRUPT);  // even D
     EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 5, 9, 4, 7, 1, 5, 5, 5})), VQTEX_ERROR_CORRUPT);  // k too deep
     EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 5, 2, 4, 7, 1, 5, 5, 1})), VQTEX_ERROR_CORRUPT);  // closing D < 3
+    // Animated windows stop at 31 on every axis, though a still file's may
+    // reach 63 (the LEVL reader is shared: model_codec.cpp).
+    EXPECT_EQ(decode(rewrite("LEVL", 0, {33, 5, 5, 2, 4, 7, 1, 5, 5, 5})), VQTEX_ERROR_CORRUPT);
+    EXPECT_NE(detail.find("invalid neighbourhood {33x5x5,2}"), std::string::npos) << detail;
+    EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 5, 2, 4, 7, 1, 33, 5, 5})), VQTEX_ERROR_CORRUPT);
+    EXPECT_NE(detail.find("invalid closing window"), std::string::npos) << detail;
+    EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 5, 2, 4, 7, 1, 5, 5})), VQTEX_ERROR_CORRUPT);  // no closing D
+    EXPECT_NE(detail.find("closing window frames"), std::string::npos) << detail;
     // An animation labelled version 1 (as development builds wrote them),
     // with a good checksum: named, not decoded.
     {
