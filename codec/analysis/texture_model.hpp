@@ -1,6 +1,8 @@
 // texture_model.hpp - analysis: an example image becomes a TextureModel
 // (pyramid, neighbourhood shapes, noise histograms, and per level either the
 // exhaustive candidate set or a trained TSVQ codebook; paper sections 2-4).
+// The plan and the matcher builder serve animated examples as well
+// (temporal_model.hpp), which keeps only what differs.
 #pragma once
 
 #include <memory>
