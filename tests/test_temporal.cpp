@@ -175,27 +175,27 @@ TEST(VolumePyramid, FiltersAndDecimatesInSpaceAndTime) {
 TEST(Neighborhood3d, TapsOfThePaperShapes) {
     // {5x5x5,2}: two previous 5x5 frames, 12 causal pixels, a 3x3x3 window
     // one level down.
-    EXPECT_EQ(shape3_taps(Shape3{5, 5, 5, 2}).size(), std::size_t(50 + 12 + 27));
+    EXPECT_EQ(shape_taps(Shape{.rows = 5, .cols = 5, .levels = 2, .frames = 5}).size(), std::size_t(50 + 12 + 27));
     // {3x3x3,2}: one previous 3x3 frame, 4 causal pixels, the parent.
-    EXPECT_EQ(shape3_taps(Shape3{3, 3, 3, 2}).size(), std::size_t(9 + 4 + 1));
+    EXPECT_EQ(shape_taps(Shape{.rows = 3, .cols = 3, .levels = 2, .frames = 3}).size(), std::size_t(9 + 4 + 1));
     // A symmetric 5x5x3 window: everything but the centre.
-    EXPECT_EQ(shape3_taps(Shape3{5, 5, 3, 1, false}).size(), std::size_t(74));
-    for (const Tap& t : shape3_taps(Shape3{5, 5, 5, 2})) {
+    EXPECT_EQ(shape_taps(Shape{.rows = 5, .cols = 5, .levels = 1, .causal = false, .frames = 3}).size(), std::size_t(74));
+    for (const Tap& t : shape_taps(Shape{.rows = 5, .cols = 5, .levels = 2, .frames = 5})) {
         if (t.depth != 0) continue;
         EXPECT_LE(t.dt, 0);
         if (t.dt == 0) {
             EXPECT_TRUE(t.dy < 0 || (t.dy == 0 && t.dx < 0));
         }
     }
-    EXPECT_EQ(shape3_to_string(Shape3{5, 5, 5, 2}), "{5x5x5,2}");
-    const NeighborhoodLayout3 layout(Shape3{5, 5, 5, 2}, 3, 0, 3);
+    EXPECT_EQ(shape_to_string(Shape{.rows = 5, .cols = 5, .levels = 2, .frames = 5}), "{5x5x5,2}");
+    const NeighborhoodLayout3 layout(Shape{.rows = 5, .cols = 5, .levels = 2, .frames = 5}, 3, 0, 3);
     // The entry key is the pixel one frame earlier; without a previous
     // frame (D = 1) there is none.
     EXPECT_EQ(layout.entry_key_offsets().size(), std::size_t(3));
     EXPECT_EQ(layout.taps()[std::size_t(layout.predecessor_offset() / 3)].dt, -1);
     EXPECT_EQ(layout.predecessor_offset(), int(2 * 25 - 13) * 3);  // centre of the second 5x5 frame
     EXPECT_TRUE(layout.pixel_predictor().valid());
-    const NeighborhoodLayout3 flat(Shape3{5, 5, 1, 2}, 3, 0, 3);
+    const NeighborhoodLayout3 flat(Shape{.rows = 5, .cols = 5, .levels = 2, .frames = 1}, 3, 0, 3);
     EXPECT_EQ(flat.predecessor_offset(), -1);
     EXPECT_TRUE(flat.entry_key_offsets().empty());
 }
@@ -218,7 +218,7 @@ TEST(TemporalSynthesis, CausalInSpaceAndTime) {
     synthesize_volume_pyramid(a.model, o);
     ASSERT_EQ(trace.size(), a.model.levels.size());
     for (std::size_t l = 0; l < trace.size(); ++l) {
-        const Shape3& shape = a.model.levels[l].shape;
+        const Shape& shape = a.model.levels[l].shape;
         const int w = pyramid_level_size(o.width, int(l)), h = pyramid_level_size(o.height, int(l)),
                   n = pyramid_level_size(o.frames, int(l));
         const int lag = shape.cols / 2 + 1;
@@ -232,7 +232,7 @@ TEST(TemporalSynthesis, CausalInSpaceAndTime) {
                 for (int x = 0; x < w; ++x) {
                     const uint32_t me = order(x, y, t);
                     const int index_in_row = Image::wrap(x - row_start(y, lag, w), w);
-                    for (const Tap& tap : shape3_taps(shape)) {
+                    for (const Tap& tap : shape_taps(shape)) {
                         if (tap.depth != 0) continue;
                         const bool through_time = t + tap.dt < 0;
                         const bool through_top = tap.dt == 0 && y + tap.dy < 0;
@@ -507,6 +507,7 @@ TEST(TemporalCodec, DamagedFilesAreRejectedWithSpecificErrors) {
     vqtex_decode_params_init(&d);
     d.width = d.height = 8;
     d.threads = 1;
+    std::string detail;  // the last failure's message
     auto decode = [&](const std::vector<uint8_t>& bytes) {
         vqtex_volume v{};
         vqtex_error err{};
@@ -516,6 +517,7 @@ TEST(TemporalCodec, DamagedFilesAreRejectedWithSpecificErrors) {
         } else {
             EXPECT_EQ(v.pixels, nullptr);
             EXPECT_NE(err.detail[0], '\0');
+            detail = err.detail;
         }
         return st;
     };
@@ -550,6 +552,14 @@ TEST(TemporalCodec, DamagedFilesAreRejectedWithSpecificErrors) {
     EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 4, 2, 4, 7, 1, 5, 5, 5})), VQTEX_ERROR_CORRUPT);  // even D
     EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 5, 9, 4, 7, 1, 5, 5, 5})), VQTEX_ERROR_CORRUPT);  // k too deep
     EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 5, 2, 4, 7, 1, 5, 5, 1})), VQTEX_ERROR_CORRUPT);  // closing D < 3
+    // Animated windows stop at 31 on every axis, though a still file's may
+    // reach 63 (the LEVL reader is shared: model_codec.cpp).
+    EXPECT_EQ(decode(rewrite("LEVL", 0, {33, 5, 5, 2, 4, 7, 1, 5, 5, 5})), VQTEX_ERROR_CORRUPT);
+    EXPECT_NE(detail.find("invalid neighbourhood {33x5x5,2}"), std::string::npos) << detail;
+    EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 5, 2, 4, 7, 1, 33, 5, 5})), VQTEX_ERROR_CORRUPT);
+    EXPECT_NE(detail.find("invalid closing window"), std::string::npos) << detail;
+    EXPECT_EQ(decode(rewrite("LEVL", 0, {5, 5, 5, 2, 4, 7, 1, 5, 5})), VQTEX_ERROR_CORRUPT);  // no closing D
+    EXPECT_NE(detail.find("closing window frames"), std::string::npos) << detail;
     // An animation labelled version 1 (as development builds wrote them),
     // with a good checksum: named, not decoded.
     {

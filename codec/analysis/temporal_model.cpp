@@ -13,42 +13,6 @@
 
 namespace vqtex {
 
-int automatic_volume_levels(int width, int height, int frames) {
-    int levels = 3;
-    while (levels > 1 &&
-           ((std::min(width, height) >> (levels - 1)) < 8 || (frames >> (levels - 1)) < 2))
-        --levels;
-    return levels;
-}
-
-VolumePlan plan_volume_model(const vqtex_model_params& params, const std::vector<Shape3>& shapes, int width,
-                             int height, int frames) {
-    VolumePlan plan;
-    plan.levels = params.levels ? int(params.levels) : automatic_volume_levels(width, height, frames);
-    if (plan.levels < 1 || plan.levels > kMaxLevels)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 1 to " + std::to_string(kMaxLevels) + " (got " +
-                                               std::to_string(plan.levels) + ")");
-    plan.shapes = default_shapes3(plan.levels);
-    for (int l = 0; l < plan.levels && std::size_t(l) < shapes.size(); ++l) {
-        const Shape3& s = shapes[std::size_t(l)];
-        if (s.rows == 0 && s.cols == 0 && s.frames == 0 && s.levels == 0) continue;
-        if (s.rows % 2 == 0 || s.cols % 2 == 0 || s.frames % 2 == 0 || s.levels < 1 || s.rows > 31 || s.cols > 31 ||
-            s.frames > 31)
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "neighbourhood at level " + std::to_string(l) +
-                                                   " must be odd RxCxD up to 31x31x31 with k >= 1 (got " +
-                                                   shape3_to_string(s) + ")");
-        plan.shapes[std::size_t(l)] = Shape3{s.rows, s.cols, s.frames, s.levels, true};
-    }
-    for (int l = 0; l < plan.levels; ++l) {
-        Shape3& s = plan.shapes[std::size_t(l)];
-        s.levels = std::min(s.levels, plan.levels - l);
-        if (shape3_taps(s).empty())
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "neighbourhood " + shape3_to_string(s) + " at level " +
-                                                   std::to_string(l) + " reads no pixel: use D >= 3, 1x3 or k >= 2");
-    }
-    return plan;
-}
-
 namespace {
 
 constexpr std::size_t kMinTraining = 2048;
@@ -89,7 +53,7 @@ BuiltMatcher build_volume_matcher(ExampleSet& set, const NeighborhoodLayout3& la
 
 // Whether some position of level `level` has the whole window of `shape`
 // inside the pyramid (a window that does not fit has no training example).
-bool window_fits(const Shape3& shape, int channels, int level, int levels, const std::vector<Volume>& pyramid) {
+bool window_fits(const Shape& shape, int channels, int level, int levels, const std::vector<Volume>& pyramid) {
     const NeighborhoodLayout3 layout(shape, channels, level, levels);
     const Volume& v = pyramid[std::size_t(level)];
     for (int t = 0; t < v.frames; ++t)
@@ -106,18 +70,18 @@ int odd_at_most(int limit, int n) { return std::max(1, std::min(limit, n % 2 ? n
 // window no larger than its volume (fewer frames in time, then a smaller
 // square), then fewer levels. A sequence of 64x64x16 frames read its
 // coarsest level (16x16x4) with a 5-frame window and could not be encoded.
-void fit_default_plan(const Volume& example, const vqtex_model_params& params, VolumePlan& plan,
+void fit_default_plan(const Volume& example, const vqtex_model_params& params, ModelPlan& plan,
                       std::vector<Volume>& pyramid) {
     for (;;) {
         bool fits = true;
         for (int l = 0; l < plan.levels && fits; ++l) {
-            Shape3& s = plan.shapes[std::size_t(l)];
+            Shape& s = plan.shapes[std::size_t(l)];
             const Volume& v = pyramid[std::size_t(l)];
             if (window_fits(s, example.channels, l, plan.levels, pyramid)) continue;
-            Shape3 smaller = s;
+            Shape smaller = s;
             smaller.frames = odd_at_most(s.frames, v.frames);
             smaller.rows = smaller.cols = odd_at_most(s.rows, std::min(v.width, v.height));
-            if (!shape3_taps(smaller).empty() && window_fits(smaller, example.channels, l, plan.levels, pyramid))
+            if (!shape_taps(smaller).empty() && window_fits(smaller, example.channels, l, plan.levels, pyramid))
                 s = smaller;
             else
                 fits = false;
@@ -125,7 +89,7 @@ void fit_default_plan(const Volume& example, const vqtex_model_params& params, V
         if (fits || plan.levels == 1) return;
         vqtex_model_params fewer = params;
         fewer.levels = uint32_t(plan.levels - 1);
-        plan = plan_volume_model(fewer, {}, example.width, example.height, example.frames);
+        plan = plan_model(fewer, {}, example.width, example.height, example.frames);
         pyramid = build_volume_pyramid(example, plan.levels, EdgeMode::Mirror);
     }
 }
@@ -133,15 +97,15 @@ void fit_default_plan(const Volume& example, const vqtex_model_params& params, V
 }  // namespace
 
 VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& params,
-                              const std::vector<Shape3>& shapes, vqtex_search search, uint32_t backtrack,
+                              const std::vector<Shape>& shapes, vqtex_search search, uint32_t backtrack,
                               int threads, const ProgressFn& progress) {
     if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence is empty");
-    VolumePlan plan = plan_volume_model(params, shapes, example.width, example.height, example.frames);
+    ModelPlan plan = plan_model(params, shapes, example.width, example.height, example.frames);
     const bool tileable = params.example_tileable != 0;
     std::vector<Volume> pyramid =
         build_volume_pyramid(example, plan.levels, tileable ? EdgeMode::Wrap : EdgeMode::Mirror);
     const bool chosen = params.levels != 0 ||
-                        std::any_of(shapes.begin(), shapes.end(), [](const Shape3& s) { return s.rows || s.cols || s.frames; });
+                        std::any_of(shapes.begin(), shapes.end(), [](const Shape& s) { return s.rows || s.cols || s.frames; });
     if (!tileable && !chosen) fit_default_plan(example, params, plan, pyramid);
 
     VolumeAnalysis result;
@@ -159,7 +123,7 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
             fail(VQTEX_ERROR_IMAGE_TOO_SMALL,
                  "example sequence " + std::to_string(example.width) + "x" + std::to_string(example.height) + "x" +
                      std::to_string(example.frames) + " is too small for neighbourhood " +
-                     shape3_to_string(layout.shape()) + " at pyramid level " + std::to_string(l) + " (" +
+                     shape_to_string(layout.shape()) + " at pyramid level " + std::to_string(l) + " (" +
                      std::to_string(v.width) + "x" + std::to_string(v.height) + "x" + std::to_string(v.frames) +
                      "): use fewer --levels, more frames, or --tileable-example");
         result.training_vectors[std::size_t(l)] = set.count();
@@ -171,7 +135,7 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
         result.codebooks[std::size_t(l)] = causal.codebook;
         result.model_bytes += causal.bytes;
         if (params.seam_closing) {
-            Shape3 closing_shape = layout.shape();
+            Shape closing_shape = layout.shape();
             if (params.closing_window) {
                 closing_shape.rows = std::min<int>(closing_shape.rows, int(params.closing_window));
                 closing_shape.cols = std::min<int>(closing_shape.cols, int(params.closing_window));
@@ -182,7 +146,7 @@ VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& p
             ExampleSet closing_set = collect_volume_examples(closing_layout, pyramid, tileable);
             // Frame-seam closing: the causal shape with the whole current
             // frame's window (temporal_synthesis.hpp).
-            Shape3 seam_shape = layout.shape();
+            Shape seam_shape = layout.shape();
             seam_shape.rows = closing_layout.shape().rows;
             seam_shape.cols = closing_layout.shape().cols;
             seam_shape.whole_frame = true;

@@ -7,26 +7,12 @@
 #include <memory>
 #include <vector>
 
+#include "analysis/texture_model.hpp"
 #include "engine/temporal_synthesis.hpp"
 #include "tsvq/tsvq_tree.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex {
-
-struct VolumePlan {
-    int levels = 0;
-    std::vector<Shape3> shapes;  // [0] = finest
-};
-
-// Pyramid depth for an example volume when none is given: the paper's 3,
-// fewer when the coarsest level would be under 8 pixels on a side or under 2
-// frames.
-int automatic_volume_levels(int width, int height, int frames);
-
-// Resolves depth and shapes (an all-zero shape means the default) and checks
-// them; throws a clear error when they are out of range.
-VolumePlan plan_volume_model(const vqtex_model_params& params, const std::vector<Shape3>& shapes, int width,
-                             int height, int frames);
 
 struct VolumeAnalysis {
     VolumeModel model;
@@ -40,7 +26,7 @@ struct VolumeAnalysis {
 // params.seam_closing builds the loop-closing and frame-seam matchers; params.shapes is
 // ignored (3D shapes come in `shapes`, [0] = finest, may be empty).
 VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& params,
-                              const std::vector<Shape3>& shapes, vqtex_search search, uint32_t backtrack,
+                              const std::vector<Shape>& shapes, vqtex_search search, uint32_t backtrack,
                               int threads, const ProgressFn& progress);
 
 }  // namespace vqtex

@@ -9,37 +9,63 @@
 #include <thread>
 
 #include "common/error.hpp"
+#include "engine/neighborhood3d.hpp"
 #include "engine/pyramid.hpp"
 #include "tsvq/search_exhaustive.hpp"
 #include "tsvq/tsvq_search.hpp"
 
 namespace vqtex {
 
-ModelPlan plan_model(const vqtex_model_params& params, int width, int height) {
+int automatic_volume_levels(int width, int height, int frames) {
+    int levels = 3;
+    while (levels > 1 &&
+           ((std::min(width, height) >> (levels - 1)) < 8 || (frames >> (levels - 1)) < 2))
+        --levels;
+    return levels;
+}
+
+ModelPlan plan_model(const vqtex_model_params& params, const std::vector<Shape>& shapes, int width, int height,
+                     int frames) {
+    const bool still = frames == 0;
     ModelPlan plan;
-    plan.levels = params.levels ? int(params.levels) : automatic_levels(width, height);
+    plan.levels = params.levels ? int(params.levels)
+                  : still       ? automatic_levels(width, height)
+                                : automatic_volume_levels(width, height, frames);
     if (plan.levels < 1 || plan.levels > kMaxLevels)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 1 to " + std::to_string(kMaxLevels) +
                                                " (got " + std::to_string(plan.levels) + ")");
-    plan.shapes = default_shapes(plan.levels);
-    for (int l = 0; l < plan.levels; ++l) {
-        const vqtex_shape& s = params.shapes[l];
-        if (s.rows == 0 && s.cols == 0 && s.levels == 0) continue;
-        if (s.rows % 2 == 0 || s.cols % 2 == 0 || s.levels < 1 || s.rows > 63 || s.cols > 63)
+    plan.shapes = still ? default_shapes(plan.levels) : default_volume_shapes(plan.levels);
+    // The files hold windows up to 63 on a side for still textures and 31 on
+    // every axis for animated ones (FORMAT.md).
+    const int most = still ? 63 : 31;
+    for (int l = 0; l < plan.levels && std::size_t(l) < shapes.size(); ++l) {
+        const Shape& s = shapes[std::size_t(l)];
+        if (s.rows == 0 && s.cols == 0 && s.levels == 0 && (still || s.frames == 0)) continue;
+        if (s.rows % 2 == 0 || s.cols % 2 == 0 || s.frames % 2 == 0 || s.levels < 1 || s.rows > most ||
+            s.cols > most || s.frames > most)
             fail(VQTEX_ERROR_INVALID_ARGUMENT,
-                 "neighbourhood at level " + std::to_string(l) + " must be odd RxC up to 63x63 with k >= 1 (got {" +
-                     std::to_string(s.rows) + "x" + std::to_string(s.cols) + "," +
-                     std::to_string(s.levels) + "})");
-        plan.shapes[std::size_t(l)] = Shape{s.rows, s.cols, s.levels};
+                 "neighbourhood at level " + std::to_string(l) + " must be odd " +
+                     (still ? "RxC up to 63x63" : "RxCxD up to 31x31x31") + " with k >= 1 (got " +
+                     shape_to_string(s) + ")");
+        // Causal, whatever the caller's shape says: the plan holds the
+        // synthesis shapes, the closing ones derive from them.
+        plan.shapes[std::size_t(l)] = Shape{.rows = s.rows, .cols = s.cols, .levels = s.levels, .frames = s.frames};
     }
     for (int l = 0; l < plan.levels; ++l) {
         Shape& s = plan.shapes[std::size_t(l)];
         s.levels = std::min(s.levels, plan.levels - l);
         if (shape_taps(s).empty())
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "neighbourhood " + shape_to_string(s) + " at level " +
-                                                   std::to_string(l) + " reads no pixel: use at least 1x3 or k >= 2");
+                                                   std::to_string(l) + " reads no pixel: use " +
+                                                   (still ? "at least 1x3" : "D >= 3, 1x3") + " or k >= 2");
     }
     return plan;
+}
+
+std::vector<Shape> still_shapes_of(const vqtex_model_params& params) {
+    std::vector<Shape> shapes;
+    for (const vqtex_shape& s : params.shapes) shapes.push_back(Shape{s.rows, s.cols, s.levels});
+    return shapes;
 }
 
 uint32_t codewords_for_level(const vqtex_model_params& params, int level,
@@ -100,7 +126,7 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
                                vqtex_search search, uint32_t backtrack, int threads,
                                const ProgressFn& progress) {
     if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example image is empty (0x0)");
-    const ModelPlan plan = plan_model(params, example.width, example.height);
+    const ModelPlan plan = plan_model(params, still_shapes_of(params), example.width, example.height, 0);
     const bool tileable = params.example_tileable != 0;
     const std::vector<Image> pyramid =
         build_pyramid(example, plan.levels, tileable ? EdgeMode::Wrap : EdgeMode::Mirror);

@@ -1,6 +1,8 @@
 // texture_model.hpp - analysis: an example image becomes a TextureModel
 // (pyramid, neighbourhood shapes, noise histograms, and per level either the
 // exhaustive candidate set or a trained TSVQ codebook; paper sections 2-4).
+// The plan and the matcher builder serve animated examples as well
+// (temporal_model.hpp), which keeps only what differs.
 #pragma once
 
 #include <memory>
@@ -18,9 +20,21 @@ struct ModelPlan {
     std::vector<Shape> shapes;  // [0] = finest
 };
 
-// Resolves automatic depth and default shapes, and checks them against the
-// example size; throws a clear error when the example is too small.
-ModelPlan plan_model(const vqtex_model_params& params, int width, int height);
+// Pyramid depth for an example volume when none is given: the paper's 3,
+// fewer when the coarsest level would be under 8 pixels on a side or under 2
+// frames.
+int automatic_volume_levels(int width, int height, int frames);
+
+// Resolves depth and shapes and checks them, for a still example (frames 0)
+// or an animated one. `shapes` are the caller's, [0] = finest; a missing or
+// all-zero one means the default. The two kinds differ only in their
+// defaults (automatic depth, default shapes) and in the largest window their
+// files hold; throws a clear error when a shape is out of range.
+ModelPlan plan_model(const vqtex_model_params& params, const std::vector<Shape>& shapes, int width, int height,
+                     int frames);
+
+// The still shapes params.shapes asks for, [0] = finest.
+std::vector<Shape> still_shapes_of(const vqtex_model_params& params);
 
 // Leaves wanted at `level` for `training_vectors` vectors.
 uint32_t codewords_for_level(const vqtex_model_params& params, int level,

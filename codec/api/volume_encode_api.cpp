@@ -60,8 +60,9 @@ vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const
         validate(params);
         const Volume ex = volume_from_c(example);
         const vqtex_encode_params& c = params->codec;
-        std::vector<Shape3> shapes;
-        for (const vqtex_shape3& s : params->shapes) shapes.push_back(Shape3{s.rows, s.cols, s.frames, s.levels, true});
+        std::vector<Shape> shapes;
+        for (const vqtex_shape3& s : params->shapes)
+            shapes.push_back(Shape{.rows = s.rows, .cols = s.cols, .levels = s.levels, .frames = s.frames});
         const auto t0 = std::chrono::steady_clock::now();
         const int threads = resolve_threads(c.threads);
         const VolumeAnalysis a = analyse_volume(ex, c.model, shapes, VQTEX_SEARCH_TSVQ, c.backtrack, threads,

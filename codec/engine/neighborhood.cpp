@@ -19,20 +19,25 @@ int causal_reach_x(const Shape& shape) { return shape.cols / 2; }
 int causal_reach_y(const Shape& shape) { return shape.rows / 2; }
 
 std::vector<Tap> shape_taps(const Shape& shape) {
+    // One walk for still and animated shapes: with one frame, the time loops
+    // run once (dt 0) and the taps are the 2D ones in the same order.
     std::vector<Tap> taps;
-    const int ry = causal_reach_y(shape), rx = causal_reach_x(shape);
-    for (int dy = -ry; dy <= (shape.causal ? 0 : ry); ++dy)
-        for (int dx = -rx; dx <= rx; ++dx) {
-            if (dy == 0 && dx == 0) {
-                if (shape.causal) break;  // causal: stop at the pixel itself
-                continue;                 // symmetric: everything but the centre
+    const int ry = causal_reach_y(shape), rx = causal_reach_x(shape), rt = shape.frames / 2;
+    for (int dt = -rt; dt <= (shape.causal ? 0 : rt); ++dt)
+        for (int dy = -ry; dy <= ry; ++dy)
+            for (int dx = -rx; dx <= rx; ++dx) {
+                if (dt == 0 && dy == 0 && dx == 0) continue;
+                // Causal: in the current frame only what the raster scan has
+                // already visited.
+                if (shape.causal && !shape.whole_frame && dt == 0 && (dy > 0 || (dy == 0 && dx > 0))) continue;
+                taps.push_back({0, int8_t(dt), int16_t(dy), int16_t(dx)});
             }
-            taps.push_back({0, 0, int16_t(dy), int16_t(dx)});
-        }
     for (int d = 1; d < shape.levels; ++d) {
         const int r = coarser_extent(std::max(shape.rows, shape.cols), d) / 2;
-        for (int dy = -r; dy <= r; ++dy)
-            for (int dx = -r; dx <= r; ++dx) taps.push_back({int8_t(d), 0, int16_t(dy), int16_t(dx)});
+        const int r_t = coarser_extent(shape.frames, d) / 2;
+        for (int dt = -r_t; dt <= r_t; ++dt)
+            for (int dy = -r; dy <= r; ++dy)
+                for (int dx = -r; dx <= r; ++dx) taps.push_back({int8_t(d), int8_t(dt), int16_t(dy), int16_t(dx)});
     }
     return taps;
 }
@@ -42,8 +47,11 @@ int causal_tap_count(const Shape& shape) {
 }
 
 std::string shape_to_string(const Shape& shape) {
-    return std::string(shape.causal ? "{" : "symmetric {") + std::to_string(shape.rows) + "x" +
-           std::to_string(shape.cols) + "," + std::to_string(shape.levels) + "}";
+    const bool animated = shape.frames != 1;
+    return std::string(!shape.causal ? "symmetric {" : shape.whole_frame ? "whole-frame {" : "{") +
+           std::to_string(shape.rows) + "x" + std::to_string(shape.cols) +
+           (animated ? "x" + std::to_string(shape.frames) : std::string()) + "," + std::to_string(shape.levels) +
+           "}";
 }
 
 std::vector<Shape> default_shapes(int levels) {

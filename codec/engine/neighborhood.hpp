@@ -6,6 +6,7 @@
 // k-1 coarser levels L+1, L+2, ..., a full square window around the pixel's
 // ancestor (x >> d, y >> d), about half as wide at each step down. Shapes are
 // data: one gather routine serves every shape, training and search alike.
+// Animated textures use the same Shape with D frames (neighborhood3d.hpp).
 #pragma once
 
 #include <cstddef>
@@ -19,6 +20,10 @@ namespace vqtex {
 
 inline constexpr int kMaxLevels = 8;
 
+// One shape for still and animated neighbourhoods: a still shape is an
+// animated one with a single frame (no previous frame, no coarser frames), so
+// both engines, the plans and the file format share it. The fields keep the
+// still order first, so {R, C, k} still reads as the paper writes it.
 struct Shape {
     int rows = 9;   // R: height of the causal window at the current level (odd)
     int cols = 9;   // C: width (odd)
@@ -27,6 +32,14 @@ struct Shape {
     // whole window but the centre; used where both sides are known, as in
     // seam closing and hole filling, paper section 5.1).
     bool causal = true;
+    // D (odd): with an animation, the D/2 previous frames (and D/2 next,
+    // when symmetric) at the current level; 1 for a still texture.
+    int frames = 1;
+    // With causal: the whole RxC window of the current frame (but the
+    // centre) instead of its causal half. Symmetric in space, causal in
+    // time: the shape that closes the top/bottom wrap of each frame once the
+    // frame is done, before the next frame reads it (temporal_synthesis.hpp).
+    bool whole_frame = false;
 
     bool operator==(const Shape&) const = default;
 };
@@ -45,14 +58,16 @@ struct Tap {
     int16_t dy, dx;
 };
 
-// The taps of a shape: current-level taps first (raster order), then each
-// coarser window in raster order.
+// The taps of a shape: current-level taps first (dt ascending, raster order
+// within a frame), then each coarser window (dt, dy, dx ascending). A still
+// shape's taps all have dt 0.
 std::vector<Tap> shape_taps(const Shape& shape);
 int causal_tap_count(const Shape& shape);
 int causal_reach_x(const Shape& shape);  // C / 2
 int causal_reach_y(const Shape& shape);  // R / 2
 
-std::string shape_to_string(const Shape& shape);  // "{9x9,2}"
+// "{9x9,2}"; "{5x5x5,2}" when the shape spans more than one frame.
+std::string shape_to_string(const Shape& shape);
 
 // The paper's defaults, extended to any depth: finest level {9x9,2}, then
 // {7x7,2}, {5x5,2}, and {3x3,1} at the coarsest of four levels. result[0] is

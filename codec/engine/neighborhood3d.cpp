@@ -10,35 +10,7 @@
 
 namespace vqtex {
 
-std::vector<Tap> shape3_taps(const Shape3& shape) {
-    std::vector<Tap> taps;
-    const int ry = shape.rows / 2, rx = shape.cols / 2, rt = shape.frames / 2;
-    for (int dt = -rt; dt <= (shape.causal ? 0 : rt); ++dt)
-        for (int dy = -ry; dy <= ry; ++dy)
-            for (int dx = -rx; dx <= rx; ++dx) {
-                if (dt == 0 && dy == 0 && dx == 0) continue;
-                // Causal: in the current frame only what the raster scan has
-                // already visited.
-                if (shape.causal && !shape.whole_frame && dt == 0 && (dy > 0 || (dy == 0 && dx > 0))) continue;
-                taps.push_back({0, int8_t(dt), int16_t(dy), int16_t(dx)});
-            }
-    for (int d = 1; d < shape.levels; ++d) {
-        const int r = coarser_extent(std::max(shape.rows, shape.cols), d) / 2;
-        const int r_t = coarser_extent(shape.frames, d) / 2;
-        for (int dt = -r_t; dt <= r_t; ++dt)
-            for (int dy = -r; dy <= r; ++dy)
-                for (int dx = -r; dx <= r; ++dx) taps.push_back({int8_t(d), int8_t(dt), int16_t(dy), int16_t(dx)});
-    }
-    return taps;
-}
-
-std::string shape3_to_string(const Shape3& shape) {
-    return std::string(!shape.causal ? "symmetric {" : shape.whole_frame ? "whole-frame {" : "{") +
-           std::to_string(shape.rows) + "x" +
-           std::to_string(shape.cols) + "x" + std::to_string(shape.frames) + "," + std::to_string(shape.levels) + "}";
-}
-
-std::vector<Shape3> default_shapes3(int levels) {
+std::vector<Shape> default_volume_shapes(int levels) {
     // The paper lists {5x5x5,2}, {3x3x3,2}, {1x1x1,3} for 3 levels. Read
     // literally, the coarsest {1x1x1,k} has no causal pixel at its own level
     // and no coarser level to lean on, so it would read nothing; and with
@@ -49,15 +21,15 @@ std::vector<Shape3> default_shapes3(int levels) {
     // {5x5x5,1} there (two previous frames' 5x5 windows and the causal half
     // of the current one): the mean then stays within 10-20 of the example's
     // and the texture keeps its structure (tests/test_temporal.cpp).
-    std::vector<Shape3> shapes(static_cast<std::size_t>(levels), Shape3{5, 5, 5, 2});
-    shapes.back() = Shape3{5, 5, 5, 1};
+    std::vector<Shape> shapes(static_cast<std::size_t>(levels), Shape{.rows = 5, .cols = 5, .levels = 2, .frames = 5});
+    shapes.back() = Shape{.rows = 5, .cols = 5, .levels = 1, .frames = 5};
     return shapes;
 }
 
-NeighborhoodLayout3::NeighborhoodLayout3(const Shape3& shape, int channels, int level, int pyramid_levels)
+NeighborhoodLayout3::NeighborhoodLayout3(const Shape& shape, int channels, int level, int pyramid_levels)
     : shape_(shape), channels_(channels), level_(level) {
     shape_.levels = std::min(shape.levels, pyramid_levels - level);
-    taps_ = shape3_taps(shape_);
+    taps_ = shape_taps(shape_);
     dimension_ = taps_.size() * std::size_t(channels);
     stride_ = dsp::padded_length(dimension_);
     for (const Tap& t : taps_) {

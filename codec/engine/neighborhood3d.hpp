@@ -14,8 +14,9 @@
 // full RxCxD window but the centre at the current level; a whole-frame shape
 // (for closing each frame's top/bottom wrap) the previous frames' windows and
 // the whole RxC window of the current frame but the centre.
-// The gathered vectors are ordinary ExampleSet rows, so the TSVQ trainer and
-// search serve 3D shapes unchanged.
+// The shapes are those of still textures (Shape, neighborhood.hpp) with D
+// frames, and the gathered vectors are ordinary ExampleSet rows, so the
+// TSVQ trainer and search serve 3D shapes unchanged.
 #pragma once
 
 #include <cstddef>
@@ -28,35 +29,15 @@
 
 namespace vqtex {
 
-struct Shape3 {
-    int rows = 5;    // R (odd)
-    int cols = 5;    // C (odd)
-    int frames = 5;  // D (odd): D/2 previous frames (and D/2 next, when symmetric)
-    int levels = 2;  // k
-    bool causal = true;
-    // With causal: the whole RxC window of the current frame (but the
-    // centre) instead of its causal half. Symmetric in space, causal in
-    // time: the shape that closes the top/bottom wrap of each frame once the
-    // frame is done, before the next frame reads it (temporal_synthesis.hpp).
-    bool whole_frame = false;
-
-    bool operator==(const Shape3&) const = default;
-};
-
-// Current-level taps first (dt ascending, raster within a frame), then each
-// coarser window (dt, dy, dx ascending).
-std::vector<Tap> shape3_taps(const Shape3& shape);
-std::string shape3_to_string(const Shape3& shape);  // "{5x5x5,2}"
-
 // Default shapes, [0] = the finest level: {5x5x5,2}, and {5x5x5,1} at the
 // coarsest (the paper's {3x3x3,2} and {1x1x1,3}: see neighborhood3d.cpp).
-std::vector<Shape3> default_shapes3(int levels);
+std::vector<Shape> default_volume_shapes(int levels);
 
 class NeighborhoodLayout3 {
 public:
-    NeighborhoodLayout3(const Shape3& shape, int channels, int level, int pyramid_levels);
+    NeighborhoodLayout3(const Shape& shape, int channels, int level, int pyramid_levels);
 
-    const Shape3& shape() const { return shape_; }
+    const Shape& shape() const { return shape_; }
     int channels() const { return channels_; }
     int level() const { return level_; }
     std::size_t dimension() const { return dimension_; }
@@ -84,7 +65,7 @@ public:
 private:
     void gather_wrapped(const std::vector<Volume>& pyramid, int x, int y, int t, uint8_t* out) const;
 
-    Shape3 shape_;
+    Shape shape_;
     int channels_;
     int level_;
     std::size_t dimension_;

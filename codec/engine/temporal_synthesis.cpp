@@ -13,7 +13,7 @@
 
 namespace vqtex {
 
-int closing_band_frames(const Shape3& causal_shape, int frames) {
+int closing_band_frames(const Shape& causal_shape, int frames) {
     return std::min(causal_shape.frames / 2 + 1, std::max(1, frames / 2));
 }
 
@@ -175,7 +175,7 @@ std::vector<Volume> synthesize_volume_pyramid(const VolumeModel& model, const Vo
             trace->assign(v.voxel_count(), 0);
         }
         std::atomic<uint32_t> trace_counter{0};
-        const Shape3& shape = layout.shape();
+        const Shape& shape = layout.shape();
         const int reach_x = shape.cols / 2, reach_y = shape.rows / 2;
         const int lag = reach_x + 1;
         const bool parallel = threads > 1 && v.height >= 2 * reach_y + 2 && !options.trace;

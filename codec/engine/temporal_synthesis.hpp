@@ -62,12 +62,12 @@
 namespace vqtex {
 
 struct VolumeLevelModel {
-    Shape3 shape;
+    Shape shape;
     LevelHistogram histogram;
     std::shared_ptr<const Matcher> matcher;
-    Shape3 closing_shape;                      // symmetric
+    Shape closing_shape;                      // symmetric
     std::shared_ptr<const Matcher> closing;    // may be null: no loop closing at this level
-    Shape3 seam_shape;                         // whole-frame: symmetric in space, causal in time
+    Shape seam_shape;                         // whole-frame: symmetric in space, causal in time
     std::shared_ptr<const Matcher> seam;       // may be null: no frame-seam closing at this level
 };
 
@@ -89,7 +89,7 @@ struct VolumeSynthesisOptions {
 };
 
 // Frames on each side of the temporal wrap that loop closing re-matches.
-int closing_band_frames(const Shape3& causal_shape, int frames);
+int closing_band_frames(const Shape& causal_shape, int frames);
 
 // The whole output pyramid, [0] = the finest (the animation itself).
 std::vector<Volume> synthesize_volume_pyramid(const VolumeModel& model, const VolumeSynthesisOptions& options);

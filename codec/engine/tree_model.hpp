@@ -38,13 +38,13 @@ struct VolumeCodecModel {
     int channels = 0;
     uint32_t exemplar_width = 0, exemplar_height = 0, exemplar_frames = 0;
     struct Level {
-        Shape3 shape;
+        Shape shape;
         LevelHistogram histogram;
         std::shared_ptr<const Codebook> causal;
         std::shared_ptr<const Codebook> closing;  // may be null
-        Shape3 closing_shape;
+        Shape closing_shape;
         std::shared_ptr<const Codebook> seam;     // frame-seam closing: present with `closing`
-        Shape3 seam_shape;
+        Shape seam_shape;
     };
     std::vector<Level> levels;  // [0] = finest
 };

@@ -418,6 +418,39 @@ void LevelReader::check_coding(const Coding& coding, const std::string& where_le
         fail(VQTEX_ERROR_CORRUPT, where_level + " has a closing tree the header does not announce");
 }
 
+LevelReader::LevelShapes LevelReader::level_shapes(int level, bool animated, const std::string& where_level) {
+    const std::vector<uint8_t> bytes = section(kTagLevel, level);
+    ByteReader r(bytes.data(), bytes.size(), where_level + " parameters");
+    const int most = animated ? 31 : 63;
+    auto valid = [most](int v, int lowest) { return v % 2 == 1 && v >= lowest && v <= most; };
+    LevelShapes ls;
+    Shape& shape = ls.shape;
+    shape.rows = r.u8("window rows");
+    shape.cols = r.u8("window columns");
+    if (animated) shape.frames = r.u8("window frames");
+    shape.levels = r.u8("window levels");
+    ls.coding = read_coding(r);
+    Shape& closing = ls.closing_shape;
+    closing = shape;
+    closing.causal = false;
+    if (ls.coding.has_closing == 1) {
+        closing.rows = r.u8("closing window rows");
+        closing.cols = r.u8("closing window columns");
+        if (animated) closing.frames = r.u8("closing window frames");
+        // A still closing window is at least 3 on a side; an animated one
+        // at least 3 frames long (it closes the temporal wrap).
+        const int side = animated ? 1 : 3;
+        if (!valid(closing.rows, side) || !valid(closing.cols, side) || !valid(closing.frames, animated ? 3 : 1))
+            fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid closing window");
+    }
+    r.expect_end();
+    if (!valid(shape.rows, 1) || !valid(shape.cols, 1) || !valid(shape.frames, 1) || shape.levels < 1 ||
+        shape.levels > c_.header.levels - level || shape_taps(shape).empty())
+        fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid neighbourhood " + shape_to_string(shape));
+    check_coding(ls.coding, where_level);
+    return ls;
+}
+
 LevelHistogram LevelReader::histogram(int level, LevelInit init, const std::string& where_level) {
     if (init != LevelInit::Noise && level != c_.header.levels - 1) return {};
     return decode_histogram(section(kTagHistogram, level), c_.header.channels, where_level);
@@ -520,27 +553,10 @@ DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memor
 
     for (int l = 0; l < levels; ++l) {
         const std::string where_level = "level " + std::to_string(l);
-        const std::vector<uint8_t> level_bytes = reader.section(kTagLevel, l);
-        ByteReader lr(level_bytes.data(), level_bytes.size(), where_level + " parameters");
-        Shape shape;
-        shape.rows = lr.u8("window rows");
-        shape.cols = lr.u8("window columns");
-        shape.levels = lr.u8("window levels");
-        const LevelReader::Coding coding = LevelReader::read_coding(lr);
-        Shape closing_shape = shape;
-        closing_shape.causal = false;
-        if (coding.has_closing == 1) {
-            closing_shape.rows = lr.u8("closing window rows");
-            closing_shape.cols = lr.u8("closing window columns");
-            if (closing_shape.rows % 2 == 0 || closing_shape.cols % 2 == 0 || closing_shape.rows > 63 ||
-                closing_shape.cols > 63 || closing_shape.rows < 3 || closing_shape.cols < 3)
-                fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid closing window");
-        }
-        lr.expect_end();
-        if (shape.rows % 2 == 0 || shape.cols % 2 == 0 || shape.rows > 63 || shape.cols > 63 ||
-            shape.levels < 1 || shape.levels > levels - l || shape_taps(shape).empty())
-            fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid neighbourhood " + shape_to_string(shape));
-        reader.check_coding(coding, where_level);
+        const LevelReader::LevelShapes ls = reader.level_shapes(l, false, where_level);
+        const Shape& shape = ls.shape;
+        const Shape& closing_shape = ls.closing_shape;
+        const LevelReader::Coding& coding = ls.coding;
         if (l == 0) f.precision = coding.precision, f.pixel_precision = coding.pixel_precision;
 
         CodecModel::Level& lv = f.model.levels[std::size_t(l)];

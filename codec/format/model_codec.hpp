@@ -124,6 +124,19 @@ public:
     static Coding read_coding(ByteReader& r);
     void check_coding(const Coding& coding, const std::string& where_level) const;
 
+    // A level's LEVL section, read and checked: the causal window, the
+    // coding, and the closing window when the level has a closing tree
+    // (symmetric; else the causal window made symmetric). Animated levels
+    // store each window's frames after its columns and hold windows up to
+    // 31 on every axis (63 on a side for still ones), so both decoders read
+    // their shapes here.
+    struct LevelShapes {
+        Shape shape;
+        Shape closing_shape;
+        Coding coding;
+    };
+    LevelShapes level_shapes(int level, bool animated, const std::string& where_level);
+
     // The level's HIST when the file has one (noise init, or the coarsest
     // level), else an empty histogram.
     LevelHistogram histogram(int level, LevelInit init, const std::string& where_level);

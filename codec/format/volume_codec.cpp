@@ -28,12 +28,10 @@ TreeLayout tree_layout_of(const NeighborhoodLayout3& layout) {
     return t;
 }
 
-bool valid_extent(int v, int lowest) { return v % 2 == 1 && v >= lowest && v <= 31; }
-
 // The frame-seam tree's shape is not stored: the causal window's frames and
 // levels with the closing window's rows and columns, whole-frame.
-Shape3 seam_shape_of(const Shape3& causal, const Shape3& closing) {
-    Shape3 s = causal;
+Shape seam_shape_of(const Shape& causal, const Shape& closing) {
+    Shape s = causal;
     s.rows = closing.rows;
     s.cols = closing.cols;
     s.causal = true;
@@ -81,7 +79,7 @@ std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const En
                                    : kind == TreeKind::Closing ? lv.closing.get()
                                                                : lv.seam.get();
             if (!book) continue;
-            Shape3 shape = kind == TreeKind::Causal    ? lv.shape
+            Shape shape = kind == TreeKind::Causal    ? lv.shape
                            : kind == TreeKind::Closing ? lv.closing_shape
                                                        : lv.seam_shape;
             shape.causal = kind != TreeKind::Closing;
@@ -129,29 +127,10 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
     }
     for (int l = 0; l < levels; ++l) {
         const std::string where_level = "level " + std::to_string(l);
-        const std::vector<uint8_t> lb = reader.section(kTagLevel, l);
-        ByteReader lr(lb.data(), lb.size(), where_level + " parameters");
-        Shape3 shape;
-        shape.rows = lr.u8("window rows");
-        shape.cols = lr.u8("window columns");
-        shape.frames = lr.u8("window frames");
-        shape.levels = lr.u8("window levels");
-        const LevelReader::Coding coding = LevelReader::read_coding(lr);
-        Shape3 closing_shape = shape;
-        closing_shape.causal = false;
-        if (coding.has_closing == 1) {
-            closing_shape.rows = lr.u8("closing window rows");
-            closing_shape.cols = lr.u8("closing window columns");
-            closing_shape.frames = lr.u8("closing window frames");
-            if (!valid_extent(closing_shape.rows, 1) || !valid_extent(closing_shape.cols, 1) ||
-                !valid_extent(closing_shape.frames, 3))
-                fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid closing window");
-        }
-        lr.expect_end();
-        if (!valid_extent(shape.rows, 1) || !valid_extent(shape.cols, 1) || !valid_extent(shape.frames, 1) ||
-            shape.levels < 1 || shape.levels > levels - l || shape3_taps(shape).empty())
-            fail(VQTEX_ERROR_CORRUPT, where_level + " has an invalid neighbourhood " + shape3_to_string(shape));
-        reader.check_coding(coding, where_level);
+        const LevelReader::LevelShapes ls = reader.level_shapes(l, true, where_level);
+        const Shape& shape = ls.shape;
+        const Shape& closing_shape = ls.closing_shape;
+        const LevelReader::Coding& coding = ls.coding;
         if (l == 0) f.precision = coding.precision, f.pixel_precision = coding.pixel_precision;
 
         VolumeCodecModel::Level& lv = f.model.levels[std::size_t(l)];
@@ -159,7 +138,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
         lv.histogram = reader.histogram(l, f.init, where_level);
         for (int k = 0; k < 1 + 2 * coding.has_closing; ++k) {
             const TreeKind kind = TreeKind(k);
-            Shape3 s = kind == TreeKind::Causal    ? shape
+            Shape s = kind == TreeKind::Causal    ? shape
                        : kind == TreeKind::Closing ? closing_shape
                                                    : seam_shape_of(shape, closing_shape);
             s.causal = kind != TreeKind::Closing;
