@@ -149,6 +149,13 @@ public:
     // closing trees found, and every section was used. Returns what the
     // trees took of the memory limit (an upper bound).
     std::size_t finish(bool any_closing) const;
+    // The same, the flag read from the decoded levels (still or animated).
+    template <typename Levels>
+    std::size_t finish_levels(const Levels& levels) const {
+        bool any_closing = false;
+        for (const auto& lv : levels) any_closing = any_closing || lv.closing != nullptr;
+        return finish(any_closing);
+    }
 
     LevelInit init() const { return c_.header.init == 1 ? LevelInit::Noise : LevelInit::Parent; }
 

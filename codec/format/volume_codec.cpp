@@ -163,9 +163,7 @@ DecodedVolumeFile decode_volume_file(const uint8_t* data, std::size_t size, std:
             }
         }
     }
-    bool any_closing = false;
-    for (const auto& lv : f.model.levels) any_closing = any_closing || lv.closing != nullptr;
-    f.model_bytes = reader.finish(any_closing);
+    f.model_bytes = reader.finish_levels(f.model.levels);
     return f;
 }
 
