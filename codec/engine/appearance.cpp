@@ -35,7 +35,7 @@ uint64_t isqrt(uint128 n) {
     }
 }
 
-int fold(int i, int size, bool wraps) { return wraps ? Image::wrap(i, size) : reflect_index(i, size); }
+int fold(int i, int size, bool wraps) { return edge_index(i, size, wraps ? EdgeMode::Wrap : EdgeMode::Mirror); }
 
 // The 5x5 window of `img` around (x, y) with taps `step` apart, channel by
 // channel, into out (kWindowTaps * channels values).
@@ -59,14 +59,13 @@ int AppearanceSpace::fold_x(int x) const { return fold(x, width, wraps); }
 int AppearanceSpace::fold_y(int y) const { return fold(y, height, wraps); }
 
 Image stack_filter(const Image& in, int step, bool wraps) {
-    static constexpr int kTaps[5] = {1, 4, 6, 4, 1};
     const int w = in.width, h = in.height, ch = in.channels;
     std::vector<int32_t> rows(std::size_t(w) * h * ch);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < ch; ++c) {
                 int32_t sum = 0;
-                for (int t = 0; t < 5; ++t) sum += kTaps[t] * in.at(fold(x + (t - 2) * step, w, wraps), y)[c];
+                for (int t = 0; t < 5; ++t) sum += kPyramidTaps[t] * in.at(fold(x + (t - 2) * step, w, wraps), y)[c];
                 rows[(std::size_t(y) * w + x) * ch + c] = sum;
             }
     Image out(w, h, ch);
@@ -76,7 +75,7 @@ Image stack_filter(const Image& in, int step, bool wraps) {
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < ch; ++c) {
                 int32_t sum = 0;
-                for (int t = 0; t < 5; ++t) sum += kTaps[t] * rows[(std::size_t(ys[t]) * w + x) * ch + c];
+                for (int t = 0; t < 5; ++t) sum += kPyramidTaps[t] * rows[(std::size_t(ys[t]) * w + x) * ch + c];
                 out.at(x, y)[c] = uint8_t((sum + 128) >> 8);
             }
     }

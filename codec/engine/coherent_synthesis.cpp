@@ -4,7 +4,6 @@
 #include "engine/coherent_synthesis.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdlib>
 #include <cstring>
 
@@ -264,7 +263,7 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
         } else {
             map = upsample_positions(space, map, w, h, spacing);
             // Jitter of up to jitter/256 of the spacing in x and y.
-            const int64_t reach = spacing >= options.jitter_min_spacing ? int64_t(spacing) * options.jitter : 0;
+            const int64_t reach = int64_t(spacing) * options.jitter;
             if (reach > 0)
                 for (int y = 0; y < h; ++y)
                     for (int x = 0; x < w; ++x) {

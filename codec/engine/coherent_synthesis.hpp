@@ -32,7 +32,6 @@ struct CoherentOptions {
     int passes = 2;         // correction passes at every level but the coarsest
     int coarse_passes = 4;  // at the coarsest, which starts from random positions
     int jitter = 0;         // per level, in 1/256 of the level's spacing
-    int jitter_min_spacing = 1;  // levels of a finer spacing are not jittered
     int polish_passes = 1;       // finest level: passes matching raw colours (5x5)
     bool roll = true;            // cut the torus open where the pixels change least
     // Distance surcharge, in 1/256, of a candidate that continues no
