@@ -495,6 +495,22 @@ void write_level_coding(ByteWriter& level, const EncodeSettings& s, bool has_clo
     level.u8(has_closing ? 1 : 0);
 }
 
+std::vector<uint8_t> level_section(const Shape& shape, const Shape* closing_shape, const EncodeSettings& s,
+                                   bool animated) {
+    ByteWriter lw;
+    lw.u8(uint8_t(shape.rows));
+    lw.u8(uint8_t(shape.cols));
+    if (animated) lw.u8(uint8_t(shape.frames));
+    lw.u8(uint8_t(shape.levels));
+    write_level_coding(lw, s, closing_shape != nullptr);
+    if (closing_shape) {
+        lw.u8(uint8_t(closing_shape->rows));
+        lw.u8(uint8_t(closing_shape->cols));
+        if (animated) lw.u8(uint8_t(closing_shape->frames));
+    }
+    return std::move(lw.data());
+}
+
 void write_histogram(ContainerWriter& writer, int level, int levels, const EncodeSettings& s,
                      const LevelHistogram& histogram) {
     if (s.init == LevelInit::Noise || level == levels - 1)
@@ -511,16 +527,7 @@ std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings&
     for (int l = 0; l < levels; ++l) {
         const CodecModel::Level& lv = model.levels[std::size_t(l)];
         if (!lv.causal) fail(VQTEX_ERROR_INVALID_ARGUMENT, "level " + std::to_string(l) + " has no codebook");
-        ByteWriter lw;
-        lw.u8(uint8_t(lv.shape.rows));
-        lw.u8(uint8_t(lv.shape.cols));
-        lw.u8(uint8_t(lv.shape.levels));
-        write_level_coding(lw, s, lv.closing != nullptr);
-        if (lv.closing) {
-            lw.u8(uint8_t(lv.closing_shape.rows));
-            lw.u8(uint8_t(lv.closing_shape.cols));
-        }
-        writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
+        writer.add(kTagLevel, uint8_t(l), 0, level_section(lv.shape, lv.closing ? &lv.closing_shape : nullptr, s, false));
         write_histogram(writer, l, levels, s, lv.histogram);
         for (const TreeKind kind : {TreeKind::Causal, TreeKind::Closing}) {
             const Codebook* book = kind == TreeKind::Causal ? lv.causal.get() : lv.closing.get();

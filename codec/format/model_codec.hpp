@@ -101,6 +101,11 @@ FileHeader model_header(int channels, uint32_t exemplar_width, uint32_t exemplar
 // shape (LevelReader::read_coding reads them back) and the HIST section,
 // which a file has at noise init and at its coarsest level.
 void write_level_coding(ByteWriter& level, const EncodeSettings& settings, bool has_closing);
+// A level's LEVL section: its window, its coding and, with a closing tree,
+// the closing window; animated levels add the frames of each window (the
+// writing side of LevelReader::level_shapes).
+std::vector<uint8_t> level_section(const Shape& shape, const Shape* closing_shape, const EncodeSettings& settings,
+                                   bool animated);
 void write_histogram(ContainerWriter& writer, int level, int levels, const EncodeSettings& settings,
                      const LevelHistogram& histogram);
 

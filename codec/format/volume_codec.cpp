@@ -57,18 +57,7 @@ std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const En
     for (int l = 0; l < levels; ++l) {
         const VolumeCodecModel::Level& lv = model.levels[std::size_t(l)];
         if (!lv.causal) fail(VQTEX_ERROR_INVALID_ARGUMENT, "level " + std::to_string(l) + " has no codebook");
-        ByteWriter lw;
-        lw.u8(uint8_t(lv.shape.rows));
-        lw.u8(uint8_t(lv.shape.cols));
-        lw.u8(uint8_t(lv.shape.frames));
-        lw.u8(uint8_t(lv.shape.levels));
-        write_level_coding(lw, s, lv.closing != nullptr);
-        if (lv.closing) {
-            lw.u8(uint8_t(lv.closing_shape.rows));
-            lw.u8(uint8_t(lv.closing_shape.cols));
-            lw.u8(uint8_t(lv.closing_shape.frames));
-        }
-        writer.add(kTagLevel, uint8_t(l), 0, std::move(lw.data()));
+        writer.add(kTagLevel, uint8_t(l), 0, level_section(lv.shape, lv.closing ? &lv.closing_shape : nullptr, s, true));
         write_histogram(writer, l, levels, s, lv.histogram);
         if (bool(lv.closing) != bool(lv.seam) ||
             (lv.seam && seam_shape_of(lv.shape, lv.closing_shape) != lv.seam_shape))
