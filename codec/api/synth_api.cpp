@@ -58,7 +58,7 @@ void synthesize_coherent(const vqtex_synth_params& params, const Image& example,
     opt.coarse_passes = std::max(4, int(params.passes));
     opt.jitter = int(params.jitter);
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
-    Image result = read_positions(example, synthesize_positions(space, sets, opt));
+    Image result = read_positions(example, synthesize_positions(space, sets, opt), threads);
     const auto t2 = Clock::now();
     if (stats) {
         *stats = vqtex_synth_stats{};

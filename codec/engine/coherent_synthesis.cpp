@@ -21,6 +21,7 @@ constexpr int kRadius = 2;
 constexpr int kSide = 2 * kRadius + 1;
 static_assert(kAppearanceDims == dsp::kWindowTapValues, "windows are compared by dsp::Kernels::window_ssd");
 constexpr int kTaps = kSide * kSide;
+static_assert(kTaps < 32, "a window's taps are bits of one uint32_t");
 constexpr int kMaxCandidates = kTaps * 16;
 
 uint64_t mix64(uint64_t z) {
@@ -92,19 +93,20 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
         for (int c = 0; c < kSide; ++c, ++t) sources[t] = row[xs[c]];
     }
     const uint32_t own_position = sources[kTaps / 2];
+    // Bit t set: neighbour t's source is not the pixel's own shifted by the
+    // neighbour's offset, so it may propose another position. Inside a
+    // coherent copy no bit is set and there is nothing to compare: checked
+    // first, branch-free, because that holds for most pixels.
+    uint32_t proposing = (1u << kTaps) - 1;
     {
-        // Inside a coherent copy every neighbour's source is the pixel's own
-        // shifted by the neighbour's offset: then every candidate is the
-        // pixel's own position, and there is nothing to compare. Checked
-        // first, branch-free, because it holds for most pixels.
         const int ox = position_x(own_position), oy = position_y(own_position);
         const int reach = kRadius * v.spacing;
         if (ox >= reach && oy >= reach && ox + reach < v.space.width && oy + reach < v.space.height) {
-            uint32_t differ = 0;
+            proposing = 0;
             for (int dy = -kRadius, t = 0; dy <= kRadius; ++dy)
                 for (int dx = -kRadius; dx <= kRadius; ++dx, ++t)
-                    differ |= sources[t] ^ pack_position(ox + dx * v.spacing, oy + dy * v.spacing);
-            if (differ == 0 && v.k == 1) return own_position;
+                    proposing |= uint32_t(sources[t] != pack_position(ox + dx * v.spacing, oy + dy * v.spacing)) << t;
+            if (proposing == 0 && v.k == 1) return own_position;
         }
     }
     uint32_t candidates[kMaxCandidates];
@@ -112,42 +114,45 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     int count = 0;
     const int ex_w = v.space.width, ex_h = v.space.height;
     const int k = std::min(v.k, kMaxCandidates / kTaps);
-    for (int dy = -kRadius, t = 0; dy <= kRadius; ++dy)
-        for (int dx = -kRadius; dx <= kRadius; ++dx, ++t) {
-            int ux = position_x(sources[t]) - dx * v.spacing, uy = position_y(sources[t]) - dy * v.spacing;
-            if (v.space.wraps) {
-                ux = Image::wrap(ux, ex_w);
-                uy = Image::wrap(uy, ex_h);
-            } else if (ux < 0 || uy < 0 || ux >= ex_w || uy >= ex_h) {
-                continue;  // the neighbour's source continues past the example's edge
+    // With k = 1 only the proposing neighbours are visited: a neighbour that
+    // continues the pixel's own copy proposes the pixel's own position,
+    // which is evaluated first anyway.
+    for (uint32_t taps = k == 1 ? proposing : (1u << kTaps) - 1; taps != 0; taps &= taps - 1) {
+        const int t = __builtin_ctz(taps);
+        const int dy = t / kSide - kRadius, dx = t % kSide - kRadius;
+        int ux = position_x(sources[t]) - dx * v.spacing, uy = position_y(sources[t]) - dy * v.spacing;
+        if (v.space.wraps) {
+            ux = Image::wrap(ux, ex_w);
+            uy = Image::wrap(uy, ex_h);
+        } else if (ux < 0 || uy < 0 || ux >= ex_w || uy >= ex_h) {
+            continue;  // the neighbour's source continues past the example's edge
+        }
+        if (k == 1) {
+            const uint32_t c = pack_position(ux, uy);
+            if (c == own_position) continue;
+            int seen = -1;
+            for (int j = 0; j < count && seen < 0; ++j)
+                if (candidates[j] == c) seen = j;
+            if (seen < 0) {
+                continues[count] = true;
+                candidates[count++] = c;
             }
-            if (k == 1) {
-                // The pixel's own position is evaluated first anyway.
-                const uint32_t c = pack_position(ux, uy);
-                if (c == own_position) continue;
-                int seen = -1;
-                for (int j = 0; j < count && seen < 0; ++j)
-                    if (candidates[j] == c) seen = j;
-                if (seen < 0) {
-                    continues[count] = true;
-                    candidates[count++] = c;
-                }
-                continue;
-            }
-            const uint32_t* set = v.sets.of(v.level, uint32_t(uy) * uint32_t(ex_w) + uint32_t(ux));
-            for (int i = 0; i < k; ++i) {
-                const uint32_t c = pack_position(int(set[i] % uint32_t(ex_w)), int(set[i] / uint32_t(ex_w)));
-                int seen = -1;
-                for (int j = 0; j < count && seen < 0; ++j)
-                    if (candidates[j] == c) seen = j;
-                if (seen >= 0) {
-                    continues[seen] = continues[seen] || i == 0;
-                } else {
-                    continues[count] = i == 0;
-                    candidates[count++] = c;
-                }
+            continue;
+        }
+        const uint32_t* set = v.sets.of(v.level, uint32_t(uy) * uint32_t(ex_w) + uint32_t(ux));
+        for (int i = 0; i < k; ++i) {
+            const uint32_t c = pack_position(int(set[i] % uint32_t(ex_w)), int(set[i] / uint32_t(ex_w)));
+            int seen = -1;
+            for (int j = 0; j < count && seen < 0; ++j)
+                if (candidates[j] == c) seen = j;
+            if (seen >= 0) {
+                continues[seen] = continues[seen] || i == 0;
+            } else {
+                continues[count] = i == 0;
+                candidates[count++] = c;
             }
         }
+    }
     // Inside a coherent copy every neighbour proposes the pixel's own
     // position: nothing to compare.
     if (count == 0) return own_position;
@@ -181,37 +186,81 @@ int child_coordinate(int size, bool wraps, int parent, int offset, int spacing) 
     return std::min(base + offset * spacing, size - 1);
 }
 
+// Which pixels a pass must evaluate again. A pixel's correction depends
+// only on the positions in its window, so a pixel none of whose window has
+// moved since its last evaluation would choose what it holds already:
+// skipping it gives the same bytes. Over the passes of one level (same
+// features) this skips most of the second pass.
+struct Revisit {
+    std::vector<uint8_t> due;    // evaluate at its next turn
+    std::vector<uint8_t> moved;  // changed at its last evaluation
+    explicit Revisit(std::size_t pixels) : due(pixels, 1), moved(pixels, 0) {}
+};
+
 // One correction pass over the whole level, in four interleaved subsets;
-// each subset reads only the positions as they were before it.
-void correction_pass(const LevelView& view, PositionMap& map, const CoherentOptions& options) {
+// each subset reads only the positions as they were before it. A subset's
+// choices go to a buffer of its own size first, since its rows read one
+// another's windows, and are put in place once it is done.
+void correction_pass(const LevelView& view, PositionMap& map, const CoherentOptions& options,
+                     Revisit* revisit = nullptr) {
     static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
     const int w = map.width, h = map.height;
-    std::vector<uint32_t> next;
+    std::vector<uint32_t> chosen(std::size_t((w + 1) / 2) * std::size_t((h + 1) / 2));
     for (const auto& subset : kOrder) {
         // Plain ints: clang 14 cannot capture structured bindings in a lambda.
         const int sx = subset[0], sy = subset[1];
-        next = map.positions;
-        const int rows = (h - sy + 1) / 2;
-        parallel_for(options.threads, std::size_t(std::max(rows, 0)), 4, [&](std::size_t r0, std::size_t r1) {
+        const int rows = (h - sy + 1) / 2, cols = (w - sx + 1) / 2;
+        if (rows <= 0 || cols <= 0) continue;
+        const uint32_t* positions = map.positions.data();
+        parallel_for(options.threads, std::size_t(rows), 4, [&](std::size_t r0, std::size_t r1) {
             int xs[kSide], ys[kSide];
             for (std::size_t r = r0; r < r1; ++r) {
                 const int y = sy + 2 * int(r);
+                uint32_t* out = chosen.data() + r * std::size_t(cols);
                 for (int i = 0; i < kSide; ++i) ys[i] = Image::wrap(y + i - kRadius, h);
                 for (int i = 0; i < kSide; ++i) xs[i] = Image::wrap(sx + i - kRadius, w);
-                for (int x = sx; x < w; x += 2) {
-                    next[std::size_t(y) * w + x] =
-                        correct_pixel(view, map.positions.data(), w, xs, ys, options.coherence_bias);
+                for (int x = sx, i = 0; x < w; x += 2, ++i) {
+                    const std::size_t at = std::size_t(y) * w + x;
+                    if (!revisit) {
+                        out[i] = correct_pixel(view, positions, w, xs, ys, options.coherence_bias);
+                    } else if (revisit->due[at]) {
+                        out[i] = correct_pixel(view, positions, w, xs, ys, options.coherence_bias);
+                        revisit->due[at] = 0;
+                        revisit->moved[at] = out[i] != positions[at];
+                    } else {
+                        out[i] = positions[at];
+                    }
                     // Slide the window two columns: wrap by comparison
                     // except on outputs narrower than the window.
-                    for (int i = 0; i < kSide; ++i) {
-                        int c = xs[i] + 2;
-                        if (c >= w) c = w >= kSide ? c - w : Image::wrap(x + 2 + i - kRadius, w);
-                        xs[i] = c;
+                    for (int j = 0; j < kSide; ++j) {
+                        int c = xs[j] + 2;
+                        if (c >= w) c = w >= kSide ? c - w : Image::wrap(x + 2 + j - kRadius, w);
+                        xs[j] = c;
                     }
                 }
             }
         });
-        map.positions.swap(next);
+        parallel_for(options.threads, std::size_t(rows), 16, [&](std::size_t r0, std::size_t r1) {
+            for (std::size_t r = r0; r < r1; ++r) {
+                uint32_t* row = map.positions.data() + (sy + 2 * r) * std::size_t(w);
+                const uint32_t* in = chosen.data() + r * std::size_t(cols);
+                for (int i = 0; i < cols; ++i) row[sx + 2 * i] = in[i];
+            }
+        });
+        if (revisit) {
+            // Every pixel whose window holds a moved one is due again; marked
+            // after the subset, on one thread, so no flag is written twice at once.
+            for (int y = sy; y < h; y += 2)
+                for (int x = sx; x < w; x += 2) {
+                    uint8_t& moved = revisit->moved[std::size_t(y) * w + x];
+                    if (!moved) continue;
+                    moved = 0;
+                    for (int dy = -kRadius; dy <= kRadius; ++dy) {
+                        uint8_t* row = revisit->due.data() + std::size_t(Image::wrap(y + dy, h)) * w;
+                        for (int dx = -kRadius; dx <= kRadius; ++dx) row[Image::wrap(x + dx, w)] = 1;
+                    }
+                }
+        }
     }
 }
 
@@ -226,15 +275,17 @@ void correct_positions(const AppearanceSpace& space, const CoherenceSets& sets, 
 }
 
 PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& parent, int width, int height,
-                               int spacing) {
+                               int spacing, int threads) {
     PositionMap out{width, height, std::vector<uint32_t>(std::size_t(width) * height)};
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const uint32_t p = parent.positions[std::size_t(y >> 1) * parent.width + (x >> 1)];
-            out.positions[std::size_t(y) * width + x] =
-                pack_position(child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing),
-                              child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing));
-        }
+    parallel_for(threads, std::size_t(height), 16, [&](std::size_t y0, std::size_t y1) {
+        for (int y = int(y0); y < int(y1); ++y)
+            for (int x = 0; x < width; ++x) {
+                const uint32_t p = parent.positions[std::size_t(y >> 1) * parent.width + (x >> 1)];
+                out.positions[std::size_t(y) * width + x] =
+                    pack_position(child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing),
+                                  child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing));
+            }
+    });
     return out;
 }
 
@@ -261,7 +312,7 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
                         pack_position(int((r & 0xFFFFFFFF) % uint64_t(space.width)), int((r >> 32) % uint64_t(space.height)));
                 }
         } else {
-            map = upsample_positions(space, map, w, h, spacing);
+            map = upsample_positions(space, map, w, h, spacing, options.threads);
             // Jitter of up to jitter/256 of the spacing in x and y.
             const int64_t reach = int64_t(spacing) * options.jitter;
             if (reach > 0)
@@ -276,8 +327,9 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
         }
         const LevelView view{space, sets, l, spacing, space.levels[std::size_t(l)].features.data(), sets.k, dsp::kernels()};
         const int passes = l == top ? options.coarse_passes : options.passes;
+        Revisit revisit(map.positions.size());
         for (int pass = 0; pass < passes; ++pass) {
-            correction_pass(view, map, options);
+            correction_pass(view, map, options, &revisit);
             done += uint64_t(w) * h;
             if (options.progress && !options.progress(done, total))
                 fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
@@ -286,7 +338,8 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
             // Seams between coherent copies are placed by colours at last:
             // the coherence of the output's own pixels is what a viewer sees.
             const LevelView polish{space, sets, 0, 1, space.pixels.data(), 1, dsp::kernels()};
-            for (int pass = 0; pass < options.polish_passes; ++pass) correction_pass(polish, map, options);
+            Revisit revisit_colours(map.positions.size());
+            for (int pass = 0; pass < options.polish_passes; ++pass) correction_pass(polish, map, options, &revisit_colours);
         }
         if (levels) (*levels)[std::size_t(l)] = map;
     }
@@ -294,28 +347,30 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
     // column and the row across which the pixels change least. Left at the
     // coarsest level's grid, the edges lay where coherent copies tend to
     // meet, and on 6 of 23 corpus textures the wrap was a visible line.
-    const Image& colours = space.levels[0].colours;
-    auto step = [&](int x0, int y0, int x1, int y1) {
-        const uint8_t* a = colours.at(position_x(map.positions[std::size_t(y0) * map.width + x0]),
-                                      position_y(map.positions[std::size_t(y0) * map.width + x0]));
-        const uint8_t* b = colours.at(position_x(map.positions[std::size_t(y1) * map.width + x1]),
-                                      position_y(map.positions[std::size_t(y1) * map.width + x1]));
+    const Image seen = read_positions(space.levels[0].colours, map, options.threads);
+    const int channels = seen.channels;
+    auto step = [&](const uint8_t* a, const uint8_t* b) {
         int d = 0;
-        for (int c = 0; c < colours.channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
+        for (int c = 0; c < channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
         return d;
     };
     int ox = 0, oy = 0;
-    int64_t best_x = INT64_MAX, best_y = INT64_MAX;
-    for (int x = 0; x < map.width; ++x) {
-        int64_t sum = 0;
-        for (int y = 0; y < map.height; ++y) sum += step((x + map.width - 1) % map.width, y, x, y);
-        if (sum < best_x) best_x = sum, ox = x;
-    }
+    std::vector<int64_t> across_column(std::size_t(map.width), 0);
+    int64_t best_y = INT64_MAX;
     for (int y = 0; y < map.height; ++y) {
+        const uint8_t* row = seen.at(0, y);
+        const uint8_t* above = seen.at(0, (y + map.height - 1) % map.height);
         int64_t sum = 0;
-        for (int x = 0; x < map.width; ++x) sum += step(x, (y + map.height - 1) % map.height, x, y);
+        for (int x = 0; x < map.width; ++x) {
+            const uint8_t* left = seen.at((x + map.width - 1) % map.width, y);
+            across_column[std::size_t(x)] += step(left, row + std::size_t(x) * channels);
+            sum += step(above + std::size_t(x) * channels, row + std::size_t(x) * channels);
+        }
         if (sum < best_y) best_y = sum, oy = y;
     }
+    int64_t best_x = INT64_MAX;
+    for (int x = 0; x < map.width; ++x)
+        if (across_column[std::size_t(x)] < best_x) best_x = across_column[std::size_t(x)], ox = x;
     if (options.roll && (ox || oy)) {
         std::vector<uint32_t> rolled(map.positions.size());
         for (int y = 0; y < map.height; ++y)
@@ -327,13 +382,15 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
     return map;
 }
 
-Image read_positions(const Image& example, const PositionMap& map) {
+Image read_positions(const Image& example, const PositionMap& map, int threads) {
     Image out(map.width, map.height, example.channels);
-    for (int y = 0; y < map.height; ++y)
-        for (int x = 0; x < map.width; ++x) {
-            const uint32_t p = map.positions[std::size_t(y) * map.width + x];
-            copy_pixel(out.at(x, y), example.at(position_x(p), position_y(p)), example.channels);
-        }
+    parallel_for(threads, std::size_t(map.height), 16, [&](std::size_t y0, std::size_t y1) {
+        for (int y = int(y0); y < int(y1); ++y)
+            for (int x = 0; x < map.width; ++x) {
+                const uint32_t p = map.positions[std::size_t(y) * map.width + x];
+                copy_pixel(out.at(x, y), example.at(position_x(p), position_y(p)), example.channels);
+            }
+    });
     return out;
 }
 

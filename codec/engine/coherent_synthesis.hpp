@@ -57,13 +57,13 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
                                  const CoherentOptions& options, std::vector<PositionMap>* levels = nullptr);
 
 // The output pixels: the example's pixels at the positions.
-Image read_positions(const Image& example, const PositionMap& map);
+Image read_positions(const Image& example, const PositionMap& map, int threads = 1);
 
 // The next finer level's positions before jitter and correction: each
 // child takes its parent's position plus its offset times `spacing` (the
 // finer level's), folded into the example. Exposed for tests.
 PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& parent, int width, int height,
-                               int spacing);
+                               int spacing, int threads = 1);
 
 // One correction pass of `map` at `level` (what synthesize_positions runs
 // `passes` times per level). Exposed for tests.
