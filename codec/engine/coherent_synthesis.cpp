@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "common/parallel.hpp"
 #include "dsp/dsp.hpp"
+#include "engine/coherent_candidates.hpp"
 #include "engine/pyramid.hpp"
 
 namespace vqtex {
@@ -109,9 +110,7 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
             if (proposing == 0 && v.k == 1) return own_position;
         }
     }
-    uint32_t candidates[kMaxCandidates];
-    bool continues[kMaxCandidates];
-    int count = 0;
+    CandidateList<kMaxCandidates> candidates;
     const int ex_w = v.space.width, ex_h = v.space.height;
     const int k = std::min(v.k, kMaxCandidates / kTaps);
     // With k = 1 only the proposing neighbours are visited: a neighbour that
@@ -119,8 +118,9 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     // which is evaluated first anyway.
     for (uint32_t taps = k == 1 ? proposing : (1u << kTaps) - 1; taps != 0; taps &= taps - 1) {
         const int t = __builtin_ctz(taps);
-        const int dy = t / kSide - kRadius, dx = t % kSide - kRadius;
-        int ux = position_x(sources[t]) - dx * v.spacing, uy = position_y(sources[t]) - dy * v.spacing;
+        const ShiftedSource u = shifted_source(position_x(sources[t]), position_y(sources[t]), t % kSide - kRadius,
+                                               t / kSide - kRadius, v.spacing);
+        int ux = u.x, uy = u.y;
         if (v.space.wraps) {
             ux = Image::wrap(ux, ex_w);
             uy = Image::wrap(uy, ex_h);
@@ -129,30 +129,14 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
         }
         if (k == 1) {
             const uint32_t c = pack_position(ux, uy);
-            if (c == own_position) continue;
-            int seen = -1;
-            for (int j = 0; j < count && seen < 0; ++j)
-                if (candidates[j] == c) seen = j;
-            if (seen < 0) {
-                continues[count] = true;
-                candidates[count++] = c;
-            }
+            if (c != own_position) candidates.add(c, true);
             continue;
         }
         const uint32_t* set = v.sets.of(v.level, uint32_t(uy) * uint32_t(ex_w) + uint32_t(ux));
-        for (int i = 0; i < k; ++i) {
-            const uint32_t c = pack_position(int(set[i] % uint32_t(ex_w)), int(set[i] / uint32_t(ex_w)));
-            int seen = -1;
-            for (int j = 0; j < count && seen < 0; ++j)
-                if (candidates[j] == c) seen = j;
-            if (seen >= 0) {
-                continues[seen] = continues[seen] || i == 0;
-            } else {
-                continues[count] = i == 0;
-                candidates[count++] = c;
-            }
-        }
+        for (int i = 0; i < k; ++i)
+            candidates.add(pack_position(int(set[i] % uint32_t(ex_w)), int(set[i] / uint32_t(ex_w))), i == 0);
     }
+    const int count = candidates.size();
     // Inside a coherent copy every neighbour proposes the pixel's own
     // position: nothing to compare.
     if (count == 0) return own_position;
@@ -165,9 +149,9 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     uint32_t best_d = v.distance(query, position_x(best), position_y(best), UINT32_MAX);
     for (int i = 0; i < count; ++i) {
         // An alternative must beat the best by the bias: d (1 + bias/256) < best.
-        const uint32_t bound = continues[i] ? best_d : uint32_t((uint64_t(best_d) * 256) / uint64_t(256 + bias));
+        const uint32_t bound = candidates.continues(i) ? best_d : uint32_t((uint64_t(best_d) * 256) / uint64_t(256 + bias));
         uint32_t d = v.distance(query, position_x(candidates[i]), position_y(candidates[i]), bound);
-        if (!continues[i]) d = uint32_t(std::min<uint64_t>(UINT32_MAX, uint64_t(d) + (uint64_t(d) * uint64_t(bias)) / 256));
+        if (!candidates.continues(i)) d = uint32_t(std::min<uint64_t>(UINT32_MAX, uint64_t(d) + (uint64_t(d) * uint64_t(bias)) / 256));
         if (d < best_d) {
             best_d = d;
             best = candidates[i];

@@ -13,6 +13,7 @@
 #include "dsp/dsp.hpp"
 #include "common/error.hpp"
 #include "fill/fill_order.hpp"
+#include "engine/coherent_candidates.hpp"
 #include "engine/matcher.hpp"
 #include "common/parallel.hpp"
 #include "engine/pyramid.hpp"
@@ -315,26 +316,23 @@ private:
 // when it is within the bias of the tree's (bias in 1/256: 0 = only when at
 // least as close). Ties go to the lower index, so the choice is a pure
 // function of the query and the neighbours' sources.
+// The list is the one the coherent engine uses (engine/coherent_candidates.hpp);
+// here its values are neighbourhood indices, every one a continuation.
 struct Candidates {
-    static constexpr int kMax = 32;
-    int32_t index[kMax];
-    int count = 0;
+    CandidateList<32> list;
     void add(int32_t i) {
-        if (i < 0 || count == kMax) return;
-        for (int k = 0; k < count; ++k)
-            if (index[k] == i) return;
-        index[count++] = i;
+        if (i >= 0) list.add(uint32_t(i), true);
     }
 };
 
 uint32_t coherent_choice(const ExampleSet& set, const uint8_t* query, uint32_t found, const Candidates& c,
                          uint32_t bias) {
     const dsp::Kernels& k = dsp::kernels();
-    if (c.count == 0) return found;
+    if (c.list.size() == 0) return found;
     const uint32_t found_distance = k.ssd(query, set.vector(found), set.stride);
     uint32_t best = UINT32_MAX, chosen = UINT32_MAX;
-    for (int i = 0; i < c.count; ++i) {
-        const uint32_t index = uint32_t(c.index[i]);
+    for (int i = 0; i < c.list.size(); ++i) {
+        const uint32_t index = c.list[i];
         const uint32_t d = k.ssd(query, set.vector(index), set.stride);
         if (d < best || (d == best && index < chosen)) best = d, chosen = index;
     }
@@ -483,7 +481,8 @@ void add_coherent(Candidates& c, const SourceMap& src, const ExampleIndex& ex, i
             if (!include_self && dx == 0 && dy == 0) continue;
             const int32_t s = src.get(x + dx, y + dy);
             if (s < 0) continue;
-            c.add(ex.at(s % ex.width() - dx, s / ex.width() - dy));
+            const ShiftedSource u = shifted_source(int(s) % ex.width(), int(s) / ex.width(), dx, dy, 1);
+            c.add(ex.at(u.x, u.y));
         }
 }
 
@@ -546,8 +545,8 @@ void masked_spiral_fill(Image& img, std::vector<uint8_t>& valid, SourceMap& src,
             Candidates coherent;
             add_coherent(coherent, src, ex, x, y, o.coherence_radius, false);
             uint32_t cbest = UINT32_MAX, cchosen = UINT32_MAX;
-            for (int k = 0; k < coherent.count; ++k) {
-                const uint32_t i = uint32_t(coherent.index[k]);
+            for (int k = 0; k < coherent.list.size(); ++k) {
+                const uint32_t i = coherent.list[k];
                 if (distance[i] < cbest || (distance[i] == cbest && i < cchosen)) cbest = distance[i], cchosen = i;
             }
             if (cchosen != UINT32_MAX &&
