@@ -8,10 +8,12 @@
 
 #include <atomic>
 #include <cstring>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
 #include "codec_support.hpp"
+#include "common/parallel.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex_test;
@@ -151,4 +153,42 @@ TEST(Concurrency, CancellingOneCallLeavesTheOthersUntouched) {
     EXPECT_EQ(cancelled_status, VQTEX_ERROR_CANCELLED);
     EXPECT_GE(calls.load(), 1);
     for (std::size_t j = 0; j < got.size(); ++j) EXPECT_EQ(got[j], want) << "decode " << j;
+}
+
+// parallel_for keeps its threads between calls and hands them to one loop
+// at a time: loops started from several threads at once, and loops inside
+// loops, must still run every item exactly once.
+TEST(Concurrency, LoopsFromManyThreadsAndInsideLoopsRunEveryItemOnce) {
+    constexpr std::size_t kItems = 3000, kInner = 40;
+    std::vector<std::atomic<int>> visits(4 * kItems * kInner);
+    std::vector<std::thread> callers;
+    for (int caller = 0; caller < 4; ++caller)
+        callers.emplace_back([&visits, caller] {
+            vqtex::parallel_for(3, kItems, 7, [&](std::size_t b, std::size_t e) {
+                for (std::size_t i = b; i < e; ++i)
+                    vqtex::parallel_for(2, kInner, 3, [&](std::size_t ib, std::size_t ie) {
+                        for (std::size_t j = ib; j < ie; ++j)
+                            visits[(std::size_t(caller) * kItems + i) * kInner + j].fetch_add(1);
+                    });
+            });
+        });
+    for (auto& t : callers) t.join();
+    for (std::size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i].load(), 1) << "item " << i;
+}
+
+// An exception thrown inside a loop reaches its caller once every thread is
+// done with the loop, and the kept threads serve the next loop as before.
+TEST(Concurrency, AnExceptionInALoopReachesItsCallerAndTheThreadsStayUsable) {
+    for (int round = 0; round < 3; ++round) {
+        EXPECT_THROW(vqtex::parallel_for(2, 64, 1,
+                                         [](std::size_t b, std::size_t) {
+                                             if (b == 17) throw std::runtime_error("item 17");
+                                         }),
+                     std::runtime_error);
+        std::atomic<std::size_t> sum{0};
+        vqtex::parallel_for(2, 1000, 10, [&](std::size_t b, std::size_t e) {
+            for (std::size_t i = b; i < e; ++i) sum += i;
+        });
+        EXPECT_EQ(sum.load(), 999u * 1000u / 2u);
+    }
 }

@@ -1,0 +1,91 @@
+// parallel.cpp - the threads parallel_for keeps between calls (see
+// parallel.hpp): a handful of workers that sleep on a condition variable
+// and wake for each loop, instead of threads started and joined per loop.
+#include "common/parallel.hpp"
+
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+
+namespace vqtex::detail {
+namespace {
+
+class KeptThreads {
+public:
+    bool run(int workers, const std::function<void(int)>& job) {
+        // More threads than any machine here has cores are not worth keeping.
+        constexpr int kMaxKept = 255;
+        std::unique_lock<std::mutex> use(in_use_, std::try_to_lock);
+        if (!use.owns_lock() || workers - 1 > kMaxKept) return false;
+        {
+            std::lock_guard<std::mutex> lock(state_);
+            while (int(threads_.size()) < workers - 1) {
+                const int index = int(threads_.size()) + 1;
+                threads_.emplace_back([this, index] { serve(index); });
+            }
+            job_ = &job;
+            wanted_ = workers - 1;
+            pending_ = workers - 1;
+            error_ = nullptr;
+            ++generation_;
+        }
+        wake_.notify_all();
+        std::exception_ptr error;
+        try {
+            job(0);
+        } catch (...) {
+            error = std::current_exception();
+        }
+        std::unique_lock<std::mutex> lock(state_);
+        finished_.wait(lock, [this] { return pending_ == 0; });
+        job_ = nullptr;
+        if (!error) error = error_;
+        lock.unlock();
+        if (error) std::rethrow_exception(error);
+        return true;
+    }
+
+private:
+    // Worker `index` (1-based) runs every loop that wants at least `index`
+    // workers; the kept threads live as long as the process.
+    [[noreturn]] void serve(int index) {
+        uint64_t seen = 0;
+        std::unique_lock<std::mutex> lock(state_);
+        for (;;) {
+            wake_.wait(lock, [&] { return generation_ != seen; });
+            seen = generation_;
+            if (index > wanted_) continue;
+            const std::function<void(int)>* job = job_;
+            lock.unlock();
+            std::exception_ptr error;
+            try {
+                (*job)(index);
+            } catch (...) {
+                error = std::current_exception();
+            }
+            lock.lock();
+            if (error && !error_) error_ = error;
+            if (--pending_ == 0) finished_.notify_one();
+        }
+    }
+
+    std::mutex in_use_;  // held by the one loop that has the threads
+    std::mutex state_;   // guards everything below
+    std::condition_variable wake_, finished_;
+    std::vector<std::thread> threads_;
+    const std::function<void(int)>* job_ = nullptr;
+    int wanted_ = 0, pending_ = 0;
+    uint64_t generation_ = 0;
+    std::exception_ptr error_;
+};
+
+}  // namespace
+
+bool run_on_kept_threads(int workers, const std::function<void(int)>& job) {
+    // Never destroyed: the workers sleep until the process ends, and no
+    // destructor has to race a job started from another static's destructor.
+    static KeptThreads* const kept = new KeptThreads;
+    return kept->run(workers, job);
+}
+
+}  // namespace vqtex::detail
