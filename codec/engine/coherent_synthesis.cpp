@@ -4,6 +4,7 @@
 #include "engine/coherent_synthesis.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <cstring>
 
@@ -87,7 +88,8 @@ struct LevelView {
 // One correction of pixel (x, y) of `cur` (w x h, a torus; xs and ys are
 // the wrapped columns and rows of its window): the best of its neighbours'
 // coherent candidates.
-uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int* xs, const int* ys, int bias) {
+uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int* xs, const int* ys, int bias,
+                       int link_bias) {
     uint32_t sources[kTaps];
     for (int r = 0, t = 0; r < kSide; ++r) {
         const uint32_t* row = cur + std::size_t(ys[r]) * w;
@@ -110,6 +112,15 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
             if (proposing == 0 && v.k == 1) return own_position;
         }
     }
+    // No two adjacent pixels of the example share a position, so a
+    // candidate that one of the four nearest neighbours holds would repeat a
+    // pixel: it is not offered (k = 1). Without this rule, 1.4% of the
+    // adjacent pixel pairs of a gravel output were repeats, against 0.07%
+    // in its example.
+    const auto held_next_door = [&](uint32_t c) {
+        return c == sources[kTaps / 2 - kSide] || c == sources[kTaps / 2 - 1] || c == sources[kTaps / 2 + 1] ||
+               c == sources[kTaps / 2 + kSide];
+    };
     CandidateList<kMaxCandidates> candidates;
     const int ex_w = v.space.width, ex_h = v.space.height;
     const int k = std::min(v.k, kMaxCandidates / kTaps);
@@ -129,7 +140,7 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
         }
         if (k == 1) {
             const uint32_t c = pack_position(ux, uy);
-            if (c != own_position) candidates.add(c, true);
+            if (c != own_position && !held_next_door(c)) candidates.add(c, true);
             continue;
         }
         const uint32_t* set = v.sets.of(v.level, uint32_t(uy) * uint32_t(ex_w) + uint32_t(ux));
@@ -144,14 +155,37 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     for (int t = 0; t < kTaps; ++t)
         std::memcpy(query + t * kAppearanceDims, v.feature(sources[t]), sizeof(int16_t) * kAppearanceDims);
     // The pixel's own position competes too, first and unbiased (its source
-    // may be off the example's edge for every neighbour).
+    // may be off the example's edge for every neighbour); unless it repeats
+    // a neighbour's, when any candidate takes its place.
+    // Each of the four nearest neighbours that does not continue a
+    // candidate's copy surcharges its distance by `link_bias`: a position
+    // that sits inside one copy with its neighbours beats one that a
+    // single neighbour proposes. This is what breaks up combs, patches
+    // whose alternate rows or columns hold two different copies, where every
+    // pixel sees its own copy on two sides and the other on two.
+    const auto surcharge = [&](uint32_t c) {
+        const int cx = position_x(c), cy = position_y(c), s = v.spacing;
+        const int links = int(sources[kTaps / 2 - kSide] == pack_position(cx, cy - s)) +
+                          int(sources[kTaps / 2 + kSide] == pack_position(cx, cy + s)) +
+                          int(sources[kTaps / 2 - 1] == pack_position(cx - s, cy)) +
+                          int(sources[kTaps / 2 + 1] == pack_position(cx + s, cy));
+        return uint64_t(256) + uint64_t(link_bias) * uint64_t(4 - links);
+    };
+    const auto scaled = [](uint64_t d, uint64_t factor) { return uint32_t(std::min<uint64_t>(UINT32_MAX, d * factor / 256)); };
     uint32_t best = own_position;
-    uint32_t best_d = v.distance(query, position_x(best), position_y(best), UINT32_MAX);
+    uint32_t best_d = held_next_door(own_position)
+                          ? UINT32_MAX
+                          : scaled(v.distance(query, position_x(best), position_y(best), UINT32_MAX), surcharge(best));
     for (int i = 0; i < count; ++i) {
-        // An alternative must beat the best by the bias: d (1 + bias/256) < best.
-        const uint32_t bound = candidates.continues(i) ? best_d : uint32_t((uint64_t(best_d) * 256) / uint64_t(256 + bias));
-        uint32_t d = v.distance(query, position_x(candidates[i]), position_y(candidates[i]), bound);
-        if (!candidates.continues(i)) d = uint32_t(std::min<uint64_t>(UINT32_MAX, uint64_t(d) + (uint64_t(d) * uint64_t(bias)) / 256));
+        // An alternative that continues no neighbour's copy must beat the
+        // best by the bias besides: d (1 + bias/256) < best. One factor, in
+        // 1/65536, so that the bound below is exact: a window given up
+        // once past it could not have won.
+        const uint64_t factor = surcharge(candidates[i]) * (candidates.continues(i) ? 256 : uint64_t(256 + bias));
+        const uint32_t bound = uint32_t(std::min<uint64_t>(UINT32_MAX, uint64_t(best_d) * 65536 / factor));
+        const uint32_t d = uint32_t(std::min<uint64_t>(
+            UINT32_MAX, uint64_t(v.distance(query, position_x(candidates[i]), position_y(candidates[i]), bound)) *
+                            factor / 65536));
         if (d < best_d) {
             best_d = d;
             best = candidates[i];
@@ -181,44 +215,58 @@ struct Revisit {
     explicit Revisit(std::size_t pixels) : due(pixels, 1), moved(pixels, 0) {}
 };
 
-// One correction pass over the whole level, in four interleaved subsets;
-// each subset reads only the positions as they were before it. A subset's
-// choices go to a buffer of its own size first, since its rows read one
-// another's windows, and are put in place once it is done.
+// One correction pass over the whole level, in kStride x kStride
+// interleaved subsets (a pixel and the others of its subset are kStride
+// apart); each subset reads only the positions as they were before it. A
+// subset's choices go to a buffer of its own size first, since its rows
+// read one another's windows, and are put in place once it is done.
+// Lefebvre & Hoppe's 2: pixels 3 apart broke up combs too, but less than
+// the link bias does, and with 4 apart more combs were left (SYNTHESIS.md).
+constexpr int kStride = 2;
+
+// The subsets in diagonal order, so that consecutive ones are not
+// neighbours along a row or a column.
+constexpr std::array<std::array<int, 2>, kStride * kStride> subset_order() {
+    std::array<std::array<int, 2>, kStride * kStride> order{};
+    for (int a = 0, i = 0; a < kStride; ++a)
+        for (int b = 0; b < kStride; ++b, ++i) order[std::size_t(i)] = {(a + b) % kStride, b};
+    return order;
+}
+
 void correction_pass(const LevelView& view, PositionMap& map, const CoherentOptions& options,
                      Revisit* revisit = nullptr) {
-    static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+    constexpr auto kOrder = subset_order();
     const int w = map.width, h = map.height;
-    std::vector<uint32_t> chosen(std::size_t((w + 1) / 2) * std::size_t((h + 1) / 2));
+    std::vector<uint32_t> chosen(std::size_t((w + kStride - 1) / kStride) * std::size_t((h + kStride - 1) / kStride));
     for (const auto& subset : kOrder) {
         // Plain ints: clang 14 cannot capture structured bindings in a lambda.
         const int sx = subset[0], sy = subset[1];
-        const int rows = (h - sy + 1) / 2, cols = (w - sx + 1) / 2;
+        const int rows = (h - sy + kStride - 1) / kStride, cols = (w - sx + kStride - 1) / kStride;
         if (rows <= 0 || cols <= 0) continue;
         const uint32_t* positions = map.positions.data();
         parallel_for(options.threads, std::size_t(rows), 4, [&](std::size_t r0, std::size_t r1) {
             int xs[kSide], ys[kSide];
             for (std::size_t r = r0; r < r1; ++r) {
-                const int y = sy + 2 * int(r);
+                const int y = sy + kStride * int(r);
                 uint32_t* out = chosen.data() + r * std::size_t(cols);
                 for (int i = 0; i < kSide; ++i) ys[i] = Image::wrap(y + i - kRadius, h);
                 for (int i = 0; i < kSide; ++i) xs[i] = Image::wrap(sx + i - kRadius, w);
-                for (int x = sx, i = 0; x < w; x += 2, ++i) {
+                for (int x = sx, i = 0; x < w; x += kStride, ++i) {
                     const std::size_t at = std::size_t(y) * w + x;
                     if (!revisit) {
-                        out[i] = correct_pixel(view, positions, w, xs, ys, options.coherence_bias);
+                        out[i] = correct_pixel(view, positions, w, xs, ys, options.coherence_bias, options.link_bias);
                     } else if (revisit->due[at]) {
-                        out[i] = correct_pixel(view, positions, w, xs, ys, options.coherence_bias);
+                        out[i] = correct_pixel(view, positions, w, xs, ys, options.coherence_bias, options.link_bias);
                         revisit->due[at] = 0;
                         revisit->moved[at] = out[i] != positions[at];
                     } else {
                         out[i] = positions[at];
                     }
-                    // Slide the window two columns: wrap by comparison
+                    // Slide the window kStride columns: wrap by comparison
                     // except on outputs narrower than the window.
                     for (int j = 0; j < kSide; ++j) {
-                        int c = xs[j] + 2;
-                        if (c >= w) c = w >= kSide ? c - w : Image::wrap(x + 2 + j - kRadius, w);
+                        int c = xs[j] + kStride;
+                        if (c >= w) c = w >= kSide ? c - w : Image::wrap(x + kStride + j - kRadius, w);
                         xs[j] = c;
                     }
                 }
@@ -226,16 +274,16 @@ void correction_pass(const LevelView& view, PositionMap& map, const CoherentOpti
         });
         parallel_for(options.threads, std::size_t(rows), 16, [&](std::size_t r0, std::size_t r1) {
             for (std::size_t r = r0; r < r1; ++r) {
-                uint32_t* row = map.positions.data() + (sy + 2 * r) * std::size_t(w);
+                uint32_t* row = map.positions.data() + (sy + kStride * r) * std::size_t(w);
                 const uint32_t* in = chosen.data() + r * std::size_t(cols);
-                for (int i = 0; i < cols; ++i) row[sx + 2 * i] = in[i];
+                for (int i = 0; i < cols; ++i) row[sx + kStride * i] = in[i];
             }
         });
         if (revisit) {
             // Every pixel whose window holds a moved one is due again; marked
             // after the subset, on one thread, so no flag is written twice at once.
-            for (int y = sy; y < h; y += 2)
-                for (int x = sx; x < w; x += 2) {
+            for (int y = sy; y < h; y += kStride)
+                for (int x = sx; x < w; x += kStride) {
                     uint8_t& moved = revisit->moved[std::size_t(y) * w + x];
                     if (!moved) continue;
                     moved = 0;

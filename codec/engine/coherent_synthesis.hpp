@@ -38,6 +38,11 @@ struct CoherentOptions {
     // neighbour's source (a k-coherence alternative) over one that does:
     // favours long coherent copies (Hertzmann et al. 2001's kappa).
     int coherence_bias = 256;
+    // Surcharge, in 1/256 of the distance, for each of the four nearest
+    // neighbours that does not continue a candidate's copy (see
+    // correct_pixel): 256 makes a candidate with no such link weigh 5 times
+    // its distance, one inside its neighbours' copy 1 time.
+    int link_bias = 256;
     std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
 };
 
