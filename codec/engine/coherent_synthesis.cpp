@@ -8,34 +8,18 @@
 #include <cstring>
 
 #include "common/error.hpp"
-#include "common/parallel.hpp"
 #include "dsp/dsp.hpp"
+#include "engine/coherent_common.hpp"
 #include "engine/pyramid.hpp"
 
 namespace vqtex {
 namespace {
 
-// Neighbourhood of a correction step: the 5x5 window of appearance
-// vectors (each already summarises a 5x5 window of its level).
-constexpr int kRadius = 2;
-constexpr int kSide = 2 * kRadius + 1;
-static_assert(kAppearanceDims == dsp::kWindowTapValues, "windows are compared by dsp::Kernels::window_ssd");
-constexpr int kTaps = kSide * kSide;
+using coherent::kRadius;
+using coherent::kSide;
+using coherent::kTaps;
+using coherent::pixel_hash;
 constexpr int kMaxCandidates = kTaps * 16;
-
-uint64_t mix64(uint64_t z) {
-    z += 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-// A per-pixel hash of the seed, the level and a purpose: the same pixel of
-// the same level gets the same numbers whatever else is computed.
-uint64_t pixel_hash(uint64_t seed, int level, int purpose, int x, int y) {
-    return mix64(seed ^ mix64((uint64_t(uint32_t(level)) << 40) ^ (uint64_t(uint32_t(purpose)) << 56) ^
-                              (uint64_t(uint32_t(y)) << 20) ^ uint64_t(uint32_t(x))));
-}
 
 // Position (x, y) of the example, folded inside if it is not.
 uint32_t folded(const AppearanceSpace& space, int x, int y) {
@@ -57,28 +41,9 @@ struct LevelView {
     const int16_t* feature(uint32_t p) const { return feature(position_x(p), position_y(p)); }
 
     // Distance between the query (kTaps vectors) and the example's window at
-    // (x, y), stopping once it exceeds `bound` (Kernels::window_ssd).
+    // (x, y), stopping once it exceeds `bound`.
     uint32_t distance(const int16_t* query, int x, int y, uint32_t bound) const {
-        const int w = space.width, h = space.height;
-        const std::ptrdiff_t tap = std::ptrdiff_t(spacing) * kAppearanceDims;
-        if (x - kRadius * spacing >= 0 && x + kRadius * spacing < w && y - kRadius * spacing >= 0 &&
-            y + kRadius * spacing < h)
-            return kernels.window_ssd(query, feature(x - kRadius * spacing, y - kRadius * spacing), tap,
-                                      tap * w, kSide, bound);
-        // Windows across the example's edge read it folded: their taps are
-        // gathered side by side first, for the same kernel and the same sums.
-        alignas(16) int16_t window[kTaps * kAppearanceDims];
-        int xs[kSide], ys[kSide];
-        for (int i = 0; i < kSide; ++i) {
-            const int sx = x + (i - kRadius) * spacing, sy = y + (i - kRadius) * spacing;
-            xs[i] = sx >= 0 && sx < w ? sx : space.fold_x(sx);
-            ys[i] = sy >= 0 && sy < h ? sy : space.fold_y(sy);
-        }
-        for (int r = 0, t = 0; r < kSide; ++r)
-            for (int c = 0; c < kSide; ++c, ++t)
-                std::memcpy(window + t * kAppearanceDims, feature(xs[c], ys[r]), sizeof(int16_t) * kAppearanceDims);
-        return kernels.window_ssd(query, window, kAppearanceDims, std::ptrdiff_t(kSide) * kAppearanceDims, kSide,
-                                  bound);
+        return coherent::window_distance(kernels, space, features, spacing, query, x, y, bound);
     }
 };
 
@@ -171,48 +136,13 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     return best;
 }
 
-// A child's coordinate from its parent's. A parent whose second child
-// would fall past the example's edge has its block of children moved inside
-// whole, so the block stays a coherent copy; folding the child back (a
-// mirror) repeated the same rows over several levels and drew streaks.
-int child_coordinate(int size, bool wraps, int parent, int offset, int spacing) {
-    if (wraps) return Image::wrap(parent + offset * spacing, size);
-    const int base = parent + spacing < size ? parent : std::max(0, size - 1 - spacing);
-    return std::min(base + offset * spacing, size - 1);
-}
-
-// One correction pass over the whole level, in four interleaved subsets;
-// each subset reads only the positions as they were before it.
+// One correction pass over the whole level (coherent::interleaved_pass).
 void correction_pass(const LevelView& view, PositionMap& map, const CoherentOptions& options) {
-    static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
-    const int w = map.width, h = map.height;
-    std::vector<uint32_t> next;
-    for (const auto& subset : kOrder) {
-        // Plain ints: clang 14 cannot capture structured bindings in a lambda.
-        const int sx = subset[0], sy = subset[1];
-        next = map.positions;
-        const int rows = (h - sy + 1) / 2;
-        parallel_for(options.threads, std::size_t(std::max(rows, 0)), 4, [&](std::size_t r0, std::size_t r1) {
-            int xs[kSide], ys[kSide];
-            for (std::size_t r = r0; r < r1; ++r) {
-                const int y = sy + 2 * int(r);
-                for (int i = 0; i < kSide; ++i) ys[i] = Image::wrap(y + i - kRadius, h);
-                for (int i = 0; i < kSide; ++i) xs[i] = Image::wrap(sx + i - kRadius, w);
-                for (int x = sx; x < w; x += 2) {
-                    next[std::size_t(y) * w + x] =
-                        correct_pixel(view, map.positions.data(), w, xs, ys, options.coherence_bias);
-                    // Slide the window two columns: wrap by comparison
-                    // except on outputs narrower than the window.
-                    for (int i = 0; i < kSide; ++i) {
-                        int c = xs[i] + 2;
-                        if (c >= w) c = w >= kSide ? c - w : Image::wrap(x + 2 + i - kRadius, w);
-                        xs[i] = c;
-                    }
-                }
-            }
-        });
-        map.positions.swap(next);
-    }
+    const int w = map.width;
+    coherent::interleaved_pass(options.threads, map.width, map.height, map.positions,
+                               [&](int, int, const int* xs, const int* ys) {
+                                   return correct_pixel(view, map.positions.data(), w, xs, ys, options.coherence_bias);
+                               });
 }
 
 }  // namespace
@@ -232,8 +162,8 @@ PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& 
         for (int x = 0; x < width; ++x) {
             const uint32_t p = parent.positions[std::size_t(y >> 1) * parent.width + (x >> 1)];
             out.positions[std::size_t(y) * width + x] =
-                pack_position(child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing),
-                              child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing));
+                pack_position(coherent::child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing),
+                              coherent::child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing));
         }
     return out;
 }
@@ -290,10 +220,7 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
         }
         if (levels) (*levels)[std::size_t(l)] = map;
     }
-    // Where to cut the torus open is free: the output's origin is put on the
-    // column and the row across which the pixels change least. Left at the
-    // coarsest level's grid, the edges lay where coherent copies tend to
-    // meet, and on 6 of 23 corpus textures the wrap was a visible line.
+    // Where to cut the torus open is free (coherent::torus_origin).
     const Image& colours = space.levels[0].colours;
     auto step = [&](int x0, int y0, int x1, int y1) {
         const uint8_t* a = colours.at(position_x(map.positions[std::size_t(y0) * map.width + x0]),
@@ -304,26 +231,9 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
         for (int c = 0; c < colours.channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
         return d;
     };
-    int ox = 0, oy = 0;
-    int64_t best_x = INT64_MAX, best_y = INT64_MAX;
-    for (int x = 0; x < map.width; ++x) {
-        int64_t sum = 0;
-        for (int y = 0; y < map.height; ++y) sum += step((x + map.width - 1) % map.width, y, x, y);
-        if (sum < best_x) best_x = sum, ox = x;
-    }
-    for (int y = 0; y < map.height; ++y) {
-        int64_t sum = 0;
-        for (int x = 0; x < map.width; ++x) sum += step(x, (y + map.height - 1) % map.height, x, y);
-        if (sum < best_y) best_y = sum, oy = y;
-    }
-    if (options.roll && (ox || oy)) {
-        std::vector<uint32_t> rolled(map.positions.size());
-        for (int y = 0; y < map.height; ++y)
-            for (int x = 0; x < map.width; ++x)
-                rolled[std::size_t(y) * map.width + x] =
-                    map.positions[std::size_t(Image::wrap(y + oy, map.height)) * map.width + Image::wrap(x + ox, map.width)];
-        map.positions.swap(rolled);
-    }
+    const std::pair<int, int> origin = coherent::torus_origin(map.width, map.height, step);
+    if (options.roll && (origin.first || origin.second))
+        map.positions = coherent::rolled(map.positions, map.width, map.height, origin.first, origin.second);
     return map;
 }
 
