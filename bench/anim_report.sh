@@ -55,7 +55,8 @@ for name in waves_48_anim flicker_32_anim advected_32_anim; do
   args=()
   for t in "${pick[@]}"; do
     f="$(printf "$example" "$t")"
-    oiiotool "$f" "$f" "$f" "$f" "$f" "$f" "$f" "$f" "$f" --mosaic 5x5 --cut "${w}x${h}+0+0" -o "$out/$name/ex_$t.png"
+    tiles=(); for i in $(seq 25); do tiles+=("$f"); done
+    oiiotool "${tiles[@]}" --mosaic 5x5 --cut "${w}x${h}+0+0" -o "$out/$name/ex_$t.png"
     args+=("$out/$name/ex_$t.png")
   done
   for src in "$out/$name/coherent_s1/f_%03d.png" "$out/$name/file_s1/f_%03d.png"; do
