@@ -5,8 +5,8 @@
 # set not above it) must give the bytes of the default set. test_dsp checks
 # the kernels one by one; this checks that nothing around them depends on
 # the set. The set is chosen once per process, hence one process per set.
-# The coherent engine (vqtex-synth) is checked the same way: it calls the
-# window-distance kernel.
+# The coherent engine (vqtex-synth, a still texture and an animation) is
+# checked the same way: it calls the window-distance kernel.
 # Usage: simd_decode_test.sh ENCODE_EXE DECODE_EXE GOLDEN_DIR CORPUS_DIR SYNTH_EXE
 set -euo pipefail
 encode="$1"
@@ -25,6 +25,8 @@ decode_all() {  # $1 = output directory
   "$decode" "$work/leaves.vqt" "$1/leaves.png" --size 96x160 --mips --quiet
   "$decode" "$golden/flicker_v2.vqt" "$1/anim/f_%03d.png" --frames 10 --size 48x40 --seed 3 --quiet
   "$synth" "$corpus/cellular_128.png" "$1/coherent.png" --size 210x150 --seed 4 -j 2 --quiet
+  mkdir -p "$1/anim_coherent"
+  "$synth" "$corpus/flicker_32_anim/frame_%03d.png" "$1/anim_coherent/f_%03d.png" --frames 6 --size 40x36 --seed 2 -j 2 --quiet
 }
 
 decode_all "$work/default"

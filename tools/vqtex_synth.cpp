@@ -1,16 +1,72 @@
 // vqtex-synth - synthesise a new, tileable texture of any size from an
-// example image (paper sections 2-4), through the public API only.
+// example image (paper sections 2-4), or an animation from an example frame
+// sequence (section 5.2, on the coherent engine), through the public API
+// only.
+#include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "cli_common.hpp"
 #include "image_io.hpp"
+#include "sequence_io.hpp"
 #include "vqtex/vqtex.h"
 #include "vqtex/vqtex.hpp"
 
 using namespace vqtex_tools;
+
+namespace {
+
+// The animated path: a frame sequence in, a numbered frame sequence out.
+int synthesize_animation(const std::string& input, const std::string& output, vqtex_synth_params& params,
+                         uint32_t frames, bool json, bool quiet) {
+    if (!is_frame_pattern(output))
+        throw std::invalid_argument("output '" + output +
+                                    "' needs one frame-number field for an animation, e.g. out/frame_%03d.png");
+    LoadedSequence seq = load_sequence(input);
+    if (!seq.notice.empty() && !quiet)
+        std::fprintf(stderr, "vqtex-synth: note: %s: %s\n", input.c_str(), seq.notice.c_str());
+    ProgressBar bar(!quiet && !json);
+    params.progress = ProgressBar::callback;
+    params.progress_user = &bar;
+    const vqtex_volume example{seq.width, seq.height, seq.frames, seq.channels, seq.pixels.data()};
+    vqtex_cpp::Volume out;  // owns the result
+    vqtex_synth_stats stats{};
+    vqtex_error err{};
+    const double t0 = now_seconds();
+    const vqtex_status st = vqtex_synthesize_volume(&params, &example, frames, out.out(), &stats, &err);
+    bar.finish();
+    if (st != VQTEX_OK) {
+        std::fprintf(stderr, "vqtex-synth: error: %s\n", err.detail);
+        return 1;
+    }
+    const double t1 = now_seconds();
+    const std::vector<std::string> written = save_sequence(output, out.get());
+    if (json) {
+        std::printf("{\"input\":%s,\"output\":%s,\"example_width\":%u,\"example_height\":%u,"
+                    "\"example_frames\":%u,\"channels\":%u,\"width\":%u,\"height\":%u,\"frames\":%u,"
+                    "\"seed\":%llu,\"levels\":%u,\"analyse_seconds\":%.6f,\"synthesise_seconds\":%.6f,"
+                    "\"seconds_per_frame\":%.6f}\n",
+                    json_string(input).c_str(), json_string(output).c_str(), seq.width, seq.height, seq.frames,
+                    seq.channels, out.width(), out.height(), out.frames(), (unsigned long long)params.seed,
+                    stats.levels, stats.analyse_seconds, stats.synthesise_seconds,
+                    stats.synthesise_seconds / double(std::max(out.frames(), 1u)));
+    } else if (!quiet) {
+        std::printf("example   %s  %ux%u, %u frames, %u channel%s\n", input.c_str(), seq.width, seq.height,
+                    seq.frames, seq.channels, seq.channels == 1 ? "" : "s");
+        std::printf("output    %s .. %s  %u frames of %ux%u, tileable, seed %llu\n", written.front().c_str(),
+                    written.back().c_str(), out.frames(), out.width(), out.height(),
+                    (unsigned long long)params.seed);
+        std::printf("time      analyse %.3f s, synthesise %.3f s (%.3f s per frame), total %.3f s\n",
+                    stats.analyse_seconds, stats.synthesise_seconds,
+                    stats.synthesise_seconds / double(std::max(out.frames(), 1u)), t1 - t0);
+    }
+    return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"vqtex-synth: synthesise a tileable texture of any size from an example image.\n"
@@ -24,8 +80,16 @@ int main(int argc, char** argv) {
     bool exhaustive = false, tsvq = false, tileable = false, json = false, quiet = false, paper = false;
     std::string engine = "coherent";
     uint32_t coherence = 0, passes = 0, jitter = 0;
-    app.add_option("input", input, "example image (any format OpenImageIO reads)")->required();
-    app.add_option("output", output, "output image (format from the extension: .png, .tif, .exr ...)")->required();
+    uint32_t frames = 0;
+    app.add_option("input", input,
+                   "example image (any format OpenImageIO reads), or an animation: a numbered sequence "
+                   "'frames/frame_%03d.png', a folder of frames, or a multi-image file")->required();
+    app.add_option("output", output,
+                   "output image (format from the extension: .png, .tif, .exr ...); for an animation a "
+                   "numbered sequence such as 'out/frame_%03d.png'")->required();
+    auto* frames_opt = app.add_option("--frames", frames,
+                                      "animation: output frames, 1 to 16384 (default: the example's count)")
+                           ->check(CLI::Range(1, 16384));
     app.add_option("-s,--size", size, "output size WxH (1 to 16384 per side)")->capture_default_str();
     app.add_option("--seed", seed, "random seed: different seeds give different textures")->capture_default_str();
     app.add_option("--engine", engine,
@@ -113,6 +177,14 @@ int main(int argc, char** argv) {
         params.model.seam_closing = no_seam_closing ? 0 : 1;
         params.init = init == "noise" ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
 
+        if (is_sequence(input)) {
+            if (engine == "paper")
+                throw std::invalid_argument("animations synthesise with the coherent engine only (the paper's engine: "
+                                            "vqtex-encode the sequence, then vqtex-decode)");
+            return synthesize_animation(input, output, params, frames, json, quiet);
+        }
+        if (frames_opt->count())
+            throw std::invalid_argument("--frames needs an animation: a frame sequence as input");
         const double t_load = now_seconds();
         LoadedImage example = load_image(input);
         if (!example.notice.empty() && !quiet)

@@ -16,12 +16,14 @@
 #include "format/model_codec.hpp"
 #include "common/parallel.hpp"
 #include "engine/synthesis.hpp"
+#include "engine/volume.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex {
 
 inline constexpr uint32_t kMaxOutputSide = 16384;
 inline constexpr uint64_t kDefaultMemoryLimit = uint64_t(1) << 30;
+inline constexpr uint32_t kMaxOutputFrames = 16384;
 
 inline vqtex_status report(vqtex_error* error, vqtex_status status, const char* detail) {
     if (error) {
@@ -78,6 +80,33 @@ inline void image_to_c(Image&& img, vqtex_image* out) {
     out->height = uint32_t(img.height);
     out->channels = uint32_t(img.channels);
     out->pixels = p;
+}
+
+// An example frame sequence from the caller, checked.
+inline Volume volume_from_c(const vqtex_volume* in) {
+    if (!in) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence is NULL");
+    if (in->width == 0 || in->height == 0 || in->frames == 0)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence has zero size (" + std::to_string(in->width) + "x" +
+                                               std::to_string(in->height) + ", " + std::to_string(in->frames) +
+                                               " frames)");
+    if (in->channels < 1 || in->channels > 4)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT,
+             "example sequence has " + std::to_string(in->channels) + " channels; 1 to 4 are supported");
+    if (in->width > 65536 || in->height > 65536 || in->frames > 65536 ||
+        uint64_t(in->width) * in->height * in->frames > (uint64_t(1) << 28))
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example sequence is larger than 65536 on a side or in frames, or 2^28 pixels in all");
+    if (!in->pixels) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence has no pixels");
+    Volume v(int(in->width), int(in->height), int(in->frames), int(in->channels));
+    std::memcpy(v.stack.pixels.data(), in->pixels, v.byte_count());
+    return v;
+}
+
+// Hands a volume to the caller in a struct vqtex_volume_free releases.
+inline void volume_to_c(const Volume& v, vqtex_volume* out) {
+    uint8_t* pixels = static_cast<uint8_t*>(std::malloc(v.byte_count()));
+    if (!pixels) throw std::bad_alloc();
+    std::memcpy(pixels, v.stack.pixels.data(), v.byte_count());
+    *out = vqtex_volume{uint32_t(v.width), uint32_t(v.height), uint32_t(v.frames), uint32_t(v.channels), pixels};
 }
 
 inline int resolve_threads(uint32_t threads) { return threads ? int(threads) : hardware_threads(); }

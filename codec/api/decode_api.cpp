@@ -21,8 +21,6 @@ using namespace vqtex;
 
 namespace {
 
-constexpr uint32_t kMaxOutputFrames = 16384;
-
 // Refuses an output that would need more than the memory limit: `needed`
 // counts the output and what the trees took of the limit; `output` names
 // it ("a 64x64 output").
@@ -174,11 +172,7 @@ vqtex_status vqtex_decode_volume(const vqtex_decode_params* p, uint32_t frames, 
         opt.init = f.init;
         opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
         std::vector<Volume> pyramid = synthesize_volume_pyramid(volume_model_of(f.model, f.header.backtrack), opt);
-        const Volume& v = pyramid[0];
-        uint8_t* pixels = static_cast<uint8_t*>(std::malloc(v.byte_count()));
-        if (!pixels) throw std::bad_alloc();
-        std::memcpy(pixels, v.stack.pixels.data(), v.byte_count());
-        *out = vqtex_volume{uint32_t(v.width), uint32_t(v.height), uint32_t(v.frames), uint32_t(v.channels), pixels};
+        volume_to_c(pyramid[0], out);
     });
 }
 

@@ -1,6 +1,7 @@
-// synth_api.cpp - the exported synthesis call (paper sections 2-4): an
-// example image straight to a texture of any size, no file in between, and
-// the model parameters it shares with the encoder. Validation and status
+// synth_api.cpp - the exported synthesis calls (paper sections 2-4, and
+// 5.2 for animations): an example image or frame sequence straight to a
+// texture or animation of any size, no file in between, and the model
+// parameters it shares with the encoder. Validation and status
 // mapping as everywhere at the C boundary (api_support.hpp).
 #include <chrono>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "engine/appearance.hpp"
 #include "engine/coherence_sets.hpp"
 #include "engine/coherent_synthesis.hpp"
+#include "engine/coherent_volume_synthesis.hpp"
 #include "engine/synthesis.hpp"
 #include "vqtex/vqtex.h"
 
@@ -75,6 +77,64 @@ void synthesize_coherent(const vqtex_synth_params& params, const Image& example,
         stats->synthesise_seconds = std::chrono::duration<double>(t2 - t1).count();
     }
     image_to_c(std::move(result), out);
+}
+
+// The example volume's appearance vectors take 16 bytes per voxel and
+// level: this keeps them under about half a GiB.
+constexpr uint64_t kMaxVolumeExampleVoxels = uint64_t(1) << 22;
+// The output frames handed back, in bytes.
+constexpr uint64_t kMaxVolumeOutputBytes = uint64_t(1) << 30;
+
+void synthesize_volume_coherent(const vqtex_synth_params& params, const Volume& example, uint32_t frames, int threads,
+                                vqtex_volume* out, vqtex_synth_stats* stats) {
+    using Clock = std::chrono::steady_clock;
+    if (example.width > 65535 || example.height > 65535 || example.frames > 65535 ||
+        uint64_t(example.voxel_count()) > kMaxVolumeExampleVoxels)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example sequence " + std::to_string(example.width) + "x" +
+                                             std::to_string(example.height) + "x" + std::to_string(example.frames) +
+                                             " is larger than the coherent engine takes (2^22 voxels, 65535 a side)");
+    const uint32_t n = frames ? frames : uint32_t(example.frames);
+    const uint64_t bytes_out = uint64_t(params.width) * params.height * n * uint64_t(example.channels);
+    if (bytes_out > kMaxVolumeOutputBytes)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "a " + std::to_string(params.width) + "x" + std::to_string(params.height) +
+                                             " animation of " + std::to_string(n) + " frames needs " +
+                                             std::to_string(bytes_out >> 20) + " MiB, more than 1024");
+    const int levels = params.model.levels ? int(params.model.levels) : coherent_levels(example.width, example.height);
+    const auto t0 = Clock::now();
+    const ProgressFn analyse = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_ANALYSE);
+    if (analyse && !analyse(0, 1)) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+    std::vector<Image> example_frames;
+    for (int t = 0; t < example.frames; ++t) example_frames.push_back(example.frame(t));
+    const std::vector<AppearanceSpace> space =
+        build_appearance_frames(example_frames, levels, params.model.example_tileable != 0, threads);
+    if (analyse && !analyse(1, 1)) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+    const auto t1 = Clock::now();
+    VolumeCoherentOptions opt;
+    opt.width = int(params.width);
+    opt.height = int(params.height);
+    opt.frames = int(n);
+    opt.seed = params.seed;
+    opt.threads = threads;
+    opt.passes = int(params.passes);
+    opt.coarse_passes = std::max(4, int(params.passes));
+    opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
+    const Volume result = synthesize_volume_coherent(space, example_frames, opt);
+    const auto t2 = Clock::now();
+    if (stats) {
+        *stats = vqtex_synth_stats{};
+        stats->levels = uint32_t(levels);
+        std::size_t bytes = 0;
+        for (const auto& frame : space)
+            for (const auto& l : frame.levels) bytes += l.colours.byte_count() + l.features.size() * sizeof(int16_t);
+        for (int l = 0; l < levels; ++l) {
+            stats->training_vectors[l] = uint32_t(example.voxel_count());
+            stats->codewords[l] = uint32_t(example.voxel_count());
+        }
+        stats->model_bytes = bytes;
+        stats->analyse_seconds = std::chrono::duration<double>(t1 - t0).count();
+        stats->synthesise_seconds = std::chrono::duration<double>(t2 - t1).count();
+    }
+    volume_to_c(result, out);
 }
 
 }  // namespace
@@ -168,6 +228,17 @@ vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_imag
         }
         pyramid.resize(1);  // free the coarser levels before the copy
         image_to_c(std::move(pyramid[0]), out);
+    });
+}
+
+vqtex_status vqtex_synthesize_volume(const vqtex_synth_params* params, const vqtex_volume* example, uint32_t frames,
+                                     vqtex_volume* out, vqtex_synth_stats* stats, vqtex_error* error) {
+    return guarded(error, [&] {
+        if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output volume pointer is NULL");
+        *out = vqtex_volume{};
+        validate_volume_synthesis(params, frames);
+        const Volume ex = volume_from_c(example);
+        synthesize_volume_coherent(*params, ex, frames, resolve_threads(params->threads), out, stats);
     });
 }
 

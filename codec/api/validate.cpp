@@ -91,6 +91,21 @@ void validate(const vqtex_synth_params* p) {
     check_tolerance(p->tolerance);
 }
 
+void validate_volume_synthesis(const vqtex_synth_params* p, uint32_t frames) {
+    validate(p);
+    if (p->engine != VQTEX_ENGINE_COHERENT)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT,
+             "animations synthesise with the coherent engine only (the paper's engine: vqtex_encode_volume, then "
+             "vqtex_decode_volume)");
+    if (p->coherence != 1)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "coherence must be 1 for an animation (got " + std::to_string(p->coherence) + ")");
+    if (p->jitter != 0)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "jitter must be 0 for an animation (got " + std::to_string(p->jitter) + ")");
+    if (frames > kMaxOutputFrames)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "frames must be 0 (the example's count) to " +
+                                               std::to_string(kMaxOutputFrames) + " (got " + std::to_string(frames) + ")");
+}
+
 void validate(const vqtex_encode_params* p) {
     if (!p || p->struct_size != sizeof(vqtex_encode_params))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_encode_params not initialised with vqtex_encode_params_init()");

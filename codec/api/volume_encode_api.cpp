@@ -16,28 +16,6 @@
 
 using namespace vqtex;
 
-namespace {
-
-Volume volume_from_c(const vqtex_volume* in) {
-    if (!in) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence is NULL");
-    if (in->width == 0 || in->height == 0 || in->frames == 0)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence has zero size (" + std::to_string(in->width) + "x" +
-                                               std::to_string(in->height) + ", " + std::to_string(in->frames) +
-                                               " frames)");
-    if (in->channels < 1 || in->channels > 4)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT,
-             "example sequence has " + std::to_string(in->channels) + " channels; 1 to 4 are supported");
-    if (in->width > 65536 || in->height > 65536 || in->frames > 65536 ||
-        uint64_t(in->width) * in->height * in->frames > (uint64_t(1) << 28))
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example sequence is larger than 65536 on a side or in frames, or 2^28 pixels in all");
-    if (!in->pixels) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence has no pixels");
-    Volume v(int(in->width), int(in->height), int(in->frames), int(in->channels));
-    std::memcpy(v.stack.pixels.data(), in->pixels, v.byte_count());
-    return v;
-}
-
-}  // namespace
-
 extern "C" {
 
 void vqtex_volume_encode_params_init(vqtex_volume_encode_params* p) {

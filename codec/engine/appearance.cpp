@@ -150,36 +150,57 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& sam
 }
 
 AppearanceSpace build_appearance_space(const Image& example, int levels, bool wraps, int threads) {
-    AppearanceSpace space;
-    space.width = example.width;
-    space.height = example.height;
-    space.wraps = wraps;
-    const int w = example.width, h = example.height, ch = example.channels;
+    std::vector<AppearanceSpace> frames = build_appearance_frames({example}, levels, wraps, threads);
+    return std::move(frames[0]);
+}
+
+std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& examples, int levels, bool wraps,
+                                                     int threads) {
+    const std::size_t frames = examples.size();
+    std::vector<AppearanceSpace> spaces(frames);
+    const int w = examples[0].width, h = examples[0].height, ch = examples[0].channels;
     const int dims = kWindowTaps * ch;
-    const std::size_t n = example.pixel_count();
-    // PCA samples on a regular grid, at most kMaxPcaSamples of them.
+    const std::size_t n = examples[0].pixel_count();
+    // PCA samples on a regular grid in x and y (and every frame_step-th
+    // frame), at most kMaxPcaSamples of them in all.
+    const std::size_t frame_step = (frames + kMaxPcaSamples - 1) / kMaxPcaSamples;
+    const std::size_t sampled_frames = (frames + frame_step - 1) / frame_step;
     int stride = 1;
-    while ((std::size_t((w + stride - 1) / stride) * std::size_t((h + stride - 1) / stride)) >
+    while ((std::size_t((w + stride - 1) / stride) * std::size_t((h + stride - 1) / stride)) * sampled_frames >
            std::size_t(kMaxPcaSamples))
         ++stride;
-    space.pixels.assign(n * kAppearanceDims, 0);
-    for (std::size_t i = 0; i < n; ++i)
-        for (int c = 0; c < ch; ++c) space.pixels[i * kAppearanceDims + std::size_t(c)] = int16_t(4 * example.pixels[i * std::size_t(ch) + std::size_t(c)]);
+    for (std::size_t f = 0; f < frames; ++f) {
+        AppearanceSpace& space = spaces[f];
+        space.width = w;
+        space.height = h;
+        space.wraps = wraps;
+        space.pixels.assign(n * kAppearanceDims, 0);
+        const Image& example = examples[f];
+        for (std::size_t i = 0; i < n; ++i)
+            for (int c = 0; c < ch; ++c)
+                space.pixels[i * kAppearanceDims + std::size_t(c)] =
+                    int16_t(4 * example.pixels[i * std::size_t(ch) + std::size_t(c)]);
+    }
     for (int l = 0; l < levels; ++l) {
-        AppearanceLevel level;
-        level.spacing = 1 << l;
-        level.colours = l == 0 ? example : stack_filter(space.levels.back().colours, 1 << (l - 1), wraps);
-        const Image& img = level.colours;
-
+        const int spacing = 1 << l;
+        for (std::size_t f = 0; f < frames; ++f) {
+            AppearanceLevel level;
+            level.spacing = spacing;
+            level.colours = l == 0 ? examples[f] : stack_filter(spaces[f].levels.back().colours, 1 << (l - 1), wraps);
+            spaces[f].levels.push_back(std::move(level));
+        }
+        // One set of axes for all the frames, so that appearance vectors of
+        // different frames compare.
         std::vector<int16_t> samples;
         int count = 0;
         std::vector<int16_t> window(static_cast<std::size_t>(dims));
-        for (int y = 0; y < h; y += stride)
-            for (int x = 0; x < w; x += stride) {
-                gather_window(img, x, y, level.spacing, wraps, window.data());
-                samples.insert(samples.end(), window.begin(), window.end());
-                ++count;
-            }
+        for (std::size_t f = 0; f < frames; f += frame_step)
+            for (int y = 0; y < h; y += stride)
+                for (int x = 0; x < w; x += stride) {
+                    gather_window(spaces[f].levels.back().colours, x, y, spacing, wraps, window.data());
+                    samples.insert(samples.end(), window.begin(), window.end());
+                    ++count;
+                }
         const std::vector<std::vector<int32_t>> axes = principal_axes(samples, dims, count, kAppearanceDims);
         std::vector<int64_t> mean(std::size_t(dims), 0);
         for (int s = 0; s < count; ++s)
@@ -191,27 +212,31 @@ AppearanceSpace build_appearance_space(const Image& example, int levels, bool wr
         for (int a = 0; a < kAppearanceDims; ++a)
             for (int i = 0; i < dims; ++i) flat[std::size_t(a) * dims + i] = axes[std::size_t(a)][std::size_t(i)];
 
-        level.features.assign(n * kAppearanceDims, 0);
-        parallel_for(threads, std::size_t(h), 8, [&](std::size_t y0, std::size_t y1) {
-            std::vector<int16_t> win(static_cast<std::size_t>(dims));
-            std::vector<int32_t> centred(static_cast<std::size_t>(dims));
-            for (std::size_t y = y0; y < y1; ++y)
-                for (int x = 0; x < w; ++x) {
-                    gather_window(img, x, int(y), level.spacing, wraps, win.data());
-                    for (int i = 0; i < dims; ++i) centred[std::size_t(i)] = win[std::size_t(i)] - int32_t(mean[std::size_t(i)]);
-                    int16_t* f = level.features.data() + (y * std::size_t(w) + std::size_t(x)) * kAppearanceDims;
-                    for (int a = 0; a < kAppearanceDims; ++a) {
-                        const int32_t* axis = flat.data() + std::size_t(a) * dims;
-                        int64_t acc = 0;
-                        for (int i = 0; i < dims; ++i) acc += int64_t(axis[i]) * centred[std::size_t(i)];
-                        const int64_t v = (acc + (1 << 14)) >> 15;
-                        f[a] = int16_t(std::clamp<int64_t>(v, -kAppearanceClamp, kAppearanceClamp));
+        for (std::size_t f = 0; f < frames; ++f) {
+            AppearanceLevel& level = spaces[f].levels.back();
+            const Image& img = level.colours;
+            level.features.assign(n * kAppearanceDims, 0);
+            parallel_for(threads, std::size_t(h), 8, [&](std::size_t y0, std::size_t y1) {
+                std::vector<int16_t> win(static_cast<std::size_t>(dims));
+                std::vector<int32_t> centred(static_cast<std::size_t>(dims));
+                for (std::size_t y = y0; y < y1; ++y)
+                    for (int x = 0; x < w; ++x) {
+                        gather_window(img, x, int(y), spacing, wraps, win.data());
+                        for (int i = 0; i < dims; ++i)
+                            centred[std::size_t(i)] = win[std::size_t(i)] - int32_t(mean[std::size_t(i)]);
+                        int16_t* fv = level.features.data() + (y * std::size_t(w) + std::size_t(x)) * kAppearanceDims;
+                        for (int a = 0; a < kAppearanceDims; ++a) {
+                            const int32_t* axis = flat.data() + std::size_t(a) * dims;
+                            int64_t acc = 0;
+                            for (int i = 0; i < dims; ++i) acc += int64_t(axis[i]) * centred[std::size_t(i)];
+                            const int64_t v = (acc + (1 << 14)) >> 15;
+                            fv[a] = int16_t(std::clamp<int64_t>(v, -kAppearanceClamp, kAppearanceClamp));
+                        }
                     }
-                }
-        });
-        space.levels.push_back(std::move(level));
+            });
+        }
     }
-    return space;
+    return spaces;
 }
 
 }  // namespace vqtex

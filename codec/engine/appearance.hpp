@@ -57,6 +57,14 @@ Image stack_filter(const Image& in, int step, bool wraps);
 // The stack and appearance vectors of `example` for `levels` levels.
 AppearanceSpace build_appearance_space(const Image& example, int levels, bool wraps, int threads);
 
+// The same for the frames of an animation (all of one size and channel
+// count, at least one): each frame's stack is filtered in space only, and
+// each level's principal axes come from samples of all the frames, so that
+// appearance vectors of different frames compare (a still example is the
+// one-frame case, byte for byte).
+std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& frames, int levels, bool wraps,
+                                                     int threads);
+
 // The principal axes of `count` sample vectors of `dims` integers
 // (row-major), strongest first, as unit vectors in fixed point (2^15 = 1).
 // Exact integer arithmetic throughout; axes of a zero variance are zero.

@@ -4,7 +4,6 @@
 #include "engine/coherent_synthesis.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cstdlib>
 #include <cstring>
 
@@ -12,33 +11,18 @@
 #include "common/parallel.hpp"
 #include "dsp/dsp.hpp"
 #include "engine/coherent_candidates.hpp"
+#include "engine/coherent_common.hpp"
 #include "engine/pyramid.hpp"
 
 namespace vqtex {
 namespace {
 
-// Neighbourhood of a correction step: the 5x5 window of appearance
-// vectors (each already summarises a 5x5 window of its level).
-constexpr int kRadius = 2;
-constexpr int kSide = 2 * kRadius + 1;
-static_assert(kAppearanceDims == dsp::kWindowTapValues, "windows are compared by dsp::Kernels::window_ssd");
-constexpr int kTaps = kSide * kSide;
+using coherent::kRadius;
+using coherent::kSide;
+using coherent::kTaps;
+using coherent::pixel_hash;
 static_assert(kTaps < 32, "a window's taps are bits of one uint32_t");
 constexpr int kMaxCandidates = kTaps * 16;
-
-uint64_t mix64(uint64_t z) {
-    z += 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-// A per-pixel hash of the seed, the level and a purpose: the same pixel of
-// the same level gets the same numbers whatever else is computed.
-uint64_t pixel_hash(uint64_t seed, int level, int purpose, int x, int y) {
-    return mix64(seed ^ mix64((uint64_t(uint32_t(level)) << 40) ^ (uint64_t(uint32_t(purpose)) << 56) ^
-                              (uint64_t(uint32_t(y)) << 20) ^ uint64_t(uint32_t(x))));
-}
 
 // Position (x, y) of the example, folded inside if it is not.
 uint32_t folded(const AppearanceSpace& space, int x, int y) {
@@ -60,28 +44,9 @@ struct LevelView {
     const int16_t* feature(uint32_t p) const { return feature(position_x(p), position_y(p)); }
 
     // Distance between the query (kTaps vectors) and the example's window at
-    // (x, y), stopping once it exceeds `bound` (Kernels::window_ssd).
+    // (x, y), stopping once it exceeds `bound`.
     uint32_t distance(const int16_t* query, int x, int y, uint32_t bound) const {
-        const int w = space.width, h = space.height;
-        const std::ptrdiff_t tap = std::ptrdiff_t(spacing) * kAppearanceDims;
-        if (x - kRadius * spacing >= 0 && x + kRadius * spacing < w && y - kRadius * spacing >= 0 &&
-            y + kRadius * spacing < h)
-            return kernels.window_ssd(query, feature(x - kRadius * spacing, y - kRadius * spacing), tap,
-                                      tap * w, kSide, bound);
-        // Windows across the example's edge read it folded: their taps are
-        // gathered side by side first, for the same kernel and the same sums.
-        alignas(16) int16_t window[kTaps * kAppearanceDims];
-        int xs[kSide], ys[kSide];
-        for (int i = 0; i < kSide; ++i) {
-            const int sx = x + (i - kRadius) * spacing, sy = y + (i - kRadius) * spacing;
-            xs[i] = sx >= 0 && sx < w ? sx : space.fold_x(sx);
-            ys[i] = sy >= 0 && sy < h ? sy : space.fold_y(sy);
-        }
-        for (int r = 0, t = 0; r < kSide; ++r)
-            for (int c = 0; c < kSide; ++c, ++t)
-                std::memcpy(window + t * kAppearanceDims, feature(xs[c], ys[r]), sizeof(int16_t) * kAppearanceDims);
-        return kernels.window_ssd(query, window, kAppearanceDims, std::ptrdiff_t(kSide) * kAppearanceDims, kSide,
-                                  bound);
+        return coherent::window_distance(kernels, space, features, spacing, query, x, y, bound);
     }
 };
 
@@ -194,106 +159,16 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     return best;
 }
 
-// A child's coordinate from its parent's. A parent whose second child
-// would fall past the example's edge has its block of children moved inside
-// whole, so the block stays a coherent copy; folding the child back (a
-// mirror) repeated the same rows over several levels and drew streaks.
-int child_coordinate(int size, bool wraps, int parent, int offset, int spacing) {
-    if (wraps) return Image::wrap(parent + offset * spacing, size);
-    const int base = parent + spacing < size ? parent : std::max(0, size - 1 - spacing);
-    return std::min(base + offset * spacing, size - 1);
-}
-
-// Which pixels a pass must evaluate again. A pixel's correction depends
-// only on the positions in its window, so a pixel none of whose window has
-// moved since its last evaluation would choose what it holds already:
-// skipping it gives the same bytes. Over the passes of one level (same
-// features) this skips most of the second pass.
-struct Revisit {
-    std::vector<uint8_t> due;    // evaluate at its next turn
-    std::vector<uint8_t> moved;  // changed at its last evaluation
-    explicit Revisit(std::size_t pixels) : due(pixels, 1), moved(pixels, 0) {}
-};
-
-// One correction pass over the whole level, in kStride x kStride
-// interleaved subsets (a pixel and the others of its subset are kStride
-// apart); each subset reads only the positions as they were before it. A
-// subset's choices go to a buffer of its own size first, since its rows
-// read one another's windows, and are put in place once it is done.
-// Lefebvre & Hoppe's 2: pixels 3 apart broke up combs too, but less than
-// the link bias does, and with 4 apart more combs were left (SYNTHESIS.md).
-constexpr int kStride = 2;
-
-// The subsets in diagonal order, so that consecutive ones are not
-// neighbours along a row or a column.
-constexpr std::array<std::array<int, 2>, kStride * kStride> subset_order() {
-    std::array<std::array<int, 2>, kStride * kStride> order{};
-    for (int a = 0, i = 0; a < kStride; ++a)
-        for (int b = 0; b < kStride; ++b, ++i) order[std::size_t(i)] = {(a + b) % kStride, b};
-    return order;
-}
-
+// One correction pass over the whole level (coherent::interleaved_pass).
 void correction_pass(const LevelView& view, PositionMap& map, const CoherentOptions& options,
-                     Revisit* revisit = nullptr) {
-    constexpr auto kOrder = subset_order();
-    const int w = map.width, h = map.height;
-    std::vector<uint32_t> chosen(std::size_t((w + kStride - 1) / kStride) * std::size_t((h + kStride - 1) / kStride));
-    for (const auto& subset : kOrder) {
-        // Plain ints: clang 14 cannot capture structured bindings in a lambda.
-        const int sx = subset[0], sy = subset[1];
-        const int rows = (h - sy + kStride - 1) / kStride, cols = (w - sx + kStride - 1) / kStride;
-        if (rows <= 0 || cols <= 0) continue;
-        const uint32_t* positions = map.positions.data();
-        parallel_for(options.threads, std::size_t(rows), 4, [&](std::size_t r0, std::size_t r1) {
-            int xs[kSide], ys[kSide];
-            for (std::size_t r = r0; r < r1; ++r) {
-                const int y = sy + kStride * int(r);
-                uint32_t* out = chosen.data() + r * std::size_t(cols);
-                for (int i = 0; i < kSide; ++i) ys[i] = Image::wrap(y + i - kRadius, h);
-                for (int i = 0; i < kSide; ++i) xs[i] = Image::wrap(sx + i - kRadius, w);
-                for (int x = sx, i = 0; x < w; x += kStride, ++i) {
-                    const std::size_t at = std::size_t(y) * w + x;
-                    if (!revisit) {
-                        out[i] = correct_pixel(view, positions, w, xs, ys, options.coherence_bias, options.link_bias);
-                    } else if (revisit->due[at]) {
-                        out[i] = correct_pixel(view, positions, w, xs, ys, options.coherence_bias, options.link_bias);
-                        revisit->due[at] = 0;
-                        revisit->moved[at] = out[i] != positions[at];
-                    } else {
-                        out[i] = positions[at];
-                    }
-                    // Slide the window kStride columns: wrap by comparison
-                    // except on outputs narrower than the window.
-                    for (int j = 0; j < kSide; ++j) {
-                        int c = xs[j] + kStride;
-                        if (c >= w) c = w >= kSide ? c - w : Image::wrap(x + kStride + j - kRadius, w);
-                        xs[j] = c;
-                    }
-                }
-            }
-        });
-        parallel_for(options.threads, std::size_t(rows), 16, [&](std::size_t r0, std::size_t r1) {
-            for (std::size_t r = r0; r < r1; ++r) {
-                uint32_t* row = map.positions.data() + (sy + kStride * r) * std::size_t(w);
-                const uint32_t* in = chosen.data() + r * std::size_t(cols);
-                for (int i = 0; i < cols; ++i) row[sx + kStride * i] = in[i];
-            }
-        });
-        if (revisit) {
-            // Every pixel whose window holds a moved one is due again; marked
-            // after the subset, on one thread, so no flag is written twice at once.
-            for (int y = sy; y < h; y += kStride)
-                for (int x = sx; x < w; x += kStride) {
-                    uint8_t& moved = revisit->moved[std::size_t(y) * w + x];
-                    if (!moved) continue;
-                    moved = 0;
-                    for (int dy = -kRadius; dy <= kRadius; ++dy) {
-                        uint8_t* row = revisit->due.data() + std::size_t(Image::wrap(y + dy, h)) * w;
-                        for (int dx = -kRadius; dx <= kRadius; ++dx) row[Image::wrap(x + dx, w)] = 1;
-                    }
-                }
-        }
-    }
+                     coherent::Revisit* revisit = nullptr) {
+    const int w = map.width;
+    coherent::interleaved_pass(
+        options.threads, map.width, map.height, map.positions,
+        [&](int, int, const int* xs, const int* ys) {
+            return correct_pixel(view, map.positions.data(), w, xs, ys, options.coherence_bias, options.link_bias);
+        },
+        revisit);
 }
 
 }  // namespace
@@ -314,8 +189,8 @@ PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& 
             for (int x = 0; x < width; ++x) {
                 const uint32_t p = parent.positions[std::size_t(y >> 1) * parent.width + (x >> 1)];
                 out.positions[std::size_t(y) * width + x] =
-                    pack_position(child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing),
-                                  child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing));
+                    pack_position(coherent::child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing),
+                                  coherent::child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing));
             }
     });
     return out;
@@ -359,7 +234,7 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
         }
         const LevelView view{space, sets, l, spacing, space.levels[std::size_t(l)].features.data(), sets.k, dsp::kernels()};
         const int passes = l == top ? options.coarse_passes : options.passes;
-        Revisit revisit(map.positions.size());
+        coherent::Revisit revisit(map.positions.size());
         for (int pass = 0; pass < passes; ++pass) {
             correction_pass(view, map, options, &revisit);
             done += uint64_t(w) * h;
@@ -370,47 +245,24 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
             // Seams between coherent copies are placed by colours at last:
             // the coherence of the output's own pixels is what a viewer sees.
             const LevelView polish{space, sets, 0, 1, space.pixels.data(), 1, dsp::kernels()};
-            Revisit revisit_colours(map.positions.size());
+            coherent::Revisit revisit_colours(map.positions.size());
             for (int pass = 0; pass < options.polish_passes; ++pass) correction_pass(polish, map, options, &revisit_colours);
         }
         if (levels) (*levels)[std::size_t(l)] = map;
     }
-    // Where to cut the torus open is free: the output's origin is put on the
-    // column and the row across which the pixels change least. Left at the
-    // coarsest level's grid, the edges lay where coherent copies tend to
-    // meet, and on 6 of 23 corpus textures the wrap was a visible line.
+    // Where to cut the torus open is free (coherent::torus_origin); the
+    // steps are read from the output's colours, gathered once.
     const Image seen = read_positions(space.levels[0].colours, map, options.threads);
-    const int channels = seen.channels;
-    auto step = [&](const uint8_t* a, const uint8_t* b) {
+    const auto step = [&](int x0, int y0, int x1, int y1) {
+        const uint8_t* a = seen.at(x0, y0);
+        const uint8_t* b = seen.at(x1, y1);
         int d = 0;
-        for (int c = 0; c < channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
+        for (int c = 0; c < seen.channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
         return d;
     };
-    int ox = 0, oy = 0;
-    std::vector<int64_t> across_column(std::size_t(map.width), 0);
-    int64_t best_y = INT64_MAX;
-    for (int y = 0; y < map.height; ++y) {
-        const uint8_t* row = seen.at(0, y);
-        const uint8_t* above = seen.at(0, (y + map.height - 1) % map.height);
-        int64_t sum = 0;
-        for (int x = 0; x < map.width; ++x) {
-            const uint8_t* left = seen.at((x + map.width - 1) % map.width, y);
-            across_column[std::size_t(x)] += step(left, row + std::size_t(x) * channels);
-            sum += step(above + std::size_t(x) * channels, row + std::size_t(x) * channels);
-        }
-        if (sum < best_y) best_y = sum, oy = y;
-    }
-    int64_t best_x = INT64_MAX;
-    for (int x = 0; x < map.width; ++x)
-        if (across_column[std::size_t(x)] < best_x) best_x = across_column[std::size_t(x)], ox = x;
-    if (options.roll && (ox || oy)) {
-        std::vector<uint32_t> rolled(map.positions.size());
-        for (int y = 0; y < map.height; ++y)
-            for (int x = 0; x < map.width; ++x)
-                rolled[std::size_t(y) * map.width + x] =
-                    map.positions[std::size_t(Image::wrap(y + oy, map.height)) * map.width + Image::wrap(x + ox, map.width)];
-        map.positions.swap(rolled);
-    }
+    const std::pair<int, int> origin = coherent::torus_origin(map.width, map.height, step);
+    if (options.roll && (origin.first || origin.second))
+        map.positions = coherent::rolled(map.positions, map.width, map.height, origin.first, origin.second);
     return map;
 }
 

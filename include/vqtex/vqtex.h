@@ -419,6 +419,23 @@ VQTEX_API vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* par
 VQTEX_API vqtex_status vqtex_decode_volume(const vqtex_decode_params* params, uint32_t frames, const uint8_t* data,
                                            size_t size, vqtex_volume* out, vqtex_error* error);
 
+/* Synthesise an animation of `frames` frames (0 = the example's count, 1 to
+ * 16384) of params->width x params->height from an example frame sequence,
+ * without a file: the coherent engine, each output voxel a position (x, y, t)
+ * in the example, frame after frame; every frame starts from the previous
+ * one's positions one example frame later (the example is read as a loop
+ * in time) and is corrected with neighbourhoods of the current and the
+ * previous frame. The output tiles in space; its last frame is matched
+ * against its first, so it loops in time (docs/ANIMATION.md says how well).
+ * Uses params->engine (VQTEX_ENGINE_COHERENT only), passes,
+ * model.levels, model.example_tileable, seed, threads and progress;
+ * coherence must be 1 and jitter 0. The same bytes for any thread count.
+ * `out` receives a new volume (free with vqtex_volume_free); stats and error
+ * may be NULL. */
+VQTEX_API vqtex_status vqtex_synthesize_volume(const vqtex_synth_params* params, const vqtex_volume* example,
+                                               uint32_t frames, vqtex_volume* out, vqtex_synth_stats* stats,
+                                               vqtex_error* error);
+
 #ifdef __cplusplus
 }
 #endif

@@ -184,4 +184,12 @@ inline Volume decode_volume(const vqtex_decode_params& params, uint32_t frames, 
     return out;
 }
 
+inline Volume synthesize_volume(const vqtex_synth_params& params, const vqtex_volume& example, uint32_t frames = 0,
+                                vqtex_synth_stats* stats = nullptr) {
+    Volume out;
+    vqtex_error err{};
+    check(vqtex_synthesize_volume(&params, &example, frames, out.out(), stats, &err), err);
+    return out;
+}
+
 }  // namespace vqtex_cpp

@@ -1,0 +1,198 @@
+// coherent_common.hpp - pieces the still and the animated coherent engines
+// share (Lefebvre & Hoppe 2005 sections 3-4, 2006 section 4): per-pixel
+// seeded hashes, the 5x5 appearance-window distance with windows folded at
+// the example's edge, the child coordinate of an upsampled parent, the
+// correction pass scheduled in four interleaved subsets, and the choice of
+// where to cut the output torus open. One definition each, so that both
+// engines give the same bytes for any thread count and kernel set for the
+// same reasons.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+#include "common/image.hpp"
+#include "common/parallel.hpp"
+#include "dsp/dsp.hpp"
+#include "engine/appearance.hpp"
+
+namespace vqtex::coherent {
+
+// Neighbourhood of a correction step: the 5x5 window of appearance
+// vectors (each already summarises a 5x5 window of its level).
+inline constexpr int kRadius = 2;
+inline constexpr int kSide = 2 * kRadius + 1;
+static_assert(kAppearanceDims == dsp::kWindowTapValues, "windows are compared by dsp::Kernels::window_ssd");
+inline constexpr int kTaps = kSide * kSide;
+
+inline uint64_t mix64(uint64_t z) {
+    z += 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+// A per-pixel hash of the seed, the level and a purpose: the same pixel of
+// the same level gets the same numbers whatever else is computed.
+inline uint64_t pixel_hash(uint64_t seed, int level, int purpose, int x, int y) {
+    return mix64(seed ^ mix64((uint64_t(uint32_t(level)) << 40) ^ (uint64_t(uint32_t(purpose)) << 56) ^
+                              (uint64_t(uint32_t(y)) << 20) ^ uint64_t(uint32_t(x))));
+}
+
+// Distance between `query` (kTaps vectors) and the window of `features`
+// (kAppearanceDims per example pixel of `space`'s size) around (x, y) with
+// taps `spacing` apart, stopping once it exceeds `bound`
+// (Kernels::window_ssd). Windows across the example's edge read it folded:
+// their taps are gathered side by side first, for the same kernel and the
+// same sums.
+inline uint32_t window_distance(const dsp::Kernels& kernels, const AppearanceSpace& space, const int16_t* features,
+                                int spacing, const int16_t* query, int x, int y, uint32_t bound) {
+    const int w = space.width, h = space.height;
+    auto feature = [&](int fx, int fy) { return features + (std::size_t(fy) * w + fx) * kAppearanceDims; };
+    const std::ptrdiff_t tap = std::ptrdiff_t(spacing) * kAppearanceDims;
+    if (x - kRadius * spacing >= 0 && x + kRadius * spacing < w && y - kRadius * spacing >= 0 &&
+        y + kRadius * spacing < h)
+        return kernels.window_ssd(query, feature(x - kRadius * spacing, y - kRadius * spacing), tap, tap * w, kSide,
+                                  bound);
+    alignas(16) int16_t window[kTaps * kAppearanceDims];
+    int xs[kSide], ys[kSide];
+    for (int i = 0; i < kSide; ++i) {
+        const int sx = x + (i - kRadius) * spacing, sy = y + (i - kRadius) * spacing;
+        xs[i] = sx >= 0 && sx < w ? sx : space.fold_x(sx);
+        ys[i] = sy >= 0 && sy < h ? sy : space.fold_y(sy);
+    }
+    for (int r = 0, t = 0; r < kSide; ++r)
+        for (int c = 0; c < kSide; ++c, ++t)
+            std::memcpy(window + t * kAppearanceDims, feature(xs[c], ys[r]), sizeof(int16_t) * kAppearanceDims);
+    return kernels.window_ssd(query, window, kAppearanceDims, std::ptrdiff_t(kSide) * kAppearanceDims, kSide, bound);
+}
+
+// A child's coordinate from its parent's. A parent whose second child
+// would fall past the example's edge has its block of children moved inside
+// whole, so the block stays a coherent copy; folding the child back (a
+// mirror) repeated the same rows over several levels and drew streaks.
+inline int child_coordinate(int size, bool wraps, int parent, int offset, int spacing) {
+    if (wraps) return Image::wrap(parent + offset * spacing, size);
+    const int base = parent + spacing < size ? parent : std::max(0, size - 1 - spacing);
+    return std::min(base + offset * spacing, size - 1);
+}
+
+// Which pixels a pass must evaluate again. A pixel's correction depends
+// only on the states in its window, so a pixel none of whose window has
+// changed since its last evaluation would choose what it holds already:
+// skipping it gives the same bytes. Over the passes of one level (same
+// features) this skips most of the second pass.
+struct Revisit {
+    std::vector<uint8_t> due;    // evaluate at its next turn
+    std::vector<uint8_t> moved;  // changed at its last evaluation
+    explicit Revisit(std::size_t pixels) : due(pixels, 1), moved(pixels, 0) {}
+};
+
+// One correction pass over a w x h torus of states `map` (any element
+// type), in four interleaved subsets; each subset reads only the states as
+// they were before it, so no pixel's result depends on the thread count or
+// on the order pixels are visited. `correct(x, y, xs, ys)` returns pixel
+// (x, y)'s new state from `map`; xs and ys are the wrapped columns and rows
+// of its 5x5 window. A subset's results go to a buffer of its own size
+// first, since its rows read one another's windows, and are put in place
+// once it is done. With `revisit`, pixels whose window has not changed
+// since their last evaluation keep their state without one.
+template <typename T, typename Correct>
+void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& correct, Revisit* revisit = nullptr) {
+    static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+    std::vector<T> chosen(std::size_t((w + 1) / 2) * std::size_t((h + 1) / 2));
+    for (const auto& subset : kOrder) {
+        // Plain ints: clang 14 cannot capture structured bindings in a lambda.
+        const int sx = subset[0], sy = subset[1];
+        const int rows = (h - sy + 1) / 2, cols = (w - sx + 1) / 2;
+        if (rows <= 0 || cols <= 0) continue;
+        parallel_for(threads, std::size_t(rows), 4, [&](std::size_t r0, std::size_t r1) {
+            int xs[kSide], ys[kSide];
+            for (std::size_t r = r0; r < r1; ++r) {
+                const int y = sy + 2 * int(r);
+                T* out = chosen.data() + r * std::size_t(cols);
+                for (int i = 0; i < kSide; ++i) ys[i] = Image::wrap(y + i - kRadius, h);
+                for (int i = 0; i < kSide; ++i) xs[i] = Image::wrap(sx + i - kRadius, w);
+                for (int x = sx, i = 0; x < w; x += 2, ++i) {
+                    const std::size_t at = std::size_t(y) * w + x;
+                    if (!revisit) {
+                        out[i] = correct(x, y, xs, ys);
+                    } else if (revisit->due[at]) {
+                        out[i] = correct(x, y, xs, ys);
+                        revisit->due[at] = 0;
+                        revisit->moved[at] = !(out[i] == map[at]);
+                    } else {
+                        out[i] = map[at];
+                    }
+                    // Slide the window two columns: wrap by comparison
+                    // except on outputs narrower than the window.
+                    for (int j = 0; j < kSide; ++j) {
+                        int c = xs[j] + 2;
+                        if (c >= w) c = w >= kSide ? c - w : Image::wrap(x + 2 + j - kRadius, w);
+                        xs[j] = c;
+                    }
+                }
+            }
+        });
+        parallel_for(threads, std::size_t(rows), 16, [&](std::size_t r0, std::size_t r1) {
+            for (std::size_t r = r0; r < r1; ++r) {
+                T* row = map.data() + (sy + 2 * r) * std::size_t(w);
+                const T* in = chosen.data() + r * std::size_t(cols);
+                for (int i = 0; i < cols; ++i) row[sx + 2 * i] = in[i];
+            }
+        });
+        if (revisit) {
+            // Every pixel whose window holds a moved one is due again; marked
+            // after the subset, on one thread, so no flag is written twice at once.
+            for (int y = sy; y < h; y += 2)
+                for (int x = sx; x < w; x += 2) {
+                    uint8_t& moved = revisit->moved[std::size_t(y) * w + x];
+                    if (!moved) continue;
+                    moved = 0;
+                    for (int dy = -kRadius; dy <= kRadius; ++dy) {
+                        uint8_t* row = revisit->due.data() + std::size_t(Image::wrap(y + dy, h)) * w;
+                        for (int dx = -kRadius; dx <= kRadius; ++dx) row[Image::wrap(x + dx, w)] = 1;
+                    }
+                }
+        }
+    }
+}
+
+// Where to cut a w x h torus open: the column and the row across which the
+// pixels change least, `step(x0, y0, x1, y1)` being the change between two
+// adjacent pixels (summed over everything that shares the cut, such as all
+// the frames of an animation). Left at the coarsest level's grid, the edges
+// lay where coherent copies tend to meet, and on 6 of 23 corpus textures the
+// wrap was a visible line.
+template <typename Step>
+std::pair<int, int> torus_origin(int w, int h, Step&& step) {
+    int ox = 0, oy = 0;
+    int64_t best_x = INT64_MAX, best_y = INT64_MAX;
+    for (int x = 0; x < w; ++x) {
+        int64_t sum = 0;
+        for (int y = 0; y < h; ++y) sum += step((x + w - 1) % w, y, x, y);
+        if (sum < best_x) best_x = sum, ox = x;
+    }
+    for (int y = 0; y < h; ++y) {
+        int64_t sum = 0;
+        for (int x = 0; x < w; ++x) sum += step(x, (y + h - 1) % h, x, y);
+        if (sum < best_y) best_y = sum, oy = y;
+    }
+    return {ox, oy};
+}
+
+// `map` (w x h) rolled so that (ox, oy) becomes the origin.
+template <typename T>
+std::vector<T> rolled(const std::vector<T>& map, int w, int h, int ox, int oy) {
+    std::vector<T> out(map.size());
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            out[std::size_t(y) * w + x] = map[std::size_t(Image::wrap(y + oy, h)) * w + Image::wrap(x + ox, w)];
+    return out;
+}
+
+}  // namespace vqtex::coherent
