@@ -45,7 +45,7 @@ AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {
     p.coarse_passes = in(r.u8("coarse passes"), 1, 16, "coarse passes");
     p.polish_passes = in(r.u8("polish passes"), 0, 4, "polish passes");
     p.coherence_bias = in(r.u16("coherence bias"), 0, 1024, "coherence bias");
-    p.coherence = in(r.u8("coherence"), 1, 8, "coherence");
+    p.coherence = in(r.u8("coherence"), 1, 4, "coherence");
     p.roll = in(r.u8("roll flag"), 0, 1, "roll flag") != 0;
     p.jitter = in(r.u16("jitter"), 0, 256, "jitter");
     r.expect_end();

@@ -32,7 +32,7 @@ struct AtlasSynthesisParams {
     int coarse_passes = 4;          // at the coarsest level, 1..16
     int polish_passes = 1;          // colour passes at the finest, 0..4
     int coherence_bias = 256;       // 0..1024, in 1/256
-    int coherence = 1;              // k of the coherence sets, 1..8
+    int coherence = 1;              // k of the coherence sets, 1..4
     bool roll = true;               // cut the torus where pixels change least
     int jitter = 0;                 // 0..256, in 1/256 of a level's spacing
 };
