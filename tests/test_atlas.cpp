@@ -348,3 +348,29 @@ TEST(AtlasFile, GoldenFileDecodesToKnownPixels) {
     const uint64_t hash = fnv1a(img.pixels.data(), img.pixels.size());
     EXPECT_EQ(hash, 0x330b00e4bd20c9acull) << std::hex << "decoded hash 0x" << hash;
 }
+
+TEST(AtlasFile, ParametersOutsideTheAtlasPathAreRefused) {
+    const vqtex::Image ex = load_corpus("cellular_128.png");
+    vqtex_image in{128, 128, 3, const_cast<uint8_t*>(ex.pixels.data())};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    vqtex_encode_params p = atlas_params();
+    p.codebook = vqtex_codebook(7);
+    EXPECT_EQ(vqtex_encode(&p, &in, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    p = atlas_params();
+    p.quality = 101;
+    EXPECT_EQ(vqtex_encode(&p, &in, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    // An example smaller than the smallest atlas.
+    vqtex_image tiny{6, 6, 3, const_cast<uint8_t*>(ex.pixels.data())};
+    p = atlas_params();
+    EXPECT_EQ(vqtex_encode(&p, &tiny, &data, &size, nullptr, &err), VQTEX_ERROR_IMAGE_TOO_SMALL);
+    EXPECT_EQ(data, nullptr);
+    // Animations store trees.
+    vqtex_volume_encode_params vp;
+    vqtex_volume_encode_params_init(&vp);
+    vp.codec.codebook = VQTEX_CODEBOOK_ATLAS;
+    std::vector<uint8_t> frames(16 * 16 * 3 * 4, 100);
+    vqtex_volume vol{16, 16, 4, 3, frames.data()};
+    EXPECT_EQ(vqtex_encode_volume(&vp, &vol, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+}
