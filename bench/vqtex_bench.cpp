@@ -414,6 +414,13 @@ int main(int argc, char** argv) {
     std::string sheets, synth_cache;
     std::vector<std::string> protocols{"same", "large"};
     uint32_t synth_size = 0;
+    bool atlas = false;
+    std::vector<uint64_t> target_sizes;
+    app.add_flag("--atlas", atlas, "vqtex rows are format v3 atlas files (vqtex-encode --atlas)");
+    app.add_option("--target-sizes", target_sizes,
+                   "rate points as byte targets (vqtex-encode --target-size) instead of -q presets; "
+                   "the summary's q column then holds the target")
+        ->delimiter(',');
     app.add_option("folder", folder, "folder of textures (each cut into exemplar and held-out crops)")
         ->capture_default_str();
     app.add_option("--pattern", pattern, "only files whose name contains this (e.g. _256.png)")->capture_default_str();
@@ -580,10 +587,14 @@ int main(int argc, char** argv) {
                 write_sheet(fs::path(sheets) / ("synth_" + fs::path(name).stem().string() + ".png"), synth_panels);
             }
         }
-        for (int quality : rates ? qualities : std::vector<int>{}) {
+        std::vector<int> points = qualities;
+        if (!target_sizes.empty()) points.assign(target_sizes.begin(), target_sizes.end());
+        for (int quality : rates ? points : std::vector<int>{}) {
             vqtex_encode_params ep;
             vqtex_encode_params_init(&ep);
-            vqtex_encode_params_preset(&ep, quality);
+            if (target_sizes.empty()) vqtex_encode_params_preset(&ep, quality);
+            else ep.target_size = uint64_t(quality);
+            if (atlas) ep.codebook = VQTEX_CODEBOOK_ATLAS;
             ep.threads = 1;
             const std::string file = (scratch / "vqtex.vqt").string();
             long encode_peak = 0;
@@ -627,9 +638,10 @@ int main(int argc, char** argv) {
                 Image decoded{int(dp.width), int(dp.height), exemplar.channels, read_all(raw)};
                 Row r;
                 r.protocol = protocol;
-                r.codec = "vqtex";
+                r.codec = atlas ? "vqtex-atlas" : "vqtex";
                 r.quality = quality;
-                r.setting = "-q " + std::to_string(quality);
+                r.setting = (target_sizes.empty() ? "-q " : "--target-size ") + std::to_string(quality) +
+                            (atlas ? " --atlas" : "");
                 r.bytes = size;
                 r.encode_s = no_times ? 0 : encode_s;
                 r.decode_s = no_times ? 0 : decode_s;

@@ -1,7 +1,8 @@
 // make_seeds.cpp - writes the fuzzers' seed corpora from the project's own
 // corpus/ images, with the public API: valid .vqt files covering every
 // format feature (keyed and keyless entries, noise and parent init, seam
-// closing on and off, 1 to 4 channels, every precision), and encoder inputs
+// closing on and off, 1 to 4 channels, every precision; format v3 atlas
+// files), and encoder inputs
 // in fuzz_encode.cpp's layout. Small crops keep the seeds small, which is
 // what mutation works best on. Usage: make_seeds CORPUS_DIR OUT_DIR
 #include <cstdio>
@@ -99,6 +100,30 @@ int main(int argc, char** argv) {
             write(out / "encode" / (name + ".bin"), input.data(), input.size());
             files += 2;
         }
+    }
+    // Format v3 (atlas) files: each channel count, a preset and a target
+    // size, so the fuzzers reach the ATLS and SYNP sections and dav1d.
+    for (size_t i = 0; i < std::size(images); ++i) {
+        const vqtex_tools::LoadedImage img = vqtex_tools::load_image((corpus / images[i]).string());
+        const uint32_t channels = uint32_t(1 + i % 4), side = 32;
+        std::vector<uint8_t> pixels = crop(img, side, channels);
+        vqtex_encode_params p;
+        vqtex_encode_params_init(&p);
+        p.codebook = VQTEX_CODEBOOK_ATLAS;
+        p.threads = 1;
+        if (i % 2) p.target_size = 400;
+        const vqtex_image example{side, side, channels, pixels.data()};
+        uint8_t* data = nullptr;
+        size_t size = 0;
+        vqtex_error err;
+        if (vqtex_encode(&p, &example, &data, &size, nullptr, &err) != VQTEX_OK) {
+            std::fprintf(stderr, "make_seeds: %s atlas: %s\n", images[i], err.detail);
+            return 1;
+        }
+        write(out / "decode" / (fs::path(images[i]).stem().string() + "_atlas_c" + std::to_string(channels) + ".vqt"),
+              data, size);
+        vqtex_free(data);
+        ++files;
     }
     std::printf("make_seeds: wrote %d seed files under %s\n", files, out.string().c_str());
     return 0;

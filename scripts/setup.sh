@@ -8,6 +8,9 @@ packages=(
   build-essential cmake pkg-config python3
   libopenimageio-dev   # all image reading and writing
   libzstd-dev          # entropy coding of codebooks
+  libdav1d-dev         # decoding the atlas of format v3 (AV1, exact by specification)
+  libaom-dev           # encoding the atlas of format v3 (encoder library only)
+  libwebp-dev          # bench/atlas_study.cpp: VP8 against AV1 for the atlas
   libcli11-dev         # command-line parsing
   libgtest-dev         # tests
   libbenchmark-dev     # benchmarks

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole decodes under every kernel set: the golden still and animated files,
+# Whole decodes under every kernel set: the golden still, animated and atlas files,
 # and a file encoded here (seam closing, several entries), decoded with
 # VQTEX_SIMD forced to each level (dsp/dispatch.cpp takes the best available
 # set not above it) must give the bytes of the default set. test_dsp checks
@@ -24,6 +24,7 @@ decode_all() {  # $1 = output directory
   "$decode" "$golden/cellular_v1.vqt" "$1/cellular.png" --size 300x200 --seed 9 --quiet
   "$decode" "$work/leaves.vqt" "$1/leaves.png" --size 96x160 --mips --quiet
   "$decode" "$golden/flicker_v2.vqt" "$1/anim/f_%03d.png" --frames 10 --size 48x40 --seed 3 --quiet
+  "$decode" "$golden/cellular_v3.vqt" "$1/atlas.png" --size 130x70 --seed 2 -j 2 --quiet
   "$synth" "$corpus/cellular_128.png" "$1/coherent.png" --size 210x150 --seed 4 -j 2 --quiet
   mkdir -p "$1/anim_coherent"
   "$synth" "$corpus/flicker_32_anim/frame_%03d.png" "$1/anim_coherent/f_%03d.png" --frames 6 --size 40x36 --seed 2 -j 2 --quiet

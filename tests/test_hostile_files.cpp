@@ -533,3 +533,46 @@ TEST(HostileFiles, DecodingStaysWithinTheMemoryLimit) {
         EXPECT_EQ(decode_with_limit(file, lo, w, h).status, VQTEX_ERROR_LIMIT_EXCEEDED);
     }
 }
+
+// Format v3 (docs/FORMAT.md section 8): the atlas's announced size is
+// checked against the limit before dav1d or the decoded atlas allocate
+// anything, and a whole decode stays within the limit its check computes.
+// (dav1d allocates with malloc, which the counter does not see: its share
+// is the 8 MiB plus 8 bytes per atlas pixel that the check reserves.)
+TEST(HostileFiles, AtlasFilesStayWithinTheMemoryLimit) {
+    vqtex_encode_params ep;
+    vqtex_encode_params_init(&ep);
+    ep.codebook = VQTEX_CODEBOOK_ATLAS;
+    ep.threads = 1;
+    ep.target_size = 1500;
+    const std::vector<uint8_t> file = encode(load_corpus("cellular_128.png"), ep);
+    for (const auto& [w, h] : {std::pair{96u, 64u}, {256u, 200u}}) {
+        uint64_t lo = 1 << 10, hi = 256u << 20;
+        while (hi - lo > 1024) {
+            const uint64_t mid = (lo + hi) / 2;
+            (decode_with_limit(file, mid, w, h).status == VQTEX_OK ? hi : lo) = mid;
+        }
+        const Outcome at = decode_with_limit(file, hi, w, h);
+        ASSERT_EQ(at.status, VQTEX_OK) << at.detail;
+        EXPECT_LE(at.peak, hi) << w << "x" << h;
+        EXPECT_EQ(decode_with_limit(file, lo, w, h).status, VQTEX_ERROR_LIMIT_EXCEEDED);
+    }
+    // The ATLS payload starts with the atlas width and height, 128 each as
+    // two-byte varints (80 01); 4096 is 80 20. A 4096x4096 atlas at a
+    // 32 MiB limit is refused before anything of its size is allocated.
+    std::vector<uint8_t> big = file;
+    const vqtex::Container c = vqtex::read_container(file.data(), file.size(), 1u << 30);
+    for (const auto& s : c.sections)
+        if (std::memcmp(s.tag.data(), "ATLS", 4) == 0) {
+            ASSERT_EQ(big[s.offset + 1], 0x01);
+            big[s.offset + 1] = 0x20;
+            big[s.offset + 3] = 0x20;
+        }
+    const uint32_t crc = vqtex::crc32(big.data(), big.size() - 4);
+    for (int i = 0; i < 4; ++i) big[big.size() - 4 + i] = uint8_t(crc >> (8 * i));
+    const Outcome o = decode_with_limit(big, 32u << 20, 24, 20);
+    EXPECT_EQ(o.status, VQTEX_ERROR_LIMIT_EXCEEDED) << o.detail;
+    EXPECT_LT(o.peak, 64u << 10) << o.detail;
+    // With room for it, the frame dav1d decodes is not 4096x4096: corrupt.
+    EXPECT_EQ(decode_with_limit(big, 1u << 30, 24, 20).status, VQTEX_ERROR_CORRUPT);
+}

@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     uint32_t smoothing = 0, closing_divisor = 0, closing_window = 0;
     bool no_entry_keys = false;
     uint64_t target_size = 0, seed = 1;
-    bool json = false, quiet = false, no_closing = false, tileable = false;
+    bool json = false, quiet = false, no_closing = false, tileable = false, atlas = false;
     app.add_option("input", input,
                    "example image (any format OpenImageIO reads), or an animation: a numbered sequence "
                    "'frames/frame_%03d.png', a folder of frames, or a multi-image file")->required();
@@ -71,6 +71,9 @@ int main(int argc, char** argv) {
     app.add_option("-q,--quality", quality, "preset from 0 (smallest file) to 100 (best texture)")
         ->check(CLI::Range(0, 100))->capture_default_str();
     app.add_option("--target-size", target_size, "largest file in bytes: picks the best preset that fits");
+    app.add_flag("--atlas", atlas,
+                 "store the example as an AV1 atlas decoded by the coherent engine (format v3; "
+                 "uses --quality or --target-size, --seed, --levels, --tileable-example)");
     app.add_option("-k,--codewords", codewords, "TSVQ leaves: K for every level or K0,K1,.. finest first");
     app.add_option("--entries", entries, "outputs per leaf, 1 to 64")->check(CLI::Range(1, 64));
     app.add_option("-p,--precision", precision, "bits per codeword sample, 1 to 8")->check(CLI::Range(1, 8));
@@ -123,9 +126,11 @@ int main(int argc, char** argv) {
         p.seed = seed;
         p.target_size = target_size;
         p.threads = threads;
+        if (atlas) p.codebook = VQTEX_CODEBOOK_ATLAS;
 
         if (animated) {
             if (target_size) throw std::invalid_argument("--target-size is not supported for animations: use --quality");
+            if (atlas) throw std::invalid_argument("--atlas is for still textures (animations store trees)");
             vqtex_volume_encode_params vp;
             vqtex_volume_encode_params_init(&vp);
             const float train_fraction = vp.codec.model.train_fraction;

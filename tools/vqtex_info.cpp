@@ -29,12 +29,19 @@ int main(int argc, char** argv) {
             return 1;
         }
         // Bytes per kind of section, all levels together.
-        const char* kinds[] = {"LEVL", "HIST", "TOPO", "CODE", "ENTR"};
-        const char* meaning[] = {"level parameters", "noise histograms", "tree topology + leaf weights",
-                                 "leaf codewords", "leaf entries (pixels + keys)"};
+        // Format v3 holds an atlas and the engine's parameters instead.
+        const bool atlas = info.format_version == 3;
+        const char* tree_kinds[] = {"LEVL", "HIST", "TOPO", "CODE", "ENTR"};
+        const char* tree_meaning[] = {"level parameters", "noise histograms", "tree topology + leaf weights",
+                                      "leaf codewords", "leaf entries (pixels + keys)"};
+        const char* atlas_kinds[] = {"ATLS", "SYNP"};
+        const char* atlas_meaning[] = {"atlas (AV1 image)", "synthesis parameters"};
+        const char** kinds = atlas ? atlas_kinds : tree_kinds;
+        const char** meaning = atlas ? atlas_meaning : tree_meaning;
+        const int kind_count = atlas ? 2 : 5;
         uint64_t per_kind[5] = {}, overhead = info.file_bytes;
         for (uint32_t i = 0; i < info.section_count; ++i)
-            for (int k = 0; k < 5; ++k)
+            for (int k = 0; k < kind_count; ++k)
                 if (std::string(info.sections[i].tag) == kinds[k]) {
                     per_kind[k] += info.sections[i].stored_bytes;
                     overhead -= info.sections[i].stored_bytes;
@@ -68,15 +75,18 @@ int main(int argc, char** argv) {
                             info.shapes[l].levels);
             std::printf(" (finest first)\n");
         }
-        std::printf("decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
-                    info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",
-                    info.precision, info.pixel_precision);
-        for (uint32_t l = 0; l < info.levels; ++l)
+        if (atlas)
+            std::printf("decoding  coherent engine, %u levels, an atlas of %u pixels\n", info.levels, info.codewords[0]);
+        else
+            std::printf("decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
+                        info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",
+                        info.precision, info.pixel_precision);
+        for (uint32_t l = 0; l < info.levels && !atlas; ++l)
             std::printf("  level %u  {%ux%u,%u}  %5u codewords  %6u entries  %5u closing codewords\n", l,
                         info.shapes[l].rows, info.shapes[l].cols, info.shapes[l].levels, info.codewords[l],
                         info.entries[l], info.closing_codewords[l]);
         std::printf("bytes by section kind (stored, with section headers):\n");
-        for (int k = 0; k < 5; ++k)
+        for (int k = 0; k < kind_count; ++k)
             std::printf("  %s  %-32s %8llu  %5.1f%%\n", kinds[k], meaning[k], (unsigned long long)per_kind[k],
                         100.0 * double(per_kind[k]) / double(info.file_bytes));
         std::printf("  ----  %-32s %8llu  %5.1f%%\n", "file header and checksum", (unsigned long long)overhead,

@@ -9,10 +9,12 @@
 #include "api/api_support.hpp"
 #include "api/validate.hpp"
 #include "common/error.hpp"
+#include "engine/coherent_synthesis.hpp"
 #include "engine/pyramid.hpp"
 #include "engine/synthesis.hpp"
 #include "engine/temporal_synthesis.hpp"
 #include "engine/tree_model.hpp"
+#include "format/atlas_file.hpp"
 #include "format/model_codec.hpp"
 #include "format/volume_codec.hpp"
 #include "vqtex/vqtex.h"
@@ -31,9 +33,45 @@ void check_output_memory(uint64_t needed, std::size_t limit, const std::string& 
                                              " MiB: raise memory_limit (--memory-limit)");
 }
 
+// A format v3 file (docs/FORMAT.md section 8): the atlas decoded, then the
+// coherent engine synthesises from it exactly as vqtex_synthesize would
+// from that image. Returns the texture alone: the engine has no pyramid of
+// pixels, so a mip chain is downsampled from it.
+std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
+    const std::size_t limit = memory_limit_of(p);
+    const AtlasFile f = decode_atlas_file(data, size, limit);
+    const uint32_t w = p->width ? p->width : f.header.exemplar_width;
+    const uint32_t h = p->height ? p->height : f.header.exemplar_height;
+    if (w > kMaxOutputSide || h > kMaxOutputSide)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) +
+                                               " is out of range: give an explicit size");
+    uint64_t sections = 0;
+    for (const Section& s : f.sections) sections += s.raw_size;
+    check_output_memory(sections + atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels, f.header.levels,
+                                                       f.params.coherence, w, h),
+                        limit, "a " + std::to_string(w) + "x" + std::to_string(h) + " output");
+    CoherentOptions opt;
+    opt.width = int(w);
+    opt.height = int(h);
+    opt.seed = p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed;
+    opt.threads = resolve_threads(p->threads);
+    opt.passes = f.params.passes;
+    opt.coarse_passes = f.params.coarse_passes;
+    opt.polish_passes = f.params.polish_passes;
+    opt.coherence_bias = f.params.coherence_bias;
+    opt.roll = f.params.roll;
+    opt.jitter = f.params.jitter;
+    opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
+    std::vector<Image> out;
+    out.push_back(
+        synthesize_coherent(f.atlas, f.header.levels, f.params.example_tileable, f.params.coherence, opt).image);
+    return out;
+}
+
 // Decodes and synthesises; returns the whole synthesised pyramid.
 std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
     validate(p);
+    if (is_atlas_file(data, size)) return decode_atlas_texture(p, data, size);
     const std::size_t limit = memory_limit_of(p);
     const DecodedFile f = decode_file(data, size, limit);
     const uint32_t w = p->width ? p->width : f.header.exemplar_width;
@@ -123,6 +161,14 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
     return guarded(error, [&] {
         if (!info) fail(VQTEX_ERROR_INVALID_ARGUMENT, "info pointer is NULL");
         *info = vqtex_file_info{};
+        if (is_atlas_file(data, size)) {
+            const AtlasFile f =
+                decode_atlas_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit));
+            describe_container(f.header, f.sections, size, 0, 0, info);
+            // The atlas is the codebook: every pixel a codeword, at every level.
+            for (int l = 0; l < f.header.levels; ++l) info->codewords[l] = uint32_t(f.atlas.pixel_count());
+            return;
+        }
         if (is_volume_file(data, size)) {
             describe_volume_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit), info);
             return;

@@ -26,31 +26,9 @@ using namespace vqtex;
 
 namespace {
 
-// Stack depth of the coherent engine for an example: the coarsest level's
-// spacing is a quarter of the example's smaller side, so its 5x5
-// neighbourhoods of 5x5 appearance windows span the whole example and the
-// layout of its largest features is decided there (measured on the corpus:
-// 5 levels for 128x128 examples lost structure that 6 keep; 7 levels scored
-// about the same).
-int coherent_levels(int width, int height) {
-    int levels = 1;
-    while (levels < VQTEX_MAX_LEVELS && (4 << levels) <= std::min(width, height)) ++levels;
-    return levels;
-}
-
-void synthesize_coherent(const vqtex_synth_params& params, const Image& example, int threads,
-                         vqtex_image* out, vqtex_synth_stats* stats) {
-    using Clock = std::chrono::steady_clock;
-    if (example.width > 65535 || example.height > 65535)
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example larger than 65535 pixels on a side");
+void synthesize_coherent_api(const vqtex_synth_params& params, const Image& example, int threads,
+                             vqtex_image* out, vqtex_synth_stats* stats) {
     const int levels = params.model.levels ? int(params.model.levels) : coherent_levels(example.width, example.height);
-    const auto t0 = Clock::now();
-    const ProgressFn analyse = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_ANALYSE);
-    if (analyse && !analyse(0, 1)) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
-    const AppearanceSpace space = build_appearance_space(example, levels, params.model.example_tileable != 0, threads);
-    const CoherenceSets sets = build_coherence_sets(space, int(params.coherence), 2, threads);
-    if (analyse && !analyse(1, 1)) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
-    const auto t1 = Clock::now();
     CoherentOptions opt;
     opt.width = int(params.width);
     opt.height = int(params.height);
@@ -60,23 +38,20 @@ void synthesize_coherent(const vqtex_synth_params& params, const Image& example,
     opt.coarse_passes = std::max(4, int(params.passes));
     opt.jitter = int(params.jitter);
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
-    Image result = read_positions(example, synthesize_positions(space, sets, opt), threads);
-    const auto t2 = Clock::now();
+    CoherentResult r = synthesize_coherent(example, levels, params.model.example_tileable != 0, int(params.coherence),
+                                           opt, stage_progress(params.progress, params.progress_user, VQTEX_STAGE_ANALYSE));
     if (stats) {
         *stats = vqtex_synth_stats{};
         stats->levels = uint32_t(levels);
-        std::size_t bytes = 0;
-        for (const auto& l : space.levels) bytes += l.colours.byte_count() + l.features.size() * sizeof(int16_t);
-        for (const auto& l : sets.levels) bytes += l.size() * sizeof(uint32_t);
         for (int l = 0; l < levels; ++l) {
             stats->training_vectors[l] = uint32_t(example.pixel_count());
             stats->codewords[l] = uint32_t(example.pixel_count());
         }
-        stats->model_bytes = bytes;
-        stats->analyse_seconds = std::chrono::duration<double>(t1 - t0).count();
-        stats->synthesise_seconds = std::chrono::duration<double>(t2 - t1).count();
+        stats->model_bytes = r.model_bytes;
+        stats->analyse_seconds = r.analyse_seconds;
+        stats->synthesise_seconds = r.synthesise_seconds;
     }
-    image_to_c(std::move(result), out);
+    image_to_c(std::move(r.image), out);
 }
 
 // The example volume's appearance vectors take 16 bytes per voxel and
@@ -186,7 +161,7 @@ vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_imag
         validate(params);
         const Image ex = image_from_c(example, "example image");
         const int threads = resolve_threads(params->threads);
-        if (params->engine == VQTEX_ENGINE_COHERENT) return synthesize_coherent(*params, ex, threads, out, stats);
+        if (params->engine == VQTEX_ENGINE_COHERENT) return synthesize_coherent_api(*params, ex, threads, out, stats);
         using Clock = std::chrono::steady_clock;
 
         const auto t0 = Clock::now();

@@ -125,6 +125,8 @@ void validate(const vqtex_volume_encode_params* p) {
     validate(&p->codec);
     if (p->codec.target_size != 0)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "a target size is not supported for animated textures: choose a quality");
+    if (p->codec.codebook != VQTEX_CODEBOOK_TREES)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "animated textures store TSVQ trees: an atlas is for still textures");
 }
 
 void validate(const vqtex_fill_params* p) {

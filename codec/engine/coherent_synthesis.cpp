@@ -4,6 +4,7 @@
 #include "engine/coherent_synthesis.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 
@@ -264,6 +265,35 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
     if (options.roll && (origin.first || origin.second))
         map.positions = coherent::rolled(map.positions, map.width, map.height, origin.first, origin.second);
     return map;
+}
+
+int coherent_levels(int width, int height) {
+    int levels = 1;
+    while (levels < 8 && (4 << levels) <= std::min(width, height)) ++levels;
+    return levels;
+}
+
+CoherentResult synthesize_coherent(const Image& example, int levels, bool example_tileable, int coherence,
+                                   const CoherentOptions& options,
+                                   const std::function<bool(uint64_t, uint64_t)>& analyse_progress) {
+    using Clock = std::chrono::steady_clock;
+    if (example.width > 65535 || example.height > 65535)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example larger than 65535 pixels on a side");
+    const auto t0 = Clock::now();
+    if (analyse_progress && !analyse_progress(0, 1))
+        fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+    const AppearanceSpace space = build_appearance_space(example, levels, example_tileable, options.threads);
+    const CoherenceSets sets = build_coherence_sets(space, coherence, 2, options.threads);
+    if (analyse_progress && !analyse_progress(1, 1))
+        fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+    const auto t1 = Clock::now();
+    CoherentResult r;
+    r.image = read_positions(example, synthesize_positions(space, sets, options), options.threads);
+    for (const auto& l : space.levels) r.model_bytes += l.colours.byte_count() + l.features.size() * sizeof(int16_t);
+    for (const auto& l : sets.levels) r.model_bytes += l.size() * sizeof(uint32_t);
+    r.analyse_seconds = std::chrono::duration<double>(t1 - t0).count();
+    r.synthesise_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+    return r;
 }
 
 Image read_positions(const Image& example, const PositionMap& map, int threads) {

@@ -64,6 +64,28 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
 // The output pixels: the example's pixels at the positions.
 Image read_positions(const Image& example, const PositionMap& map, int threads = 1);
 
+// Stack depth for an example: the coarsest level's spacing is a quarter of
+// the example's smaller side, so its 5x5 neighbourhoods of 5x5 appearance
+// windows span the whole example and the layout of its largest features is
+// decided there (measured on the corpus: 5 levels for 128x128 examples lost
+// structure that 6 keep; 7 levels scored about the same). At most 8.
+int coherent_levels(int width, int height);
+
+// The whole engine, example to texture: the appearance space of `levels`
+// levels (mirrored edges, or wrapped when the example tiles), the
+// coherence sets of `coherence` nearest, then the positions and their
+// pixels. vqtex_synthesize and the format v3 decoder both call it, so a v3
+// file decodes to what synthesis from its atlas gives. `analysed`, when set,
+// is called between analysis and synthesis and returns false to cancel.
+struct CoherentResult {
+    Image image;
+    std::size_t model_bytes = 0;  // appearance space and coherence sets
+    double analyse_seconds = 0, synthesise_seconds = 0;
+};
+CoherentResult synthesize_coherent(const Image& example, int levels, bool example_tileable, int coherence,
+                                   const CoherentOptions& options,
+                                   const std::function<bool(uint64_t, uint64_t)>& analyse_progress = {});
+
 // The next finer level's positions before jitter and correction: each
 // child takes its parent's position plus its offset times `spacing` (the
 // finer level's), folded into the example. Exposed for tests.

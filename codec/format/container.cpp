@@ -75,11 +75,12 @@ FileHeader read_header(const uint8_t* data, std::size_t size) {
     }
     if (size < 10) fail(VQTEX_ERROR_TRUNCATED, "file ends inside the header (" + std::to_string(size) + " bytes)");
     const uint16_t version = uint16_t(data[8] | (data[9] << 8));
-    if (version != kFormatVersion && version != kVolumeFormatVersion)
+    if (version != kFormatVersion && version != kVolumeFormatVersion && version != kAtlasFormatVersion)
         fail(VQTEX_ERROR_UNSUPPORTED_VERSION,
              "file is format version " + std::to_string(version) + "; this library reads versions " +
-                 std::to_string(kFormatVersion) + " (still textures) and " + std::to_string(kVolumeFormatVersion) +
-                 " (animations): use a matching vqtex release");
+                 std::to_string(kFormatVersion) + " (still textures), " + std::to_string(kVolumeFormatVersion) +
+                 " (animations) and " + std::to_string(kAtlasFormatVersion) +
+                 " (atlas textures): use a matching vqtex release");
     if (size < kHeaderSize + kTrailerSize)
         fail(VQTEX_ERROR_TRUNCATED, "file ends inside the header (" + std::to_string(size) + " bytes)");
 
@@ -151,6 +152,8 @@ Container read_container(const uint8_t* data, std::size_t size, std::size_t memo
                                        "): the file is damaged");
 
     // Header values, now that the bytes are known to be the ones written.
+    if (h.version == kAtlasFormatVersion && h.flags != 0)
+        fail(VQTEX_ERROR_CORRUPT, "format version 3 defines no header flags, the file has " + std::to_string(h.flags));
     if (h.flags & ~kKnownFlags)
         fail(VQTEX_ERROR_CORRUPT, "unknown header flags " + std::to_string(h.flags));
     if (bool(h.flags & kFlagVolume) != (h.version == kVolumeFormatVersion))

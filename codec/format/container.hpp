@@ -18,6 +18,9 @@ inline constexpr uint16_t kFormatVersion = 1;
 // (UNSUPPORTED_VERSION) instead of calling it damaged. Still textures stay
 // version 1, byte for byte.
 inline constexpr uint16_t kVolumeFormatVersion = 2;
+// Atlas files (issue 17, docs/FORMAT.md section 8): the example as an AV1
+// image plus the coherent engine's parameters, decoded by that engine.
+inline constexpr uint16_t kAtlasFormatVersion = 3;
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;
 inline constexpr std::size_t kTrailerSize = 4;

@@ -206,6 +206,18 @@ VQTEX_API vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const 
 
 #define VQTEX_QUALITY_DEFAULT 50
 
+typedef enum vqtex_codebook {
+    /* TSVQ codebooks (paper section 6), format version 1, decoded by the
+     * paper's engine (default). */
+    VQTEX_CODEBOOK_TREES = 0,
+    /* An atlas: the example (or a crop of it) as an AV1 image, format
+     * version 3, decoded by the coherent engine, which keeps the example's
+     * structure. Uses quality (or target_size), seed, model.example_tileable
+     * and threads; the other model and precision fields do not apply
+     * [--atlas]. */
+    VQTEX_CODEBOOK_ATLAS = 1
+} vqtex_codebook;
+
 typedef struct vqtex_encode_params {
     uint32_t struct_size;       /* set by vqtex_encode_params_init */
     vqtex_model_params model;   /* filled by the quality preset; tweak after */
@@ -220,6 +232,9 @@ typedef struct vqtex_encode_params {
     uint32_t threads;           /* 0 = all cores [--threads] */
     vqtex_progress_fn progress;
     void* progress_user;
+    vqtex_codebook codebook;    /* what the file stores: TSVQ trees (v1) or an atlas (v3) [--atlas] */
+    uint32_t quality;           /* the preset last applied, 0..100: the atlas's quality when
+                                   target_size is 0 */
 } vqtex_encode_params;
 
 /* Defaults: the preset for VQTEX_QUALITY_DEFAULT. */

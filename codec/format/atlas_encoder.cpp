@@ -1,0 +1,179 @@
+// atlas_encoder.cpp - libaom all-intra encoding of an atlas (issue 17;
+// docs/ATLAS.md): a still picture (g_limit = 1, so libaom writes the reduced
+// still-picture sequence header, a few bytes), full-range YCbCr converted by
+// atlas_rgb_to_ycbcr, one thread, raw OBUs without temporal delimiters.
+#include "format/atlas_encoder.hpp"
+
+#include <aom/aom_encoder.h>
+#include <aom/aomcx.h>
+
+#include <memory>
+#include <string>
+
+#include "common/bitstream.hpp"
+#include "common/error.hpp"
+#include "format/atlas_coder.hpp"
+
+namespace vqtex {
+
+namespace {
+
+struct CodecCloser {
+    void operator()(aom_codec_ctx_t* c) const {
+        aom_codec_destroy(c);
+        delete c;
+    }
+};
+struct ImageFree {
+    void operator()(aom_image_t* i) const { aom_img_free(i); }
+};
+
+[[noreturn]] void aom_failed(aom_codec_ctx_t* c, const char* what) {
+    const char* detail = c ? aom_codec_error_detail(c) : nullptr;
+    fail(VQTEX_ERROR_INTERNAL, std::string("libaom: ") + what + " failed" + (detail ? std::string(": ") + detail : ""));
+}
+
+// One plane image to an AV1 frame; `planes` are the Y (or grey), Cb and Cr
+// samples at full resolution (Cb, Cr empty for monochrome).
+std::vector<uint8_t> encode_frame(int width, int height, const std::vector<uint8_t>& luma,
+                                  const std::vector<uint8_t>& cb, const std::vector<uint8_t>& cr,
+                                  const AtlasEncodeOptions& o) {
+    const bool mono = cb.empty();
+    const bool full_chroma = o.chroma444 && !mono;
+    aom_codec_iface_t* iface = aom_codec_av1_cx();
+    aom_codec_enc_cfg_t cfg;
+    if (aom_codec_enc_config_default(iface, &cfg, AOM_USAGE_ALL_INTRA) != AOM_CODEC_OK)
+        aom_failed(nullptr, "default configuration");
+    cfg.g_w = unsigned(width);
+    cfg.g_h = unsigned(height);
+    cfg.g_threads = 1;
+    cfg.g_limit = 1;  // a still picture: reduced still-picture header
+    cfg.g_lag_in_frames = 0;
+    cfg.g_profile = full_chroma ? 1 : 0;
+    cfg.g_bit_depth = AOM_BITS_8;
+    cfg.g_input_bit_depth = 8;
+    cfg.monochrome = mono ? 1 : 0;
+    cfg.rc_end_usage = AOM_Q;
+    cfg.rc_min_quantizer = 0;
+    cfg.rc_max_quantizer = 63;
+    std::unique_ptr<aom_codec_ctx_t, CodecCloser> ctx;
+    {
+        auto* c = new aom_codec_ctx_t{};
+        if (aom_codec_enc_init(c, iface, &cfg, 0) != AOM_CODEC_OK) {
+            const std::string detail = c->err_detail ? c->err_detail : "";
+            delete c;
+            fail(VQTEX_ERROR_INTERNAL, "libaom: encoder initialisation failed " + detail);
+        }
+        ctx.reset(c);
+    }
+    if (aom_codec_control(ctx.get(), AOME_SET_CPUUSED, o.speed) != AOM_CODEC_OK) aom_failed(ctx.get(), "speed");
+    if (aom_codec_control(ctx.get(), AOME_SET_CQ_LEVEL, unsigned(o.cq_level)) != AOM_CODEC_OK)
+        aom_failed(ctx.get(), "quality level");
+    if (aom_codec_control(ctx.get(), AV1E_SET_COLOR_RANGE, int(AOM_CR_FULL_RANGE)) != AOM_CODEC_OK)
+        aom_failed(ctx.get(), "colour range");
+    if (aom_codec_control(ctx.get(), AV1E_SET_ROW_MT, 0u) != AOM_CODEC_OK) aom_failed(ctx.get(), "row threads");
+
+    std::unique_ptr<aom_image_t, ImageFree> img(
+        aom_img_alloc(nullptr, full_chroma ? AOM_IMG_FMT_I444 : AOM_IMG_FMT_I420, unsigned(width), unsigned(height), 1));
+    if (!img) fail(VQTEX_ERROR_OUT_OF_MEMORY, "libaom: no memory for the atlas image");
+    img->range = AOM_CR_FULL_RANGE;
+    img->monochrome = mono ? 1 : 0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            img->planes[0][std::ptrdiff_t(y) * img->stride[0] + x] = luma[std::size_t(y) * width + x];
+    const int cw = full_chroma ? width : (width + 1) / 2, ch = full_chroma ? height : (height + 1) / 2;
+    for (int p = 1; p <= 2; ++p) {
+        const std::vector<uint8_t>* src = p == 1 ? &cb : &cr;
+        for (int y = 0; y < ch; ++y)
+            for (int x = 0; x < cw; ++x) {
+                uint8_t v = 128;
+                if (mono) {
+                } else if (full_chroma) {
+                    v = (*src)[std::size_t(y) * width + x];
+                } else {
+                    // The mean of the 2x2 block (fewer at the right and
+                    // bottom edges of odd sizes); the decoder replicates it.
+                    int sum = 0, n = 0;
+                    for (int dy = 0; dy < 2; ++dy)
+                        for (int dx = 0; dx < 2; ++dx) {
+                            const int sx = 2 * x + dx, sy = 2 * y + dy;
+                            if (sx < width && sy < height) {
+                                sum += (*src)[std::size_t(sy) * width + sx];
+                                ++n;
+                            }
+                        }
+                    v = uint8_t((sum + n / 2) / n);
+                }
+                img->planes[p][std::ptrdiff_t(y) * img->stride[p] + x] = v;
+            }
+    }
+    std::vector<uint8_t> out;
+    auto collect = [&] {
+        aom_codec_iter_t iter = nullptr;
+        while (const aom_codec_cx_pkt_t* pkt = aom_codec_get_cx_data(ctx.get(), &iter))
+            if (pkt->kind == AOM_CODEC_CX_FRAME_PKT) {
+                const auto* b = static_cast<const uint8_t*>(pkt->data.frame.buf);
+                out.insert(out.end(), b, b + pkt->data.frame.sz);
+            }
+    };
+    if (aom_codec_encode(ctx.get(), img.get(), 0, 1, 0) != AOM_CODEC_OK) aom_failed(ctx.get(), "encoding");
+    collect();
+    if (aom_codec_encode(ctx.get(), nullptr, 0, 0, 0) != AOM_CODEC_OK) aom_failed(ctx.get(), "flushing");
+    collect();
+    return strip_temporal_delimiters(out);
+}
+
+}  // namespace
+
+std::vector<uint8_t> strip_temporal_delimiters(const std::vector<uint8_t>& obus) {
+    std::vector<uint8_t> out;
+    ByteReader r(obus.data(), obus.size(), "libaom's output");
+    while (r.remaining() > 0) {
+        const std::size_t start = r.position();
+        const uint8_t header = r.u8("OBU header");
+        const int type = (header >> 3) & 15;
+        if (header & 4) r.u8("OBU extension");
+        if (!(header & 2)) fail(VQTEX_ERROR_INTERNAL, "libaom wrote an OBU without a size field");
+        const uint64_t size = r.varint("OBU size");
+        if (size > r.remaining()) fail(VQTEX_ERROR_INTERNAL, "libaom wrote an OBU that overruns its output");
+        r.bytes(std::size_t(size), "OBU payload");
+        if (type != kObuTemporalDelimiter) out.insert(out.end(), obus.begin() + std::ptrdiff_t(start),
+                                                      obus.begin() + std::ptrdiff_t(r.position()));
+    }
+    return out;
+}
+
+std::vector<uint8_t> encode_atlas(const Image& image, const AtlasEncodeOptions& options) {
+    const int w = image.width, h = image.height, c = image.channels;
+    if (w < 1 || h < 1 || w > kMaxAtlasSide || h > kMaxAtlasSide)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "atlas size " + std::to_string(w) + "x" + std::to_string(h) +
+                                               " is out of range (1 to " + std::to_string(kMaxAtlasSide) + ")");
+    if (c < 1 || c > 4) fail(VQTEX_ERROR_INVALID_ARGUMENT, "an atlas has 1 to 4 channels");
+    if (options.cq_level < 0 || options.cq_level > 63 || options.speed < 0 || options.speed > 9)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "atlas quality level 0..63 and speed 0..9");
+    const std::size_t n = image.pixel_count();
+    const bool alpha = c == 2 || c == 4;
+    std::vector<uint8_t> y(n), cb, cr, a;
+    if (c >= 3) {
+        cb.resize(n);
+        cr.resize(n);
+    }
+    if (alpha) a.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const uint8_t* p = image.pixels.data() + i * std::size_t(c);
+        if (c >= 3)
+            atlas_rgb_to_ycbcr(p, y[i], cb[i], cr[i]);
+        else
+            y[i] = p[0];
+        if (alpha) a[i] = p[c - 1];
+    }
+    std::vector<uint8_t> colour = encode_frame(w, h, y, cb, cr, options);
+    if (!alpha) return colour;
+    ByteWriter out;
+    out.varint(colour.size());
+    out.bytes(colour);
+    out.bytes(encode_frame(w, h, a, {}, {}, options));
+    return std::move(out.data());
+}
+
+}  // namespace vqtex

@@ -1,0 +1,33 @@
+// atlas_encoder.hpp - the encoding half of the atlas coder (issue 17;
+// docs/ATLAS.md, docs/FORMAT.md section 8.3): an image to the atlas
+// bitstream that atlas_coder.hpp decodes, with libaom in all-intra mode.
+// Only in the encoder library: the decoder-only build needs dav1d alone.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/image.hpp"
+
+namespace vqtex {
+
+struct AtlasEncodeOptions {
+    // libaom's constant-quality level, 0 (finest) to 63 (coarsest).
+    int cq_level = 32;
+    // Chroma at full resolution (AV1 profile 1) or halved both ways
+    // (profile 0). docs/ATLAS.md measures both.
+    bool chroma444 = true;
+    // libaom's speed, 0 (slowest, smallest) to 9.
+    int speed = 4;
+};
+
+// The bitstream of atlas_coder.hpp for an image of 1 to 4 channels. One
+// encoder thread always, so the bytes do not depend on the caller's thread
+// count.
+std::vector<uint8_t> encode_atlas(const Image& image, const AtlasEncodeOptions& options);
+
+// Drops the temporal delimiter OBUs (AV1 specification 6.2.2: 2 bytes that
+// carry nothing for a lone frame) from a sequence of OBUs with size fields.
+std::vector<uint8_t> strip_temporal_delimiters(const std::vector<uint8_t>& obus);
+
+}  // namespace vqtex

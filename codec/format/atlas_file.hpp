@@ -1,0 +1,69 @@
+// atlas_file.hpp - format version 3 (issue 17, docs/FORMAT.md section 8):
+// a still texture stored as an atlas, an image whose windows are the
+// coherent engine's codebook (in this first version the exemplar or a crop
+// of it), coded as AV1 (atlas_coder.hpp), plus the engine's parameters.
+// The decoder rebuilds the appearance space from the decoded atlas and
+// synthesises with codec/engine/coherent_synthesis.hpp.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "common/image.hpp"
+#include "format/container.hpp"
+
+namespace vqtex {
+
+inline constexpr char kTagAtlas[4] = {'A', 'T', 'L', 'S'};
+inline constexpr char kTagSynthesis[4] = {'S', 'Y', 'N', 'P'};
+
+// The atlas coders a file can name (ATLS byte "coder").
+enum class AtlasCoder : uint8_t { Av1 = 0 };
+
+// The smallest atlas side: the engine's 5x5 windows at the finest level
+// need more than a handful of pixels, and a tiny atlas bounds nothing.
+inline constexpr int kMinAtlasSide = 8;
+
+// The SYNP section: what the coherent engine runs with (docs/FORMAT.md 8.4).
+struct AtlasSynthesisParams {
+    bool example_tileable = false;  // the atlas wraps (positions wrap instead of reflecting)
+    int passes = 2;                 // correction passes per level, 1..16
+    int coarse_passes = 4;          // at the coarsest level, 1..16
+    int polish_passes = 1;          // colour passes at the finest, 0..4
+    int coherence_bias = 256;       // 0..1024, in 1/256
+    int coherence = 1;              // k of the coherence sets, 1..4
+    bool roll = true;               // cut the torus where pixels change least
+    int jitter = 0;                 // 0..256, in 1/256 of a level's spacing
+};
+
+struct AtlasFile {
+    FileHeader header;  // version 3; levels = the engine's stack depth
+    std::vector<Section> sections;
+    AtlasSynthesisParams params;
+    Image atlas;                   // decoded
+    std::size_t atlas_bytes = 0;   // the coded atlas bitstream
+};
+
+// True when the file's header reads and says version 3 (any damage is left
+// to decode_atlas_file to report).
+bool is_atlas_file(const uint8_t* data, std::size_t size);
+
+// Reads and checks a version 3 file and decodes its atlas. The memory limit
+// covers the sections, dav1d's frame and the decoded atlas; the engine's
+// own memory is checked by the caller with atlas_decode_memory.
+AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit);
+
+// What decoding a file needs beside its sections, in bytes: the decoded
+// atlas, dav1d's frame buffers, the engine's appearance space and
+// coherence sets for `levels` levels, and a width x height output with its
+// position maps (docs/FORMAT.md 8.5 gives the formula).
+uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
+                             uint64_t width, uint64_t height);
+
+// A version 3 file: the header fields of `header` other than version, flags
+// and section count, the coded atlas and the parameters.
+std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
+                                       const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params);
+
+}  // namespace vqtex

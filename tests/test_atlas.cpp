@@ -1,0 +1,376 @@
+// test_atlas.cpp - format v3 (issue 17; docs/FORMAT.md section 8): the atlas
+// coder (AV1 raw OBUs, libaom and dav1d) on its own, then whole files: round
+// trip, rate control, bit-exact decoding across thread counts, the decoder
+// running the same engine as vqtex_synthesize, hostile files, the golden file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "codec_support.hpp"
+#include "common/bitstream.hpp"
+#include "common/checksum.hpp"
+#include "common/error.hpp"
+#include "format/atlas_coder.hpp"
+#include "format/atlas_encoder.hpp"
+#include "format/atlas_file.hpp"
+#include "format/container.hpp"
+#include "test_support.hpp"
+#include "vqtex/vqtex.hpp"
+
+using namespace vqtex_test;
+
+namespace {
+
+double psnr(const vqtex::Image& a, const vqtex::Image& b) {
+    double se = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const double d = double(a.pixels[i]) - double(b.pixels[i]);
+        se += d * d;
+    }
+    const double mse = se / double(a.pixels.size());
+    return mse == 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
+}
+
+vqtex::Image crop(const vqtex::Image& img, int w, int h, int channels) {
+    vqtex::Image out(w, h, channels);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < channels; ++c) out.at(x, y)[c] = img.at(x, y)[c % img.channels];
+    return out;
+}
+
+vqtex_encode_params atlas_params(uint64_t target_size = 0) {
+    vqtex_encode_params p;
+    vqtex_encode_params_init(&p);
+    p.codebook = VQTEX_CODEBOOK_ATLAS;
+    p.threads = 1;
+    p.target_size = target_size;
+    return p;
+}
+
+// The OBU types of a bitstream of OBUs with size fields.
+std::vector<int> obu_types(const std::vector<uint8_t>& bits) {
+    std::vector<int> types;
+    vqtex::ByteReader r(bits.data(), bits.size(), "obus");
+    while (r.remaining()) {
+        const uint8_t h = r.u8("header");
+        if (h & 4) r.u8("extension");
+        EXPECT_TRUE(h & 2) << "OBU without a size field";
+        r.bytes(std::size_t(r.varint("size")), "payload");
+        types.push_back((h >> 3) & 15);
+    }
+    return types;
+}
+
+void fix_crc(std::vector<uint8_t>& file) {
+    const uint32_t crc = vqtex::crc32(file.data(), file.size() - 4);
+    for (int i = 0; i < 4; ++i) file[file.size() - 4 + i] = uint8_t(crc >> (8 * i));
+}
+
+// The first byte of the ATLS payload (its atlas width varint).
+std::size_t atlas_payload_offset(const std::vector<uint8_t>& file) {
+    const vqtex::Container c = vqtex::read_container(file.data(), file.size(), 1u << 30);
+    for (const auto& s : c.sections)
+        if (std::memcmp(s.tag.data(), "ATLS", 4) == 0) {
+            EXPECT_EQ(s.coding, vqtex::SectionCoding::Stored);
+            return s.offset;
+        }
+    ADD_FAILURE() << "no ATLS section";
+    return 0;
+}
+
+std::vector<uint8_t> read_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST(AtlasCoder, RoundTripsEveryChannelCountCloseToTheInput) {
+    const vqtex::Image rgba = load_corpus("leaves_rgba_64.png");
+    for (int channels = 1; channels <= 4; ++channels) {
+        const vqtex::Image img = crop(rgba, 40, 24, channels);
+        vqtex::AtlasEncodeOptions o;
+        o.cq_level = 4;
+        const std::vector<uint8_t> bits = vqtex::encode_atlas(img, o);
+        const vqtex::Image back = vqtex::decode_atlas(bits.data(), bits.size(), 40, 24, channels, "atlas");
+        ASSERT_EQ(back.width, 40);
+        ASSERT_EQ(back.height, 24);
+        ASSERT_EQ(back.channels, channels);
+        EXPECT_GT(psnr(img, back), 38.0) << channels << " channels";
+    }
+}
+
+TEST(AtlasCoder, CoarserLevelsMakeSmallerBitstreamsAndHalvedChromaDecodes) {
+    const vqtex::Image img = crop(load_corpus("bricks_128.png"), 64, 64, 3);
+    std::size_t previous = SIZE_MAX;
+    for (int cq : {10, 30, 50, 63}) {
+        vqtex::AtlasEncodeOptions o;
+        o.cq_level = cq;
+        const std::size_t n = vqtex::encode_atlas(img, o).size();
+        EXPECT_LT(n, previous) << "cq " << cq;
+        previous = n;
+    }
+    vqtex::AtlasEncodeOptions o;
+    o.cq_level = 10;
+    o.chroma444 = false;
+    const std::vector<uint8_t> bits = vqtex::encode_atlas(img, o);
+    EXPECT_GT(psnr(img, vqtex::decode_atlas(bits.data(), bits.size(), 64, 64, 3, "atlas")), 30.0);
+}
+
+TEST(AtlasCoder, RawObusHaveNoTemporalDelimiterAndAReducedStillPictureHeader) {
+    const vqtex::Image img = crop(load_corpus("cellular_128.png"), 32, 32, 3);
+    const std::vector<uint8_t> bits = vqtex::encode_atlas(img, vqtex::AtlasEncodeOptions{});
+    const std::vector<int> types = obu_types(bits);
+    ASSERT_GE(types.size(), 2u);
+    EXPECT_EQ(types[0], vqtex::kObuSequenceHeader);
+    for (int t : types) EXPECT_NE(t, vqtex::kObuTemporalDelimiter);
+    // Sequence header payload, first byte: seq_profile (3 bits), still_picture,
+    // reduced_still_picture_header (AV1 specification 5.5.1).
+    const uint8_t first = bits[2];
+    EXPECT_TRUE(first & 0x10) << "still_picture";
+    EXPECT_TRUE(first & 0x08) << "reduced_still_picture_header";
+}
+
+TEST(AtlasCoder, ConversionInverseIsCloseOnEveryGrey) {
+    for (int v = 0; v < 256; ++v) {
+        const uint8_t rgb[3] = {uint8_t(v), uint8_t(v), uint8_t(v)};
+        uint8_t y, cb, cr, back[3];
+        vqtex::atlas_rgb_to_ycbcr(rgb, y, cb, cr);
+        vqtex::atlas_ycbcr_to_rgb(y, cb, cr, back);
+        for (int c = 0; c < 3; ++c) EXPECT_LE(std::abs(int(back[c]) - v), 1) << v;
+    }
+}
+
+TEST(AtlasCoder, HostileBitstreamsAreCorrupt) {
+    const vqtex::Image img = crop(load_corpus("cellular_128.png"), 32, 32, 3);
+    const std::vector<uint8_t> bits = vqtex::encode_atlas(img, vqtex::AtlasEncodeOptions{});
+    // The wrong announced size, an empty stream, a cut stream, a grey atlas
+    // read as colour: errors, never a crash.
+    EXPECT_THROW(vqtex::decode_atlas(bits.data(), bits.size(), 33, 32, 3, "atlas"), vqtex::Error);
+    EXPECT_THROW(vqtex::decode_atlas(bits.data(), 0, 32, 32, 3, "atlas"), vqtex::Error);
+    EXPECT_THROW(vqtex::decode_atlas(bits.data(), bits.size() / 2, 32, 32, 3, "atlas"), vqtex::Error);
+    EXPECT_THROW(vqtex::decode_atlas(bits.data(), bits.size(), 32, 32, 1, "atlas"), vqtex::Error);
+    // Two frames in a row are two frames, not an atlas.
+    std::vector<uint8_t> twice = bits;
+    twice.insert(twice.end(), bits.begin(), bits.end());
+    EXPECT_THROW(vqtex::decode_atlas(twice.data(), twice.size(), 32, 32, 3, "atlas"), vqtex::Error);
+    // Every single-byte change decodes or fails cleanly.
+    for (std::size_t i = 0; i < bits.size(); ++i) {
+        std::vector<uint8_t> bad = bits;
+        bad[i] ^= 0x5A;
+        try {
+            const vqtex::Image back = vqtex::decode_atlas(bad.data(), bad.size(), 32, 32, 3, "atlas");
+            EXPECT_EQ(back.byte_count(), 32u * 32u * 3u);
+        } catch (const vqtex::Error& e) {
+            EXPECT_EQ(e.status(), VQTEX_ERROR_CORRUPT) << e.what();
+        }
+    }
+}
+
+TEST(AtlasFile, RoundTripDecodesAtAnySizeAndInspects) {
+    const vqtex::Image ex = load_corpus("bricks_128.png");
+    vqtex_encode_stats stats{};
+    const std::vector<uint8_t> file = encode(ex, atlas_params(), &stats);
+    EXPECT_EQ(stats.bytes, file.size());
+    EXPECT_EQ(stats.levels, 6u);
+    const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
+    EXPECT_EQ(info.format_version, 3u);
+    EXPECT_EQ(info.exemplar_width, 128u);
+    EXPECT_EQ(info.levels, 6u);
+    const vqtex::Image dflt = decode(file, decode_params(0, 0));
+    EXPECT_EQ(dflt.width, 128);
+    EXPECT_EQ(dflt.height, 128);
+    const vqtex::Image big = decode(file, decode_params(200, 90, 3));
+    EXPECT_EQ(big.width, 200);
+    EXPECT_EQ(big.height, 90);
+    EXPECT_NE(decode(file, decode_params(200, 90, 4)).pixels, big.pixels) << "seeds give different textures";
+    // A mip chain down to 1x1 whose first level is the texture.
+    vqtex_image levels[16];
+    uint32_t count = 0;
+    vqtex_error err{};
+    const vqtex_decode_params mp = decode_params(64, 32, 3);
+    ASSERT_EQ(vqtex_decode_mips(&mp, file.data(), file.size(), levels, 16, &count, &err), VQTEX_OK) << err.detail;
+    ASSERT_EQ(count, 7u);
+    EXPECT_EQ(levels[count - 1].width, 1u);
+    EXPECT_EQ(std::memcmp(levels[0].pixels, decode(file, mp).pixels.data(), 64 * 32 * 3), 0);
+    for (uint32_t i = 0; i < count; ++i) vqtex_image_free(&levels[i]);
+}
+
+TEST(AtlasFile, DecodingIsTheSameForAnyThreadCountAndIsTheEnginesSynthesis) {
+    const vqtex::Image ex = load_corpus("cellular_128.png");
+    const std::vector<uint8_t> file = encode(ex, atlas_params(1500));
+    const vqtex::Image one = decode(file, decode_params(150, 110, 7, 1));
+    for (uint32_t threads : {2u, 3u, 0u})
+        EXPECT_EQ(decode(file, decode_params(150, 110, 7, threads)).pixels, one.pixels) << threads << " threads";
+    // The decoder runs the engine of vqtex_synthesize on the decoded atlas.
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(file.data(), file.size(), 1u << 30);
+    EXPECT_EQ(f.header.levels, 6) << "what vqtex_synthesize chooses for a 128x128 example";
+    vqtex_synth_params sp = default_params(150, 110, 7);
+    sp.engine = VQTEX_ENGINE_COHERENT;
+    EXPECT_EQ(synthesize(f.atlas, sp).pixels, one.pixels);
+}
+
+TEST(AtlasFile, EncodingIsDeterministicForAnyThreadCount) {
+    const vqtex::Image ex = load_corpus("weave_128.png");
+    vqtex_encode_params p = atlas_params(2000);
+    const std::vector<uint8_t> a = encode(ex, p);
+    p.threads = 2;
+    EXPECT_EQ(encode(ex, p), a);
+    p.threads = 0;
+    EXPECT_EQ(encode(ex, p), a);
+}
+
+TEST(AtlasFile, TargetSizeIsMetFromOneKilobyteUp) {
+    const vqtex::Image ex = load_corpus("bricks_128.png");
+    std::size_t previous = 0;
+    for (uint64_t target : {1000u, 2000u, 4000u, 8000u}) {
+        vqtex_encode_stats stats{};
+        const std::vector<uint8_t> file = encode(ex, atlas_params(target), &stats);
+        EXPECT_LE(file.size(), target);
+        EXPECT_GT(file.size(), previous) << "a larger target buys a larger file";
+        EXPECT_GT(stats.attempts, 1u);
+        previous = file.size();
+    }
+    // Below what the coarsest level of the whole exemplar needs, the atlas
+    // becomes a crop, still decodable.
+    const std::vector<uint8_t> tiny = encode(ex, atlas_params(200));
+    EXPECT_LE(tiny.size(), 200u);
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(tiny.data(), tiny.size(), 1u << 30);
+    EXPECT_LT(f.atlas.width, 128);
+    EXPECT_EQ(decode(tiny, decode_params(0, 0)).width, 128) << "the default output stays the exemplar's size";
+    vqtex_status st = VQTEX_OK;
+    vqtex_encode_params p = atlas_params(60);
+    vqtex_image in{128, 128, 3, const_cast<uint8_t*>(ex.pixels.data())};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    st = vqtex_encode(&p, &in, &data, &size, nullptr, &err);
+    EXPECT_EQ(st, VQTEX_ERROR_LIMIT_EXCEEDED) << err.detail;
+    EXPECT_EQ(data, nullptr);
+}
+
+TEST(AtlasFile, EveryTruncationAndHeaderFlipIsRejected) {
+    const vqtex::Image ex = load_corpus("checks_p16_64.png");
+    const std::vector<uint8_t> file = encode(ex, atlas_params(600));
+    const vqtex_decode_params p = decode_params(24, 20);
+    for (std::size_t n = 0; n < file.size(); ++n) {
+        const std::vector<uint8_t> cut(file.begin(), file.begin() + std::ptrdiff_t(n));
+        vqtex_status st = VQTEX_OK;
+        decode(cut, p, &st);
+        EXPECT_NE(st, VQTEX_OK) << "prefix of " << n << " bytes";
+    }
+    for (std::size_t i = 0; i < vqtex::kHeaderSize; ++i)
+        for (int bit = 0; bit < 8; ++bit) {
+            std::vector<uint8_t> bad = file;
+            bad[i] ^= uint8_t(1 << bit);
+            vqtex_status st = VQTEX_OK;
+            decode(bad, p, &st);
+            EXPECT_NE(st, VQTEX_OK) << "byte " << i << " bit " << bit;
+        }
+}
+
+TEST(AtlasFile, HostileSectionsAreCorruptOrOverTheLimitNeverACrash) {
+    const vqtex::Image ex = load_corpus("cellular_128.png");
+    const std::vector<uint8_t> file = encode(ex, atlas_params(800));
+    const std::size_t at = atlas_payload_offset(file);
+    const vqtex_decode_params p = decode_params(24, 20);
+    auto status_of = [&](std::vector<uint8_t> bad) {
+        fix_crc(bad);
+        vqtex_status st = VQTEX_OK;
+        decode(bad, p, &st);
+        return st;
+    };
+    {  // an atlas width the AV1 frame does not have
+        std::vector<uint8_t> bad = file;
+        bad[at] ^= 1;
+        EXPECT_EQ(status_of(bad), VQTEX_ERROR_CORRUPT);
+    }
+    {  // an unknown coder (the byte after two one-byte... or two-byte varints)
+        std::vector<uint8_t> bad = file;
+        vqtex::ByteReader r(bad.data() + at, 8, "atls");
+        r.varint("w");
+        r.varint("h");
+        bad[at + r.position()] = 7;
+        EXPECT_EQ(status_of(bad), VQTEX_ERROR_CORRUPT);
+    }
+    {  // more levels than the atlas allows
+        std::vector<uint8_t> bad = file;
+        bad[21] = 8;
+        EXPECT_EQ(status_of(bad), VQTEX_ERROR_CORRUPT);
+    }
+    {  // header fields version 3 reserves
+        std::vector<uint8_t> bad = file;
+        bad[22] = 1;  // init
+        EXPECT_EQ(status_of(bad), VQTEX_ERROR_CORRUPT);
+        bad = file;
+        bad[10] = 1;  // flags
+        EXPECT_EQ(status_of(bad), VQTEX_ERROR_CORRUPT);
+    }
+    // Every byte of the sections changed, checksum repaired: dav1d and the
+    // parameter checks see it all; any outcome but a crash or an unknown
+    // status is fine, and most are errors.
+    int rejected = 0, total = 0;
+    for (std::size_t i = vqtex::kHeaderSize; i + 4 < file.size(); i += 7) {
+        std::vector<uint8_t> bad = file;
+        bad[i] ^= 0xA5;
+        const vqtex_status st = status_of(bad);
+        EXPECT_TRUE(st == VQTEX_OK || st == VQTEX_ERROR_CORRUPT || st == VQTEX_ERROR_TRUNCATED ||
+                    st == VQTEX_ERROR_LIMIT_EXCEEDED)
+            << "byte " << i << ": status " << st;
+        rejected += st != VQTEX_OK;
+        ++total;
+    }
+    EXPECT_GT(rejected, 0);
+    // The memory limit covers the atlas and dav1d before they are allocated.
+    vqtex_decode_params low = p;
+    low.memory_limit = 1u << 20;
+    vqtex_status st = VQTEX_OK;
+    decode(file, low, &st);
+    EXPECT_EQ(st, VQTEX_ERROR_LIMIT_EXCEEDED);
+    // An atlas file is not an animation.
+    vqtex_volume v{};
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_decode_volume(&p, 4, file.data(), file.size(), &v, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+}
+
+// Pins format version 3 and its decoder (tests/golden/README.md):
+// vqtex-encode corpus/cellular_128.png cellular_v3.vqt --atlas --target-size 1500,
+// decoded at 96x80 with seed 5.
+TEST(AtlasFile, GoldenFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes = read_file(std::string(VQTEX_GOLDEN_DIR) + "/cellular_v3.vqt");
+    ASSERT_FALSE(bytes.empty()) << "missing tests/golden/cellular_v3.vqt";
+    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).format_version, 3u);
+    const vqtex::Image img = decode(bytes, decode_params(96, 80, 5));
+    const uint64_t hash = fnv1a(img.pixels.data(), img.pixels.size());
+    EXPECT_EQ(hash, 0xd605a0b58944eecbull) << std::hex << "decoded hash 0x" << hash;
+}
+
+TEST(AtlasFile, ParametersOutsideTheAtlasPathAreRefused) {
+    const vqtex::Image ex = load_corpus("cellular_128.png");
+    vqtex_image in{128, 128, 3, const_cast<uint8_t*>(ex.pixels.data())};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    vqtex_encode_params p = atlas_params();
+    p.codebook = vqtex_codebook(7);
+    EXPECT_EQ(vqtex_encode(&p, &in, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    p = atlas_params();
+    p.quality = 101;
+    EXPECT_EQ(vqtex_encode(&p, &in, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    // An example smaller than the smallest atlas.
+    vqtex_image tiny{6, 6, 3, const_cast<uint8_t*>(ex.pixels.data())};
+    p = atlas_params();
+    EXPECT_EQ(vqtex_encode(&p, &tiny, &data, &size, nullptr, &err), VQTEX_ERROR_IMAGE_TOO_SMALL);
+    EXPECT_EQ(data, nullptr);
+    // Animations store trees.
+    vqtex_volume_encode_params vp;
+    vqtex_volume_encode_params_init(&vp);
+    vp.codec.codebook = VQTEX_CODEBOOK_ATLAS;
+    std::vector<uint8_t> frames(16 * 16 * 3 * 4, 100);
+    vqtex_volume vol{16, 16, 4, 3, frames.data()};
+    EXPECT_EQ(vqtex_encode_volume(&vp, &vol, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+}
