@@ -83,19 +83,36 @@ Image stack_filter(const Image& in, int step, bool wraps) {
 }
 
 std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& samples, int dims, int count,
-                                                 int axes) {
+                                                 int axes, int threads) {
     const std::size_t d = std::size_t(dims);
+    // Sums of products over chunks of samples on the threads, then added:
+    // integer sums, so the same whatever the split.
+    constexpr std::size_t kChunk = 512;
+    const std::size_t chunks = (std::size_t(count) + kChunk - 1) / kChunk;
+    std::vector<std::vector<int64_t>> chunk_sum(chunks, std::vector<int64_t>(d, 0));
+    std::vector<std::vector<uint32_t>> chunk_products(chunks, std::vector<uint32_t>(d * d, 0));
+    parallel_for(threads, chunks, 1, [&](std::size_t c0, std::size_t c1) {
+        for (std::size_t c = c0; c < c1; ++c) {
+            int64_t* sum = chunk_sum[c].data();
+            uint32_t* products = chunk_products[c].data();
+            for (std::size_t s = c * kChunk; s < std::min(std::size_t(count), (c + 1) * kChunk); ++s) {
+                const int16_t* x = samples.data() + s * d;
+                for (std::size_t i = 0; i < d; ++i) {
+                    sum[i] += x[i];
+                    const uint32_t xi = uint32_t(x[i]);
+                    uint32_t* row = products + i * d;
+                    for (std::size_t j = i; j < d; ++j) row[j] += xi * uint32_t(x[j]);
+                }
+            }
+        }
+    });
     std::vector<int64_t> sum(d, 0);
     std::vector<uint32_t> products(d * d, 0);
-    for (int s = 0; s < count; ++s) {
-        const int16_t* x = samples.data() + std::size_t(s) * d;
-        for (std::size_t i = 0; i < d; ++i) {
-            sum[i] += x[i];
-            const uint32_t xi = uint32_t(x[i]);
-            uint32_t* row = products.data() + i * d;
-            for (std::size_t j = i; j < d; ++j) row[j] += xi * uint32_t(x[j]);
+    for (std::size_t c = 0; c < chunks; ++c)
+        for (std::size_t i = 0; i < d * d; ++i) {
+            products[i] += chunk_products[c][i];
+            if (i < d) sum[i] += chunk_sum[c][i];
         }
-    }
     // count^2 times the covariance, exact, then scaled so that every entry
     // is below 2^24: a row times a Q30 vector then fits 64 bits.
     std::vector<int128> cov(d * d);
@@ -201,7 +218,7 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& e
                     samples.insert(samples.end(), window.begin(), window.end());
                     ++count;
                 }
-        const std::vector<std::vector<int32_t>> axes = principal_axes(samples, dims, count, kAppearanceDims);
+        const std::vector<std::vector<int32_t>> axes = principal_axes(samples, dims, count, kAppearanceDims, threads);
         std::vector<int64_t> mean(std::size_t(dims), 0);
         for (int s = 0; s < count; ++s)
             for (int i = 0; i < dims; ++i) mean[std::size_t(i)] += samples[std::size_t(s) * dims + i];
@@ -227,9 +244,13 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& e
                         int16_t* fv = level.features.data() + (y * std::size_t(w) + std::size_t(x)) * kAppearanceDims;
                         for (int a = 0; a < kAppearanceDims; ++a) {
                             const int32_t* axis = flat.data() + std::size_t(a) * dims;
-                            int64_t acc = 0;
-                            for (int i = 0; i < dims; ++i) acc += int64_t(axis[i]) * centred[std::size_t(i)];
-                            const int64_t v = (acc + (1 << 14)) >> 15;
+                            // 32 bits hold the sum exactly: a unit axis (Q15)
+                            // against at most 100 values below 256 in size
+                            // sums to under 2^15 * 255 * sqrt(100) < 2^27
+                            // (Cauchy-Schwarz); and 32-bit lanes vectorise.
+                            int32_t acc = 0;
+                            for (int i = 0; i < dims; ++i) acc += axis[i] * centred[std::size_t(i)];
+                            const int64_t v = (int64_t(acc) + (1 << 14)) >> 15;
                             fv[a] = int16_t(std::clamp<int64_t>(v, -kAppearanceClamp, kAppearanceClamp));
                         }
                     }

@@ -69,6 +69,6 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& f
 // (row-major), strongest first, as unit vectors in fixed point (2^15 = 1).
 // Exact integer arithmetic throughout; axes of a zero variance are zero.
 std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& samples, int dims,
-                                                 int count, int axes);
+                                                 int count, int axes, int threads = 1);
 
 }  // namespace vqtex

@@ -42,6 +42,14 @@ CoherenceSets build_coherence_sets(const AppearanceSpace& space, int k, int excl
     const std::size_t n = std::size_t(space.width) * std::size_t(space.height);
     const std::size_t others = std::size_t(sets.k - 1);
     for (const AppearanceLevel& level : space.levels) {
+        if (others == 0) {
+            // k = 1, the default: each position's set is itself, and the
+            // sort below (a twentieth of a 512x512 synthesis) is not needed.
+            std::vector<uint32_t> own(n);
+            std::iota(own.begin(), own.end(), 0u);
+            sets.levels.push_back(std::move(own));
+            continue;
+        }
         const int16_t* f = level.features.data();
         std::vector<uint32_t> order(n);
         std::iota(order.begin(), order.end(), 0u);
