@@ -9,6 +9,7 @@ packages=(
   libopenimageio-dev   # all image reading and writing
   libzstd-dev          # entropy coding of codebooks
   libcli11-dev         # command-line parsing
+  nlohmann-json3-dev   # the programs' --json output
   libgtest-dev         # tests
   libbenchmark-dev     # benchmarks
 )

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "batch.hpp"
 #include "cli_common.hpp"
 #include "image_io.hpp"
 #include "vqtex/vqtex.h"
@@ -168,14 +169,21 @@ int main(int argc, char** argv) {
         uint64_t filled = 0;
         for (uint32_t l = 0; l < stats.levels; ++l) filled += l == 0 ? stats.filled[0] : 0;
         if (json) {
-            std::printf("{\"input\":%s,\"output\":%s,\"width\":%u,\"height\":%u,\"channels\":%u,"
-                        "\"method\":%s,\"search\":%s,\"levels\":%u,\"filled_pixels\":%llu,"
-                        "\"analyse_seconds\":%.6f,\"fill_seconds\":%.6f,\"total_seconds\":%.6f,\"examples\":[",
-                        json_string(input).c_str(), json_string(output).c_str(), out_w, out_h, image.channels,
-                        json_string(method).c_str(), exhaustive ? "\"exhaustive\"" : "\"tsvq\"", stats.levels,
-                        (unsigned long long)filled, stats.analyse_seconds, stats.fill_seconds, t2 - t_load);
-            for (uint32_t l = 0; l < stats.levels; ++l) std::printf("%s%u", l ? "," : "", stats.examples[l]);
-            std::printf("]}\n");
+            const nlohmann::ordered_json j{
+                {"input", input},
+                {"output", output},
+                {"width", out_w},
+                {"height", out_h},
+                {"channels", image.channels},
+                {"method", method},
+                {"search", exhaustive ? "exhaustive" : "tsvq"},
+                {"levels", stats.levels},
+                {"filled_pixels", filled},
+                {"analyse_seconds", stats.analyse_seconds},
+                {"fill_seconds", stats.fill_seconds},
+                {"total_seconds", t2 - t_load},
+                {"examples", std::vector<uint32_t>(stats.examples, stats.examples + stats.levels)}};
+            std::fputs(json_line(j).c_str(), stdout);
         } else if (!quiet) {
             std::printf("image     %s  %ux%u, %u channel%s\n", input.c_str(), image.width, image.height,
                         image.channels, image.channels == 1 ? "" : "s");

@@ -1,10 +1,12 @@
 // vqtex-synth - synthesise a new, tileable texture of any size from an
 // example image (paper sections 2-4), through the public API only.
 #include <cstdio>
+#include <vector>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "batch.hpp"
 #include "cli_common.hpp"
 #include "image_io.hpp"
 #include "vqtex/vqtex.h"
@@ -136,18 +138,23 @@ int main(int argc, char** argv) {
         save_image(output, out.width(), out.height(), out.channels(), out.data());
         const double t2 = now_seconds();
         if (json) {
-            std::printf("{\"input\":%s,\"output\":%s,\"example_width\":%u,\"example_height\":%u,"
-                        "\"channels\":%u,\"width\":%u,\"height\":%u,\"seed\":%llu,\"search\":%s,"
-                        "\"levels\":%u,\"model_bytes\":%llu,\"analyse_seconds\":%.6f,"
-                        "\"synthesise_seconds\":%.6f,\"total_seconds\":%.6f,\"codewords\":[",
-                        json_string(input).c_str(), json_string(output).c_str(), example.width,
-                        example.height, example.channels, params.width, params.height,
-                        (unsigned long long)seed, exhaustive ? "\"exhaustive\"" : "\"tsvq\"",
-                        stats.levels, (unsigned long long)stats.model_bytes, stats.analyse_seconds,
-                        stats.synthesise_seconds, t2 - t_load);
-            for (uint32_t l = 0; l < stats.levels; ++l)
-                std::printf("%s%u", l ? "," : "", stats.codewords[l]);
-            std::printf("]}\n");
+            const nlohmann::ordered_json j{
+                {"input", input},
+                {"output", output},
+                {"example_width", example.width},
+                {"example_height", example.height},
+                {"channels", example.channels},
+                {"width", params.width},
+                {"height", params.height},
+                {"seed", seed},
+                {"search", exhaustive ? "exhaustive" : "tsvq"},
+                {"levels", stats.levels},
+                {"model_bytes", stats.model_bytes},
+                {"analyse_seconds", stats.analyse_seconds},
+                {"synthesise_seconds", stats.synthesise_seconds},
+                {"total_seconds", t2 - t_load},
+                {"codewords", std::vector<uint32_t>(stats.codewords, stats.codewords + stats.levels)}};
+            std::fputs(json_line(j).c_str(), stdout);
         } else if (!quiet) {
             std::printf("example   %s  %ux%u, %u channel%s\n", input.c_str(), example.width,
                         example.height, example.channels, example.channels == 1 ? "" : "s");
