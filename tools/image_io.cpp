@@ -14,6 +14,7 @@
 #include <memory>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include "imageio_module.hpp"
 #include "vqtex/vqtex.h"
@@ -202,6 +203,30 @@ const ImageioModule& imageio() {
 }
 
 void require_image_io() { (void)imageio(); }
+
+namespace {
+
+// Joined at exit: a thread still inside dlopen must not outlive main.
+struct Preloader {
+    std::thread thread;
+    ~Preloader() {
+        if (thread.joinable()) thread.join();
+    }
+};
+
+}  // namespace
+
+void preload_image_io() {
+    static Preloader preloader;
+    if (preloader.thread.joinable()) return;
+    preloader.thread = std::thread([] {
+        try {
+            (void)imageio();
+        } catch (...) {
+            // The first real read or write reports it, in its own words.
+        }
+    });
+}
 
 void set_write_options(const WriteOptions& options) { g_write_options = options; }
 
