@@ -14,7 +14,6 @@
 #include <memory>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include "imageio_module.hpp"
 #include "vqtex/vqtex.h"
@@ -200,32 +199,6 @@ const ImageioModule* open_module() {
 const ImageioModule& imageio() {
     static const ImageioModule* const module = open_module();  // a throw leaves it to the next call
     return *module;
-}
-
-void require_image_io() { (void)imageio(); }
-
-namespace {
-
-// Joined at exit: a thread still inside dlopen must not outlive main.
-struct Preloader {
-    std::thread thread;
-    ~Preloader() {
-        if (thread.joinable()) thread.join();
-    }
-};
-
-}  // namespace
-
-void preload_image_io() {
-    static Preloader preloader;
-    if (preloader.thread.joinable()) return;
-    preloader.thread = std::thread([] {
-        try {
-            (void)imageio();
-        } catch (...) {
-            // The first real read or write reports it, in its own words.
-        }
-    });
 }
 
 void set_write_options(const WriteOptions& options) { g_write_options = options; }

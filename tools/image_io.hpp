@@ -48,16 +48,6 @@ struct WriteOptions {
 void set_write_options(const WriteOptions& options);
 const WriteOptions& write_options();
 
-// Loads the image I/O module now (it is otherwise loaded on first use);
-// throws the one-line reason when it cannot be loaded.
-void require_image_io();
-
-// Starts loading the image I/O module on a thread of its own, so that its
-// ~0.3 s of dynamic loading overlaps the decode or encode that comes before
-// the first write. A failure is left for the first real use to report. At
-// exit the program waits for the load to end.
-void preload_image_io();
-
 // Throws std::runtime_error with a one-line message naming the file.
 LoadedImage load_image(const std::string& path);
 

@@ -158,8 +158,6 @@ int main(int argc, char** argv) {
         WriteOptions write;
         write.png_compression = png_compression;
         set_write_options(write);
-        // Arguments are good: OpenImageIO loads while the first file decodes.
-        preload_image_io();
 
         if (!*out_dir_opt) {
             if (files.size() != 2)
