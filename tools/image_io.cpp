@@ -201,6 +201,8 @@ const ImageioModule& imageio() {
     return *module;
 }
 
+void load_image_io() { (void)imageio(); }
+
 void set_write_options(const WriteOptions& options) { g_write_options = options; }
 
 const WriteOptions& write_options() { return g_write_options; }

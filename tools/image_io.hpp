@@ -48,6 +48,11 @@ struct WriteOptions {
 void set_write_options(const WriteOptions& options);
 const WriteOptions& write_options();
 
+// Loads the image I/O module now if it is not loaded yet (reads and writes
+// otherwise load it on first use), so that a caller can time the load
+// apart from the work; throws the one-line reason when it cannot.
+void load_image_io();
+
 // Throws std::runtime_error with a one-line message naming the file.
 LoadedImage load_image(const std::string& path);
 
