@@ -472,3 +472,24 @@ TEST(ToolsBatch, PngCompressionChangesSizeNotPixels) {
     EXPECT_EQ(vqtex_test::load_file(fast), vqtex_test::load_file(small));
     EXPECT_NE(decode_tool(vqts[1] + " " + fast + " --png-compression 10").status, 0);
 }
+
+TEST(ToolsBatch, EmptyFolderAndOutputOverInputAreErrors) {
+    const auto& vqts = two_textures();
+    const fs::path dir = scratch_dir(), empty = dir / "empty", out = dir / "self";
+    fs::create_directories(empty);
+    fs::create_directories(out);
+    const fs::path self = out / "weave.vqt";
+    fs::copy_file(vqts[1], self, fs::copy_options::overwrite_existing);
+    // --format vqt into the input's own folder would replace the input.
+    const SplitRun r = run_split(VQTEX_DECODE_EXE, empty.string() + " " + self.string() + " -o " + out.string() +
+                                                        " --format vqt --size 16");
+    EXPECT_EQ(r.status, 1);
+    const std::vector<std::string> errors = lines_of(r.err);
+    ASSERT_EQ(errors.size(), 2u) << r.err;
+    EXPECT_NE(errors[0].find("holds no .vqt file"), std::string::npos) << errors[0];
+    EXPECT_NE(errors[1].find("is the input itself"), std::string::npos) << errors[1];
+    EXPECT_EQ(file_bytes(self), file_bytes(vqts[1]));  // untouched
+    const SplitRun info = run_split(VQTEX_INFO_EXE, empty.string());
+    EXPECT_EQ(info.status, 1);
+    EXPECT_NE(info.err.find("holds no .vqt file"), std::string::npos) << info.err;
+}

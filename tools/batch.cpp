@@ -59,6 +59,15 @@ std::string batch_output_name(const std::string& input, const std::string& out_d
     return (fs::path(out_dir) / (fs::path(input).stem().string() + suffix + dotted)).string();
 }
 
+void check_batch_pair(const std::string& input, const std::string& output, const std::string& kind) {
+    std::error_code ec;
+    if (fs::is_directory(input, ec))
+        throw std::runtime_error("folder '" + input + "' holds no " + kind + ": give files, or a folder of them");
+    if (fs::exists(output, ec) && fs::equivalent(input, output, ec))
+        throw std::runtime_error(input + ": its output '" + output +
+                                 "' is the input itself: choose another -o folder, --suffix or --format");
+}
+
 void prepare_output_folder(const std::string& out_dir) {
     std::error_code ec;
     if (fs::is_directory(out_dir, ec)) return;

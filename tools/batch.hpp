@@ -25,6 +25,11 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& args,
 std::string batch_output_name(const std::string& input, const std::string& out_dir, const std::string& suffix,
                               const std::string& ext);
 
+// Throws a one-line reason when a batch cannot process `input` into
+// `output`: the input is a folder that held no file of the kind sought
+// (`kind`, e.g. ".vqt file"), or the output would overwrite the input.
+void check_batch_pair(const std::string& input, const std::string& output, const std::string& kind);
+
 // Creates `out_dir` when missing; throws a one-line reason when it cannot.
 void prepare_output_folder(const std::string& out_dir);
 

@@ -199,6 +199,7 @@ int main(int argc, char** argv) {
             if (first != i)
                 throw std::invalid_argument(inputs[i] + ": its output '" + outputs[i] + "' is also the output of '" +
                                             inputs[first] + "': rename one, or decode them in separate calls");
+            check_batch_pair(inputs[i], outputs[i], ".vqt file");
             return decode_one(s, inputs[i], outputs[i], per_file, nullptr);
         });
     } catch (const std::exception& e) {

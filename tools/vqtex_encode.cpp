@@ -248,6 +248,7 @@ int main(int argc, char** argv) {
             if (first != i)
                 throw std::invalid_argument(inputs[i] + ": its output '" + outputs[i] + "' is also the output of '" +
                                             inputs[first] + "': rename one, or encode them in separate calls");
+            check_batch_pair(inputs[i], outputs[i], "image file (an animation in a batch is a pattern: 'DIR/frame_%03d.png')");
             try {
                 return encode_one(s, inputs[i], outputs[i], per_file, nullptr);
             } catch (const std::exception& e) {

@@ -3,6 +3,7 @@
 // the image I/O module and starts in milliseconds.
 #include <cstdarg>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "vqtex/vqtex.h"
 
 using namespace vqtex_tools;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -29,6 +31,7 @@ __attribute__((format(printf, 2, 3))) void add(std::string& out, const char* for
 }
 
 FileReport info_one(const std::string& input) {
+    if (fs::is_directory(input)) throw std::runtime_error("folder '" + input + "' holds no .vqt file");
     const std::vector<uint8_t> bytes = load_bytes(input);
     vqtex_file_info info{};
     vqtex_error err{};
