@@ -493,3 +493,19 @@ TEST(ToolsBatch, EmptyFolderAndOutputOverInputAreErrors) {
     EXPECT_EQ(info.status, 1);
     EXPECT_NE(info.err.find("holds no .vqt file"), std::string::npos) << info.err;
 }
+
+TEST(ToolsBatch, SynthBatchGivesTheBytesOfSingleCalls) {
+    const fs::path dir = scratch_dir(), out = dir / "synth_out";
+    const std::string a = corpus + "/weave_128.png", b = corpus + "/cellular_128.png";
+    const SplitRun r = run_split(VQTEX_SYNTH_EXE, a + " " + b + " -o " + out.string() +
+                                                       " --size 48x40 --seed 7 --format tif --suffix _v -j 2 --quiet");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "");
+    for (const std::string& in : {a, b}) {
+        const std::string stem = fs::path(in).stem().string();
+        const fs::path single = dir / (stem + "_single.tif");
+        ASSERT_EQ(run_tool(in + " " + single.string() + " --size 48x40 --seed 7 -j 1 --quiet").status, 0);
+        EXPECT_EQ(vqtex_test::load_file((out / (stem + "_v.tif")).string()), vqtex_test::load_file(single.string()))
+            << stem;
+    }
+}
