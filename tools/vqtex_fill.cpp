@@ -88,9 +88,17 @@ int main(int argc, char** argv) {
     app.add_option("-j,--threads", threads, "threads (default: all cores; output is identical)");
     app.add_flag("--json", json, "print machine-readable statistics on stdout");
     app.add_flag("--quiet", quiet, "print nothing but errors");
+    int png_compression = WriteOptions{}.png_compression;
+    app.add_option("--png-compression", png_compression,
+                   "zlib level of PNG outputs, 0 (fastest) to 9 (smallest files)")
+        ->check(CLI::Range(0, 9))
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     try {
+        WriteOptions write;
+        write.png_compression = png_compression;
+        set_write_options(write);
         const bool has_mask = files.size() == 3;
         if (has_mask && alpha) throw std::runtime_error("give either a MASK image or --alpha, not both");
         if (!has_mask && !alpha && extend.empty())

@@ -145,6 +145,11 @@ int main(int argc, char** argv) {
                    "threads (default: all cores), shared between the files of a batch; output is identical");
     app.add_flag("--json", json, "print machine-readable statistics on stdout (one JSON line per file)");
     app.add_flag("--quiet", quiet, "print nothing but errors");
+    int png_compression = WriteOptions{}.png_compression;
+    app.add_option("--png-compression", png_compression,
+                   "zlib level of PNG outputs, 0 (fastest) to 9 (smallest files)")
+        ->check(CLI::Range(0, 9))
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
     if (paper) engine = "paper";
     if (engine == "paper") {
@@ -165,6 +170,9 @@ int main(int argc, char** argv) {
     }
 
     try {
+        WriteOptions write;
+        write.png_compression = png_compression;
+        set_write_options(write);
         vqtex_synth_params params;
         vqtex_synth_params_init(&params);
         params.engine = engine == "paper" ? VQTEX_ENGINE_PAPER : VQTEX_ENGINE_COHERENT;
