@@ -397,6 +397,21 @@ TEST(ToolsBatch, BadInputsFailAloneWithOneLineEach) {
         EXPECT_EQ(e.path().filename(), "weave.png");
     }
     EXPECT_EQ(entries, 1u);
+    // With --json, every file has its line: the two failures with their
+    // error, the good one with its statistics; the errors stay on stderr.
+    const SplitRun js = run_split(VQTEX_DECODE_EXE, missing + " " + damaged.string() + " " + vqts[1] + " -o " +
+                                                         out.string() + " --size 64 --json");
+    EXPECT_EQ(js.status, 1);
+    EXPECT_EQ(lines_of(js.err).size(), 2u) << js.err;
+    const std::vector<std::string> lines = lines_of(js.out);
+    ASSERT_EQ(lines.size(), 3u) << js.out;
+    const auto a = nlohmann::json::parse(lines[0]), b = nlohmann::json::parse(lines[1]),
+               c = nlohmann::json::parse(lines[2]);
+    EXPECT_EQ(a.at("input").get<std::string>(), missing);
+    EXPECT_NE(a.at("error").get<std::string>().find("no such file"), std::string::npos);
+    EXPECT_NE(b.at("error").get<std::string>().find("checksum"), std::string::npos);
+    EXPECT_FALSE(c.contains("error"));
+    EXPECT_EQ(c.at("width").get<int>(), 64);
 }
 
 TEST(ToolsBatch, SameOutputNameTwiceIsAnErrorForTheSecond) {

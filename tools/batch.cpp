@@ -147,6 +147,11 @@ int run_batch(std::size_t files, const BatchOptions& options, const FileWork& wo
             const Outcome& o = *outcomes[next_to_print];
             if (!o.ok) {
                 write_stderr(std::string(options.program) + ": error: " + o.error + "\n");
+                if (options.json && options.names) {
+                    const nlohmann::ordered_json j{{options.name_key, (*options.names)[next_to_print]},
+                                                   {"error", o.error}};
+                    std::fputs(json_line(j).c_str(), stdout);
+                }
             } else if (options.json) {
                 std::fputs(json_line(o.report.json).c_str(), stdout);
             } else if (!options.quiet && !o.report.text.empty()) {

@@ -60,11 +60,15 @@ struct BatchOptions {
     bool json = false;         // print FileReport::json as JSON lines
     bool quiet = false;        // print nothing but errors
     bool progress = true;      // a bar over the batch, on a terminal
+    // With json, a failed file also gets a line {KEY: name, "error": MESSAGE}
+    // on stdout, so that a pipeline reading the JSON lines sees every file.
+    const std::vector<std::string>* names = nullptr;
+    const char* name_key = "input";
 };
 
 // Runs `work` for files 0 .. files-1 on a bounded pool. Reports go to
 // stdout in input order; a failure prints "PROGRAM: error: MESSAGE" on
-// stderr and the others go on. Returns the exit status: 0, or 1 when any
+// stderr (and its JSON line, see BatchOptions) and the others go on. Returns the exit status: 0, or 1 when any
 // file failed.
 int run_batch(std::size_t files, const BatchOptions& options, const FileWork& work);
 

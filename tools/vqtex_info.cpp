@@ -123,6 +123,8 @@ int main(int argc, char** argv) {
     options.program = "vqtex-info";
     options.jobs = threads;
     options.json = json;
+    options.names = &inputs;
+    options.name_key = "file";
     options.progress = inputs.size() > 1;
     return run_batch(inputs.size(), options, [&](std::size_t i, unsigned) { return info_one(inputs[i]); });
 }

@@ -224,6 +224,7 @@ int main(int argc, char** argv) {
         options.program = "vqtex-synth";
         options.jobs = threads;
         options.json = json;
+        options.names = &inputs;
         options.quiet = quiet;
         return run_batch(inputs.size(), options, [&](std::size_t i, unsigned per_file) {
             const std::size_t first = first_writer.at(outputs[i]);
