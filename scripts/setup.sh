@@ -12,6 +12,7 @@ packages=(
   libaom-dev           # encoding the atlas of format v3 (encoder library only)
   libwebp-dev          # bench/atlas_study.cpp: VP8 against AV1 for the atlas
   libcli11-dev         # command-line parsing
+  nlohmann-json3-dev   # the programs' --json output
   libgtest-dev         # tests
   libbenchmark-dev     # benchmarks
 )

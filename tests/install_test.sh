@@ -16,6 +16,18 @@ for program in vqtex-bench fill-seams; do
   fi
 done
 
+# The installed programs load the installed image I/O module (LIBDIR/vqtex),
+# not the build tree's, and write an image with it.
+if [ -x "$prefix/bin/vqtex-decode" ]; then
+  LD_DEBUG=files "$prefix/bin/vqtex-decode" "$src/tests/golden/cellular_v1.vqt" "$prefix/out.png" --size 40x24 \
+    --quiet 2>"$prefix/ld.log"
+  if ! grep -q "file=$prefix/lib[^ ]*/vqtex/vqtex_imageio.so" "$prefix/ld.log"; then
+    echo "install test: vqtex-decode did not load $prefix's vqtex_imageio.so" >&2
+    exit 1
+  fi
+  [ -s "$prefix/out.png" ] || { echo "install test: the installed vqtex-decode wrote no image" >&2; exit 1; }
+fi
+
 cmake -S "$src/examples" -B "$prefix/examples-build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$prefix/examples-build" >/dev/null
 "$prefix/examples-build/asset_packer"

@@ -5,10 +5,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include <OpenImageIO/imageio.h>
+#include <nlohmann/json.hpp>
 
 #include "image_io.hpp"
 #include "test_support.hpp"
@@ -275,4 +279,248 @@ TEST(Tools, AnimationRoundTrip) {
     // No leftover temporary files.
     for (const auto& e : fs::directory_iterator(dir))
         EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
+}
+
+// ---- batches (many files per call) -----------------------------------------
+
+namespace {
+
+struct SplitRun {
+    int status;
+    std::string out, err;
+};
+
+// Runs a program with stdout and stderr kept apart; `env` goes before it.
+SplitRun run_split(const std::string& exe, const std::string& args, const std::string& env = "") {
+    const fs::path dir = scratch_dir();
+    const fs::path out = dir / "run.out", err = dir / "run.err";
+    const std::string cmd = env + " " + exe + " " + args + " >" + out.string() + " 2>" + err.string();
+    const int st = std::system(cmd.c_str());
+    auto slurp = [](const fs::path& p) {
+        std::ifstream f(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(f), {});
+    };
+    return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, slurp(out), slurp(err)};
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::size_t start = 0;
+    for (std::size_t at; (at = text.find('\n', start)) != std::string::npos; start = at + 1)
+        lines.push_back(text.substr(start, at - start));
+    if (start < text.size()) lines.push_back(text.substr(start));
+    return lines;
+}
+
+std::string file_bytes(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+// Two small .vqt files, made once per test process.
+const std::vector<std::string>& two_textures() {
+    static const std::vector<std::string> files = [] {
+        const fs::path dir = scratch_dir() / "textures";
+        fs::create_directories(dir);
+        std::vector<std::string> made;
+        for (const char* name : {"cellular", "weave"}) {
+            const std::string vqt = (dir / (std::string(name) + ".vqt")).string();
+            const ToolRun r = encode_tool(corpus + "/" + name + "_128.png " + vqt + " -q 0 --quiet");
+            EXPECT_EQ(r.status, 0) << r.output;
+            made.push_back(vqt);
+        }
+        return made;
+    }();
+    return files;
+}
+
+}  // namespace
+
+TEST(ToolsBatch, DecodeBatchGivesTheBytesOfSingleCalls) {
+    const auto& vqts = two_textures();
+    const fs::path dir = scratch_dir(), out = dir / "batch_out";
+    // A folder and a file, as a pipeline would pass them.
+    const std::string folder = fs::path(vqts[0]).parent_path().string();
+    const fs::path extra = dir / "extra.vqt";
+    fs::copy_file(vqts[1], extra, fs::copy_options::overwrite_existing);
+    const SplitRun r = run_split(VQTEX_DECODE_EXE, folder + " " + extra.string() + " -o " + out.string() +
+                                                        " --size 70x50 --seed 5 --suffix _s -j 2 --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    // One JSON object per file, in input order (the folder sorted by name).
+    const std::vector<std::string> lines = lines_of(r.out);
+    ASSERT_EQ(lines.size(), 3u) << r.out;
+    const std::vector<std::string> names{"cellular_s.png", "weave_s.png", "extra_s.png"};
+    for (std::size_t i = 0; i < 3; ++i) {
+        const auto j = nlohmann::json::parse(lines[i]);
+        EXPECT_EQ(fs::path(j.at("output").get<std::string>()).filename().string(), names[i]);
+        EXPECT_EQ(j.at("width").get<int>(), 70);
+        EXPECT_EQ(j.at("height").get<int>(), 50);
+    }
+    // Each output is byte for byte what one call per file writes.
+    for (std::size_t i = 0; i < 3; ++i) {
+        const std::string in = i < 2 ? vqts[i] : extra.string();
+        const fs::path single = dir / ("single_" + names[i]);
+        ASSERT_EQ(decode_tool(in + " " + single.string() + " --size 70x50 --seed 5 -j 1 --quiet").status, 0);
+        EXPECT_EQ(file_bytes(out / names[i]), file_bytes(single)) << names[i];
+    }
+}
+
+TEST(ToolsBatch, BadInputsFailAloneWithOneLineEach) {
+    const auto& vqts = two_textures();
+    const fs::path dir = scratch_dir(), out = dir / "errors_out";
+    const fs::path damaged = dir / "damaged.vqt";
+    fs::copy_file(vqts[0], damaged, fs::copy_options::overwrite_existing);
+    {
+        std::fstream f(damaged, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(-20, std::ios::end);
+        f.put('\x7f');
+    }
+    const std::string missing = (dir / "missing.vqt").string();
+    const SplitRun r = run_split(VQTEX_DECODE_EXE, missing + " " + damaged.string() + " " + vqts[1] + " -o " +
+                                                        out.string() + " --size 64");
+    EXPECT_EQ(r.status, 1);
+    const std::vector<std::string> errors = lines_of(r.err);
+    ASSERT_EQ(errors.size(), 2u) << r.err;
+    EXPECT_NE(errors[0].find("missing.vqt"), std::string::npos) << errors[0];
+    EXPECT_NE(errors[0].find("no such file"), std::string::npos) << errors[0];
+    EXPECT_NE(errors[1].find("damaged.vqt"), std::string::npos) << errors[1];
+    EXPECT_NE(errors[1].find("checksum"), std::string::npos) << errors[1];
+    // The good file's output is whole; the bad ones left nothing, not even
+    // a temporary file.
+    const vqtex::Image good = vqtex_test::load_file((out / "weave.png").string());
+    EXPECT_EQ(good.width, 64);
+    EXPECT_EQ(good.height, 64);
+    std::size_t entries = 0;
+    for (const auto& e : fs::directory_iterator(out)) {
+        ++entries;
+        EXPECT_EQ(e.path().filename(), "weave.png");
+    }
+    EXPECT_EQ(entries, 1u);
+    // With --json, every file has its line: the two failures with their
+    // error, the good one with its statistics; the errors stay on stderr.
+    const SplitRun js = run_split(VQTEX_DECODE_EXE, missing + " " + damaged.string() + " " + vqts[1] + " -o " +
+                                                         out.string() + " --size 64 --json");
+    EXPECT_EQ(js.status, 1);
+    EXPECT_EQ(lines_of(js.err).size(), 2u) << js.err;
+    const std::vector<std::string> lines = lines_of(js.out);
+    ASSERT_EQ(lines.size(), 3u) << js.out;
+    const auto a = nlohmann::json::parse(lines[0]), b = nlohmann::json::parse(lines[1]),
+               c = nlohmann::json::parse(lines[2]);
+    EXPECT_EQ(a.at("input").get<std::string>(), missing);
+    EXPECT_NE(a.at("error").get<std::string>().find("no such file"), std::string::npos);
+    EXPECT_NE(b.at("error").get<std::string>().find("checksum"), std::string::npos);
+    EXPECT_FALSE(c.contains("error"));
+    EXPECT_EQ(c.at("width").get<int>(), 64);
+}
+
+TEST(ToolsBatch, SameOutputNameTwiceIsAnErrorForTheSecond) {
+    const auto& vqts = two_textures();
+    const fs::path dir = scratch_dir(), out = dir / "twice_out";
+    const SplitRun r = run_split(VQTEX_DECODE_EXE, vqts[0] + " " + vqts[0] + " -o " + out.string() + " --size 32");
+    EXPECT_EQ(r.status, 1);
+    ASSERT_EQ(lines_of(r.err).size(), 1u) << r.err;
+    EXPECT_NE(r.err.find("also the output of"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(out / "cellular.png"));
+}
+
+TEST(ToolsBatch, InfoTakesManyFilesAndWritesJsonLines) {
+    const auto& vqts = two_textures();
+    // A name JSON must escape: the library writes it, not hand-made code.
+    const fs::path odd = scratch_dir() / "quote\"back\\slash.vqt";
+    fs::copy_file(vqts[1], odd, fs::copy_options::overwrite_existing);
+    const SplitRun r = run_split(VQTEX_INFO_EXE, vqts[0] + " '" + odd.string() + "' --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<std::string> lines = lines_of(r.out);
+    ASSERT_EQ(lines.size(), 2u) << r.out;
+    const auto a = nlohmann::json::parse(lines[0]), b = nlohmann::json::parse(lines[1]);
+    EXPECT_EQ(a.at("file").get<std::string>(), vqts[0]);
+    EXPECT_EQ(b.at("file").get<std::string>(), odd.string());
+    EXPECT_EQ(a.at("bytes").get<uint64_t>(), fs::file_size(vqts[0]));
+    EXPECT_FALSE(a.at("sections").empty());
+}
+
+TEST(ToolsBatch, EncodeBatchGivesTheBytesOfSingleCalls) {
+    const fs::path dir = scratch_dir(), in = dir / "examples", out = dir / "encoded";
+    fs::create_directories(in);
+    for (const char* name : {"cellular_128.png", "weave_128.png"})
+        fs::copy_file(corpus + "/" + name, in / name, fs::copy_options::overwrite_existing);
+    const SplitRun r = run_split(VQTEX_ENCODE_EXE, in.string() + " -o " + out.string() + " -q 0 -j 2 --quiet");
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* name : {"cellular_128", "weave_128"}) {
+        const fs::path single = dir / (std::string(name) + "_single.vqt");
+        ASSERT_EQ(encode_tool((in / (std::string(name) + ".png")).string() + " " + single.string() + " -q 0 -j 1 --quiet").status, 0);
+        EXPECT_EQ(file_bytes(out / (std::string(name) + ".vqt")), file_bytes(single)) << name;
+    }
+}
+
+// vqtex-info, --help and argument errors never load OpenImageIO: with the
+// image I/O module out of reach they still answer, and a program that needs
+// it says so in one line and writes nothing.
+TEST(ToolsBatch, InfoAndArgumentErrorsNeedNoImageLibrary) {
+    const auto& vqts = two_textures();
+    const std::string away = "VQTEX_IMAGEIO_MODULE=/nonexistent/vqtex_imageio.so";
+    SplitRun r = run_split(VQTEX_INFO_EXE, vqts[0], away);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("checksum OK"), std::string::npos) << r.out;
+    r = run_split(VQTEX_DECODE_EXE, "--help", away);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("--output-dir"), std::string::npos) << r.out;
+    r = run_split(VQTEX_DECODE_EXE, vqts[0] + " x.png --size 0x0", away);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("out of range"), std::string::npos) << r.err;
+    const fs::path never = scratch_dir() / "never.png";
+    r = run_split(VQTEX_DECODE_EXE, vqts[0] + " " + never.string() + " --size 16", away);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(lines_of(r.err).size(), 1u) << r.err;
+    EXPECT_NE(r.err.find("VQTEX_IMAGEIO_MODULE"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(never));
+}
+
+TEST(ToolsBatch, PngCompressionChangesSizeNotPixels) {
+    const auto& vqts = two_textures();
+    const fs::path dir = scratch_dir();
+    const std::string fast = (dir / "fast.png").string(), small = (dir / "small.png").string();
+    ASSERT_EQ(decode_tool(vqts[1] + " " + fast + " --size 128 --quiet").status, 0);
+    ASSERT_EQ(decode_tool(vqts[1] + " " + small + " --size 128 --png-compression 9 --quiet").status, 0);
+    EXPECT_LT(fs::file_size(small), fs::file_size(fast));
+    EXPECT_EQ(vqtex_test::load_file(fast), vqtex_test::load_file(small));
+    EXPECT_NE(decode_tool(vqts[1] + " " + fast + " --png-compression 10").status, 0);
+}
+
+TEST(ToolsBatch, EmptyFolderAndOutputOverInputAreErrors) {
+    const auto& vqts = two_textures();
+    const fs::path dir = scratch_dir(), empty = dir / "empty", out = dir / "self";
+    fs::create_directories(empty);
+    fs::create_directories(out);
+    const fs::path self = out / "weave.vqt";
+    fs::copy_file(vqts[1], self, fs::copy_options::overwrite_existing);
+    // --format vqt into the input's own folder would replace the input.
+    const SplitRun r = run_split(VQTEX_DECODE_EXE, empty.string() + " " + self.string() + " -o " + out.string() +
+                                                        " --format vqt --size 16");
+    EXPECT_EQ(r.status, 1);
+    const std::vector<std::string> errors = lines_of(r.err);
+    ASSERT_EQ(errors.size(), 2u) << r.err;
+    EXPECT_NE(errors[0].find("holds no .vqt file"), std::string::npos) << errors[0];
+    EXPECT_NE(errors[1].find("is the input itself"), std::string::npos) << errors[1];
+    EXPECT_EQ(file_bytes(self), file_bytes(vqts[1]));  // untouched
+    const SplitRun info = run_split(VQTEX_INFO_EXE, empty.string());
+    EXPECT_EQ(info.status, 1);
+    EXPECT_NE(info.err.find("holds no .vqt file"), std::string::npos) << info.err;
+}
+
+TEST(ToolsBatch, SynthBatchGivesTheBytesOfSingleCalls) {
+    const fs::path dir = scratch_dir(), out = dir / "synth_out";
+    const std::string a = corpus + "/weave_128.png", b = corpus + "/cellular_128.png";
+    const SplitRun r = run_split(VQTEX_SYNTH_EXE, a + " " + b + " -o " + out.string() +
+                                                       " --size 48x40 --seed 7 --format tif --suffix _v -j 2 --quiet");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "");
+    for (const std::string& in : {a, b}) {
+        const std::string stem = fs::path(in).stem().string();
+        const fs::path single = dir / (stem + "_single.tif");
+        ASSERT_EQ(run_tool(in + " " + single.string() + " --size 48x40 --seed 7 -j 1 --quiet").status, 0);
+        EXPECT_EQ(vqtex_test::load_file((out / (stem + "_v.tif")).string()), vqtex_test::load_file(single.string()))
+            << stem;
+    }
 }

@@ -1,5 +1,5 @@
 // cli_common.hpp - helpers shared by the command-line programs: parsing of
-// sizes, shape lists and codeword lists, a terminal progress bar, JSON output.
+// sizes, shape lists and codeword lists, a terminal progress bar (JSON output is in batch.hpp).
 #pragma once
 
 #include <cstdint>
@@ -34,8 +34,5 @@ struct ProgressBar {
 };
 
 double now_seconds();
-
-// Minimal JSON string escaping.
-std::string json_string(const std::string& s);
 
 }  // namespace vqtex_tools

@@ -1,6 +1,8 @@
-// image_io.cpp - OpenImageIO-backed image reading and atomic writing.
+// image_io.cpp - image reading and atomic writing for the tools, through the
+// OpenImageIO module that it loads on first use (imageio_module.hpp).
 #include "image_io.hpp"
 
+#include <dlfcn.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,10 +12,10 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 
-#include <OpenImageIO/imageio.h>
-
+#include "imageio_module.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex_tools {
@@ -58,8 +60,12 @@ void install_cleanup_handlers() {
     (void)installed;
 }
 
+// Batches write several files at once.
+std::mutex g_pending_mutex;
+
 void track(const std::string& tmp) {
     install_cleanup_handlers();
+    const std::lock_guard<std::mutex> lock(g_pending_mutex);
     for (int i = 0; i < kPendingSlots; ++i)
         if (!g_pending_used[i] && tmp.size() < sizeof g_pending[i]) {
             std::memcpy(g_pending[i], tmp.c_str(), tmp.size() + 1);
@@ -69,6 +75,7 @@ void track(const std::string& tmp) {
 }
 
 void untrack(const std::string& tmp) {
+    const std::lock_guard<std::mutex> lock(g_pending_mutex);
     for (int i = 0; i < kPendingSlots; ++i)
         if (g_pending_used[i] && tmp == g_pending[i]) g_pending_used[i] = 0;
 }
@@ -92,124 +99,139 @@ void commit_temporary(const std::string& tmp, const std::string& path, bool ok, 
 
 }  // namespace
 
+namespace {
+
+// QuietStderr's shared state (see image_io.hpp).
+std::mutex g_stderr_mutex;
+int g_quiet_depth = 0;
+int g_real_stderr = -1;  // a duplicate of the real stderr while redirected
+std::FILE* g_sink = nullptr;
+
+}  // namespace
+
 QuietStderr::QuietStderr() {
+    const std::lock_guard<std::mutex> lock(g_stderr_mutex);
+    if (g_quiet_depth++ > 0) return;
     std::fflush(stderr);
-    file_ = std::tmpfile();
-    if (file_) saved_ = ::dup(2);
-    if (saved_ >= 0 && ::dup2(::fileno(file_), 2) < 0) {
-        ::close(saved_);
-        saved_ = -1;
+    g_sink = std::tmpfile();
+    if (!g_sink) return;
+    g_real_stderr = ::dup(2);
+    if (g_real_stderr >= 0 && ::dup2(::fileno(g_sink), 2) < 0) {
+        ::close(g_real_stderr);
+        g_real_stderr = -1;
     }
 }
 
 QuietStderr::~QuietStderr() {
+    const std::lock_guard<std::mutex> lock(g_stderr_mutex);
+    if (--g_quiet_depth > 0) return;
     std::fflush(stderr);
     std::cerr.flush();
-    if (saved_ >= 0) {
-        ::dup2(saved_, 2);
-        ::close(saved_);
+    if (g_real_stderr >= 0) {
+        ::dup2(g_real_stderr, 2);
+        ::close(g_real_stderr);
+        g_real_stderr = -1;
     }
-    if (file_) std::fclose(file_);
+    if (g_sink) std::fclose(g_sink);
+    g_sink = nullptr;
+}
+
+void write_stderr(const std::string& text) {
+    const std::lock_guard<std::mutex> lock(g_stderr_mutex);
+    std::fflush(stderr);
+    const int fd = g_real_stderr >= 0 ? g_real_stderr : 2;
+    std::size_t done = 0;
+    while (done < text.size()) {
+        const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+        if (n <= 0) break;
+        done += std::size_t(n);
+    }
 }
 
 namespace {
 
-// OpenImageIO's errors may span lines (one per layer that saw them).
-std::string one_line(std::string why) {
-    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
-    for (std::size_t at; (at = why.find('\n')) != std::string::npos;) why.replace(at, 1, "; ");
-    return why;
-}
+WriteOptions g_write_options;
 
-// libjpeg fills a JPEG cut short with grey and only warns. The entropy-coded
-// data cannot contain FF D9 (an FF there is always followed by 00 or a
-// restart marker), so a complete scan shows an end-of-image marker after
-// its first start-of-scan marker.
-bool jpeg_is_complete(const std::vector<uint8_t>& b) {
-    std::size_t i = 0;
-    while (i + 1 < b.size() && !(b[i] == 0xFF && b[i + 1] == 0xDA)) ++i;
-    for (; i + 1 < b.size(); ++i)
-        if (b[i] == 0xFF && b[i + 1] == 0xD9) return true;
-    return false;
-}
-
-LoadedImage load_image_quietly(const std::string& path) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) {
-        std::string why = one_line(OIIO::geterror());
-        if (why.empty()) why = "not an image format OpenImageIO can read";
-        throw std::runtime_error("cannot read '" + path + "': " + why);
-    }
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0)
-        throw std::runtime_error("'" + path + "' has zero size (" + std::to_string(spec.width) +
-                                 "x" + std::to_string(spec.height) + ")");
-    if (spec.depth > 1)
-        throw std::runtime_error("'" + path + "' is a volume image; only 2D images are supported");
-    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
-    if (spec.width > 65536 || spec.height > 65536 || pixels > (uint64_t(1) << 30))
-        throw std::runtime_error("'" + path + "' is " + std::to_string(spec.width) + "x" +
-                                 std::to_string(spec.height) +
-                                 ", larger than the 65536-per-side, 2^30-pixel limit");
-    LoadedImage img;
-    img.width = uint32_t(spec.width);
-    img.height = uint32_t(spec.height);
-    img.channels = uint32_t(std::min(spec.nchannels, 4));
-    if (spec.nchannels > 4)
-        img.notice = "kept the first 4 of " + std::to_string(spec.nchannels) + " channels";
-    if (spec.format != OIIO::TypeDesc::UINT8) {
-        if (!img.notice.empty()) img.notice += "; ";
-        img.notice += "converted " + std::string(spec.format.c_str()) +
-                      " samples to 8 bits (rounded, clamped to 0..1 for float)";
-    }
-    // Strips of rows, the buffer growing with them: a header that declares
-    // a huge image over a short (truncated or forged) body fails after
-    // allocating about what the file really holds, not what it claims.
-    const std::size_t row_bytes = std::size_t(spec.width) * img.channels;
-    constexpr int kStripRows = 64;
-    for (int y = 0; y < spec.height; y += kStripRows) {
-        const int rows = std::min(kStripRows, spec.height - y);
-        img.pixels.resize((std::size_t(y) + std::size_t(rows)) * row_bytes);
-        if (!in->read_scanlines(0, 0, spec.y + y, spec.y + y + rows, 0, 0, int(img.channels), OIIO::TypeDesc::UINT8,
-                                img.pixels.data() + std::size_t(y) * row_bytes)) {
-            const std::string why = one_line(in->geterror());
-            throw std::runtime_error("cannot decode '" + path + "' (rows " + std::to_string(y) + " to " +
-                                     std::to_string(y + rows - 1) + " of " + std::to_string(spec.height) +
-                                     "): " + (why.empty() ? std::string("read failed") : why) +
-                                     ": the file is damaged or truncated");
+// Finds and loads vqtex_imageio: VQTEX_IMAGEIO_MODULE when set, else beside
+// the installed programs (BINDIR/../LIBDIR/vqtex), beside the program (the
+// build tree) and where this build put it (tests and benchmarks, which live
+// in folders of their own).
+const ImageioModule* open_module() {
+    std::vector<std::string> candidates;
+    if (const char* env = std::getenv("VQTEX_IMAGEIO_MODULE"); env && *env) {
+        candidates.emplace_back(env);
+    } else {
+        std::error_code ec;
+        const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+        if (!ec) {
+            candidates.push_back((exe.parent_path() / VQTEX_IMAGEIO_FROM_BINDIR).lexically_normal().string());
+            candidates.push_back((exe.parent_path() / VQTEX_IMAGEIO_FILE).string());
         }
+        candidates.emplace_back(VQTEX_IMAGEIO_BUILD_PATH);
     }
-    if (std::string(in->format_name()) == "jpeg" && !jpeg_is_complete(load_bytes(path)))
-        throw std::runtime_error("cannot decode '" + path +
-                                 "': the JPEG data ends before its end-of-image marker: the file is truncated");
-    in->close();
-    return img;
+    std::string tried;
+    for (const std::string& path : candidates) {
+        std::error_code ec;
+        if (!fs::exists(path, ec)) {
+            tried += (tried.empty() ? "" : ", ") + path;
+            continue;
+        }
+        // Lazy binding: functions of OpenImageIO's dependencies that no
+        // call reaches are never resolved.
+        void* handle = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
+        if (!handle)
+            throw std::runtime_error("image I/O module '" + path + "' cannot be loaded (" + ::dlerror() +
+                                     "): is libopenimageio installed? (scripts/setup.sh)");
+        using Entry = const ImageioModule* (*)();
+        const auto entry = reinterpret_cast<Entry>(::dlsym(handle, "vqtex_imageio_module"));
+        const ImageioModule* module = entry ? entry() : nullptr;
+        if (!module || module->abi != kImageioAbi)
+            throw std::runtime_error("image I/O module '" + path +
+                                     "' is from another build of vqtex: reinstall vqtex, or set VQTEX_IMAGEIO_MODULE");
+        return module;
+    }
+    throw std::runtime_error("image I/O module " VQTEX_IMAGEIO_FILE " not found (looked for " + tried +
+                             "): reinstall vqtex, or set VQTEX_IMAGEIO_MODULE to its path");
 }
 
 }  // namespace
 
+const ImageioModule& imageio() {
+    static const ImageioModule* const module = open_module();  // a throw leaves it to the next call
+    return *module;
+}
+
+void load_image_io() { (void)imageio(); }
+
+void set_write_options(const WriteOptions& options) { g_write_options = options; }
+
+const WriteOptions& write_options() { return g_write_options; }
+
 LoadedImage load_image(const std::string& path) {
     if (!fs::exists(path)) throw std::runtime_error("cannot read '" + path + "': no such file");
     if (fs::is_directory(path)) throw std::runtime_error("cannot read '" + path + "': it is a folder, not an image");
+    const ImageioModule& io = imageio();
     const QuietStderr quiet;
-    return load_image_quietly(path);
+    return io.read(path);
 }
 
 namespace {
 
 // Writes an image to a temporary name beside `path` and returns that name;
 // on failure removes it and throws naming `path`.
-std::string write_temporary(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
-                            const uint8_t* pixels) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out)
-        throw std::runtime_error("cannot write '" + path + "': unknown image format for this extension (" +
-                                 OIIO::geterror() + ")");
-    OIIO::ImageSpec spec(int(width), int(height), int(channels), OIIO::TypeDesc::UINT8);
+std::string write_temporary(const std::string& path, const ImageLevel* levels, uint32_t count) {
+    const ImageioModule& io = imageio();
     const std::string tmp = temporary_name_for(path);
     track(tmp);
-    const bool ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close();
-    if (!ok) commit_temporary(tmp, path, false, out->geterror());  // removes tmp, throws
+    try {
+        const QuietStderr quiet;
+        io.write(path, tmp, levels, count, g_write_options);
+    } catch (...) {
+        untrack(tmp);
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw;
+    }
     return tmp;
 }
 
@@ -217,7 +239,8 @@ std::string write_temporary(const std::string& path, uint32_t width, uint32_t he
 
 void save_image(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
                 const uint8_t* pixels) {
-    commit_temporary(write_temporary(path, width, height, channels, pixels), path, true, "");
+    const ImageLevel level{width, height, channels, pixels};
+    commit_temporary(write_temporary(path, &level, 1), path, true, "");
 }
 
 std::vector<uint8_t> load_bytes(const std::string& path) {
@@ -234,21 +257,12 @@ std::vector<uint8_t> load_bytes(const std::string& path) {
 }
 
 std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_image* levels, uint32_t count) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) throw std::runtime_error("cannot write '" + path + "': unknown image format for this extension");
     std::vector<std::string> written;
-    if (out->supports("mipmap")) {
-        const std::string tmp = temporary_name_for(path);
-        track(tmp);
-        bool ok = true;
-        for (uint32_t i = 0; i < count && ok; ++i) {
-            OIIO::ImageSpec spec(int(levels[i].width), int(levels[i].height), int(levels[i].channels),
-                                 OIIO::TypeDesc::UINT8);
-            ok = out->open(tmp, spec, i == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel) &&
-                 out->write_image(OIIO::TypeDesc::UINT8, levels[i].pixels);
-        }
-        ok = ok && out->close();
-        commit_temporary(tmp, path, ok, ok ? "" : out->geterror());
+    if (imageio().supports_mipmap(path)) {
+        std::vector<ImageLevel> all;
+        for (uint32_t i = 0; i < count; ++i)
+            all.push_back(ImageLevel{levels[i].width, levels[i].height, levels[i].channels, levels[i].pixels});
+        commit_temporary(write_temporary(path, all.data(), count), path, true, "");
         written.push_back(path);
         return written;
     }
@@ -263,8 +277,8 @@ std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_ima
                                             : (p.parent_path() / (p.stem().string() + "_mip" + std::to_string(i) +
                                                                   p.extension().string()))
                                                   .string();
-            temporaries.push_back(
-                write_temporary(name, levels[i].width, levels[i].height, levels[i].channels, levels[i].pixels));
+            const ImageLevel level{levels[i].width, levels[i].height, levels[i].channels, levels[i].pixels};
+            temporaries.push_back(write_temporary(name, &level, 1));
             written.push_back(name);
         }
         for (std::size_t i = 0; i < written.size(); ++i) {

@@ -1,7 +1,8 @@
 // image_io.hpp - the tools' only door to image files: OpenImageIO reads
 // whatever it can and converts to 8-bit; writes go to a temporary file that
 // is renamed into place only on success, so a failure never leaves a partial
-// output.
+// output. OpenImageIO itself lives in a module loaded on the first image
+// read or write (imageio_module.hpp), so programs start fast.
 #pragma once
 
 #include <cstdint>
@@ -22,18 +23,35 @@ struct LoadedImage {
 // libpng and libjpeg print their own warnings and errors on stderr, and
 // OpenImageIO repeats some; the tools promise a one-line error. While one of
 // these lives, that text goes to a temporary file and is dropped: the reason
-// is in the error vqtex reports.
+// is in the error vqtex reports. Threads may hold them at once (a batch
+// reads and writes several files in parallel): the first one redirects
+// file descriptor 2, the last one restores it, and the tools' own messages
+// go through write_stderr, which reaches the real stderr meanwhile.
 class QuietStderr {
 public:
     QuietStderr();
     ~QuietStderr();
     QuietStderr(const QuietStderr&) = delete;
     QuietStderr& operator=(const QuietStderr&) = delete;
-
-private:
-    std::FILE* file_ = nullptr;
-    int saved_ = -1;
 };
+
+// Writes text to the real stderr, even while a QuietStderr lives.
+void write_stderr(const std::string& text);
+
+// How images are written; set once, before any writing, by the program.
+struct WriteOptions {
+    // zlib level for PNG, 0 (fastest) to 9 (smallest). 1 by default: on
+    // textures it writes several times faster than OpenImageIO's 6 for files
+    // a few per cent larger (docs/PERFORMANCE.md, "Writing").
+    int png_compression = 1;
+};
+void set_write_options(const WriteOptions& options);
+const WriteOptions& write_options();
+
+// Loads the image I/O module now if it is not loaded yet (reads and writes
+// otherwise load it on first use), so that a caller can time the load
+// apart from the work; throws the one-line reason when it cannot.
+void load_image_io();
 
 // Throws std::runtime_error with a one-line message naming the file.
 LoadedImage load_image(const std::string& path);

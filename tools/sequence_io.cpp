@@ -11,9 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <OpenImageIO/imageio.h>
-
 #include "image_io.hpp"
+#include "imageio_module.hpp"
 
 namespace vqtex_tools {
 
@@ -37,12 +36,9 @@ std::string frame_name(const std::string& pattern, uint32_t t) {
 }
 
 int subimage_count(const std::string& path) {
+    const ImageioModule& io = imageio();
     const QuietStderr quiet;
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) return 0;
-    int n = 1;
-    while (n < int(kMaxFrames) && in->seek_subimage(n, 0)) ++n;
-    return n;
+    return io.subimage_count(path);
 }
 
 void append_frame(LoadedSequence& seq, const LoadedImage& img, const std::string& name) {
@@ -61,25 +57,6 @@ void append_frame(LoadedSequence& seq, const LoadedImage& img, const std::string
     if (seq.frames >= kMaxFrames) throw std::runtime_error("more than " + std::to_string(kMaxFrames) + " frames");
     seq.pixels.insert(seq.pixels.end(), img.pixels.begin(), img.pixels.end());
     ++seq.frames;
-}
-
-// One subimage of a multi-image file as 8 bits, 1 to 4 channels.
-LoadedImage load_subimage(OIIO::ImageInput& in, int index, const std::string& path) {
-    if (!in.seek_subimage(index, 0))
-        throw std::runtime_error("cannot read image " + std::to_string(index) + " of '" + path + "'");
-    const OIIO::ImageSpec& spec = in.spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1)
-        throw std::runtime_error("image " + std::to_string(index) + " of '" + path + "' is not a 2D image");
-    if (uint64_t(spec.width) * uint64_t(spec.height) > (uint64_t(1) << 28))
-        throw std::runtime_error("image " + std::to_string(index) + " of '" + path + "' is too large");
-    LoadedImage img;
-    img.width = uint32_t(spec.width);
-    img.height = uint32_t(spec.height);
-    img.channels = uint32_t(std::min(spec.nchannels, 4));
-    img.pixels.resize(std::size_t(img.width) * img.height * img.channels);
-    if (!in.read_image(index, 0, 0, int(img.channels), OIIO::TypeDesc::UINT8, img.pixels.data()))
-        throw std::runtime_error("cannot read image " + std::to_string(index) + " of '" + path + "': " + in.geterror());
-    return img;
 }
 
 }  // namespace
@@ -115,11 +92,9 @@ LoadedSequence load_sequence(const std::string& path) {
         for (const std::string& name : names) append_frame(seq, load_image(name), name);
     } else {
         if (!fs::exists(path)) throw std::runtime_error("cannot read '" + path + "': no such file");
+        const ImageioModule& io = imageio();
         const QuietStderr quiet;
-        auto in = OIIO::ImageInput::open(path);
-        if (!in) throw std::runtime_error("cannot read '" + path + "': " + OIIO::geterror());
-        const int n = subimage_count(path);
-        for (int i = 0; i < n; ++i) append_frame(seq, load_subimage(*in, i, path), path);
+        io.read_subimages(path, [&](LoadedImage&& img) { append_frame(seq, img, path); });
     }
     return seq;
 }

@@ -1,12 +1,17 @@
 // vqtex-decode - regenerate a texture of any size from a .vqt file by
-// synthesis (paper section 6), through the public API only.
+// synthesis (paper section 6), through the public API only. One file
+// (`vqtex-decode IN OUT`) or a batch (`vqtex-decode IN... -o DIR`).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "batch.hpp"
 #include "cli_common.hpp"
 #include "image_io.hpp"
 #include "sequence_io.hpp"
@@ -15,109 +20,189 @@
 
 using namespace vqtex_tools;
 
+namespace {
+
+struct Settings {
+    vqtex_decode_params params;  // without threads and progress
+    uint32_t frames = 0;
+    bool mips = false;
+};
+
+// Decodes `input` into `output` with `threads` library threads; `bar` draws
+// the per-stage progress of a single file (null in a batch). Throws a
+// one-line message on failure.
+FileReport decode_one(const Settings& s, const std::string& input, const std::string& output, unsigned threads,
+                      ProgressBar* bar) {
+    vqtex_decode_params p = s.params;
+    p.threads = threads;
+    if (bar) {
+        p.progress = ProgressBar::callback;
+        p.progress_user = bar;
+    }
+    const std::vector<uint8_t> bytes = load_bytes(input);
+    FileReport report;
+    char line[1024];
+    if (s.frames || is_frame_pattern(output)) {
+        if (s.mips) throw std::invalid_argument("--mips is not supported for animations");
+        if (!is_frame_pattern(output))
+            throw std::invalid_argument("output '" + output +
+                                        "' needs one frame-number field for --frames, e.g. out/frame_%03d.png");
+        vqtex_cpp::Volume v;  // owns the result
+        vqtex_error err{};
+        const double t0 = now_seconds();
+        const vqtex_status st = vqtex_decode_volume(&p, s.frames, bytes.data(), bytes.size(), v.out(), &err);
+        if (bar) bar->finish();
+        if (st != VQTEX_OK) throw std::runtime_error(input + ": " + err.detail);
+        const double t1 = now_seconds();
+        const std::vector<std::string> written = save_sequence(output, v.get());
+        const uint32_t w = v.width(), h = v.height(), n = v.frames();
+        report.json = {{"input", input},       {"output", output},          {"bytes", bytes.size()},
+                       {"width", w},           {"height", h},               {"frames", n},
+                       {"decode_seconds", t1 - t0}, {"seconds_per_frame", (t1 - t0) / n}};
+        std::snprintf(line, sizeof line, "%s (%zu bytes) -> %s .. %s, %u frames of %ux%u in %.3f s (%.3f s per frame)\n",
+                      input.c_str(), bytes.size(), written.front().c_str(), written.back().c_str(), n, w, h, t1 - t0,
+                      (t1 - t0) / n);
+        report.text = line;
+        return report;
+    }
+    vqtex_error err{};
+    const double t0 = now_seconds();
+    std::vector<vqtex_image> levels(32);
+    uint32_t count = 0;
+    vqtex_status st;
+    if (s.mips) {
+        st = vqtex_decode_mips(&p, bytes.data(), bytes.size(), levels.data(), uint32_t(levels.size()), &count, &err);
+    } else {
+        st = vqtex_decode(&p, bytes.data(), bytes.size(), &levels[0], &err);
+        count = st == VQTEX_OK ? 1 : 0;
+    }
+    // The library's images, released when these go out of scope.
+    std::vector<vqtex_cpp::Image> owned;
+    for (uint32_t i = 0; i < count; ++i) owned.emplace_back(levels[i]);
+    if (bar) bar->finish();
+    if (st != VQTEX_OK) throw std::runtime_error(input + ": " + err.detail);
+    // OpenImageIO's load (first file of a call only) is timed apart from
+    // the write: it is start-up, not work (docs/PERFORMANCE.md).
+    const double t_load = now_seconds();
+    load_image_io();
+    const double t1 = now_seconds();
+    std::vector<std::string> written;
+    if (s.mips) {
+        written = save_mip_chain(output, levels.data(), count);
+    } else {
+        save_image(output, levels[0].width, levels[0].height, levels[0].channels, levels[0].pixels);
+        written.push_back(output);
+    }
+    const uint32_t w = levels[0].width, h = levels[0].height;
+    const double t2 = now_seconds();
+    report.json = {{"input", input},
+                   {"output", output},
+                   {"bytes", bytes.size()},
+                   {"width", w},
+                   {"height", h},
+                   {"bpp_output", 8.0 * double(bytes.size()) / (double(w) * h)},
+                   {"levels_written", count},
+                   {"decode_seconds", t_load - t0},
+                   {"image_io_load_seconds", t1 - t_load},
+                   {"write_seconds", t2 - t1}};
+    std::snprintf(line, sizeof line, "%s (%zu bytes) -> %s %ux%u%s in %.3f s (%.2f Mpixel/s)\n", input.c_str(),
+                  bytes.size(), written.front().c_str(), w, h, s.mips ? " with mip chain" : "", t_load - t0,
+                  double(w) * h / std::max(t_load - t0, 1e-9) / 1e6);
+    report.text = line;
+    return report;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     CLI::App app{"vqtex-decode: synthesise a tileable texture of any size from a .vqt file.\n"
-                 "Example: vqtex-decode cellular.vqt cellular_1024.png --size 1024x1024"};
+                 "Example: vqtex-decode cellular.vqt cellular_1024.png --size 1024x1024\n"
+                 "Batch:   vqtex-decode textures/ more.vqt -o out/ --size 512 --format exr"};
     app.set_version_flag("--version", std::string("vqtex ") + vqtex_version_string());
-    std::string input, output, size;
+    std::vector<std::string> files;
+    std::string size, out_dir, format = "png", suffix;
     uint64_t seed = 0, memory_mib = 1024;
     uint32_t threads = 0;
+    int png_compression = WriteOptions{}.png_compression;
     bool mips = false, json = false, quiet = false;
     uint32_t frames = 0;
     auto* seed_opt = app.add_option("--seed", seed, "seed (default: the file's)");
-    app.add_option("input", input, ".vqt file")->required();
-    app.add_option("output", output, "output image (format from the extension)")->required();
+    app.add_option("files", files,
+                   "INPUT.vqt OUTPUT (format from the extension), or with -o: .vqt files and folders of them")
+        ->required();
+    auto* out_dir_opt = app.add_option("-o,--output-dir", out_dir,
+                                       "batch: write OUTDIR/NAME[SUFFIX].FORMAT for every input (created if missing)");
+    app.add_option("--format", format, "batch: output format, as a file extension")->capture_default_str();
+    app.add_option("--suffix", suffix, "batch: text added to each output's name, e.g. _1k");
     app.add_option("-s,--size", size, "output size WxH, 1 to 16384 per side (default: the example's size)");
     app.add_option("--frames", frames,
                    "animated texture: frames to write (1 to 16384; default: the example's count); the output "
-                   "name needs a frame-number field, e.g. out/frame_%03d.png")->check(CLI::Range(1, 16384));
+                   "name needs a frame-number field, e.g. out/frame_%03d.png (batch: NAME_%04d.FORMAT)")
+        ->check(CLI::Range(1, 16384));
     app.add_flag("--mips", mips,
                  "write the whole mip chain: one MIP-mapped file for .tif/.exr, else OUT_mipN.ext per level");
-    app.add_option("-j,--threads", threads, "threads (default: all cores; output is identical)");
-    app.add_option("--memory-limit", memory_mib, "MiB the decoder may allocate")->capture_default_str();
-    app.add_flag("--json", json, "print machine-readable statistics on stdout");
+    app.add_option("--png-compression", png_compression,
+                   "zlib level of PNG outputs, 0 (fastest) to 9 (smallest files)")
+        ->check(CLI::Range(0, 9))
+        ->capture_default_str();
+    app.add_option("-j,--threads", threads,
+                   "threads (default: all cores), shared between the files of a batch; output is identical");
+    app.add_option("--memory-limit", memory_mib, "MiB the decoder may allocate (per file)")->capture_default_str();
+    app.add_flag("--json", json, "print machine-readable statistics on stdout (one JSON line per file)");
     app.add_flag("--quiet", quiet, "print nothing but errors");
     CLI11_PARSE(app, argc, argv);
 
     try {
-        vqtex_decode_params p;
-        vqtex_decode_params_init(&p);
-        if (!size.empty()) parse_size(size, p.width, p.height);
-        if (*seed_opt) p.seed = seed;
-        p.threads = threads;
-        p.memory_limit = memory_mib << 20;
-        const std::vector<uint8_t> bytes = load_bytes(input);
-        ProgressBar bar(!quiet && !json);
-        p.progress = ProgressBar::callback;
-        p.progress_user = &bar;
-        if (frames || is_frame_pattern(output)) {
-            if (mips) throw std::invalid_argument("--mips is not supported for animations");
-            if (!is_frame_pattern(output))
-                throw std::invalid_argument("output '" + output + "' needs one frame-number field for --frames, e.g. out/frame_%03d.png");
-            vqtex_cpp::Volume v;  // owns the result
-            vqtex_error err{};
-            const double t0 = now_seconds();
-            const vqtex_status st = vqtex_decode_volume(&p, frames, bytes.data(), bytes.size(), v.out(), &err);
-            bar.finish();
-            if (st != VQTEX_OK) {
-                std::fprintf(stderr, "vqtex-decode: error: %s: %s\n", input.c_str(), err.detail);
-                return 1;
-            }
-            const double t1 = now_seconds();
-            const std::vector<std::string> written = save_sequence(output, v.get());
-            const uint32_t w = v.width(), h = v.height(), n = v.frames();
-            if (json) {
-                std::printf("{\"input\":%s,\"output\":%s,\"bytes\":%zu,\"width\":%u,\"height\":%u,\"frames\":%u,"
-                            "\"decode_seconds\":%.6f,\"seconds_per_frame\":%.6f}\n",
-                            json_string(input).c_str(), json_string(output).c_str(), bytes.size(), w, h, n, t1 - t0,
-                            (t1 - t0) / n);
-            } else if (!quiet) {
-                std::printf("%s (%zu bytes) -> %s .. %s, %u frames of %ux%u in %.3f s (%.3f s per frame)\n",
-                            input.c_str(), bytes.size(), written.front().c_str(), written.back().c_str(), n, w, h,
-                            t1 - t0, (t1 - t0) / n);
-            }
+        Settings s;
+        vqtex_decode_params_init(&s.params);
+        if (!size.empty()) parse_size(size, s.params.width, s.params.height);
+        if (*seed_opt) s.params.seed = seed;
+        s.params.memory_limit = memory_mib << 20;
+        s.frames = frames;
+        s.mips = mips;
+        WriteOptions write;
+        write.png_compression = png_compression;
+        set_write_options(write);
+
+        if (!*out_dir_opt) {
+            if (files.size() != 2)
+                throw std::invalid_argument(files.size() < 2 ? "give an OUTPUT after '" + files[0] +
+                                                                   "', or -o DIR to decode into a folder"
+                                                             : "several inputs need -o DIR for their outputs");
+            ProgressBar bar(!quiet && !json);
+            const FileReport r = decode_one(s, files[0], files[1], threads, &bar);
+            if (json)
+                std::fputs(json_line(r.json).c_str(), stdout);
+            else if (!quiet)
+                std::fputs(r.text.c_str(), stdout);
             return 0;
         }
-        vqtex_error err{};
-        const double t0 = now_seconds();
-        std::vector<vqtex_image> levels(32);
-        uint32_t count = 0;
-        vqtex_status st;
-        if (mips) {
-            st = vqtex_decode_mips(&p, bytes.data(), bytes.size(), levels.data(), uint32_t(levels.size()), &count, &err);
-        } else {
-            st = vqtex_decode(&p, bytes.data(), bytes.size(), &levels[0], &err);
-            count = st == VQTEX_OK ? 1 : 0;
+
+        // Batch: every input gets its output name; two inputs that would
+        // write the same file are an error for the second.
+        prepare_output_folder(out_dir);
+        const std::vector<std::string> inputs = expand_inputs(files, {".vqt"});
+        std::vector<std::string> outputs;
+        std::map<std::string, std::size_t> first_writer;
+        for (const std::string& in : inputs) {
+            const std::string stem_suffix = frames ? suffix + "_%04d" : suffix;
+            outputs.push_back(batch_output_name(in, out_dir, stem_suffix, format));
+            first_writer.emplace(outputs.back(), outputs.size() - 1);
         }
-        // The library's images, released when these go out of scope.
-        std::vector<vqtex_cpp::Image> owned;
-        for (uint32_t i = 0; i < count; ++i) owned.emplace_back(levels[i]);
-        bar.finish();
-        if (st != VQTEX_OK) {
-            std::fprintf(stderr, "vqtex-decode: error: %s: %s\n", input.c_str(), err.detail);
-            return 1;
-        }
-        const double t1 = now_seconds();
-        std::vector<std::string> written;
-        if (mips) {
-            written = save_mip_chain(output, levels.data(), count);
-        } else {
-            save_image(output, levels[0].width, levels[0].height, levels[0].channels, levels[0].pixels);
-            written.push_back(output);
-        }
-        const uint32_t w = levels[0].width, h = levels[0].height;
-        const double t2 = now_seconds();
-        if (json) {
-            std::printf("{\"input\":%s,\"output\":%s,\"bytes\":%zu,\"width\":%u,\"height\":%u,"
-                        "\"bpp_output\":%.6f,\"levels_written\":%u,\"decode_seconds\":%.6f,\"write_seconds\":%.6f}\n",
-                        json_string(input).c_str(), json_string(output).c_str(), bytes.size(), w, h,
-                        8.0 * double(bytes.size()) / (double(w) * h), count, t1 - t0, t2 - t1);
-        } else if (!quiet) {
-            std::printf("%s (%zu bytes) -> %s %ux%u%s in %.3f s (%.2f Mpixel/s)\n", input.c_str(), bytes.size(),
-                        written.front().c_str(), w, h, mips ? " with mip chain" : "", t1 - t0,
-                        double(w) * h / std::max(t1 - t0, 1e-9) / 1e6);
-        }
-        return 0;
+        BatchOptions options;
+        options.program = "vqtex-decode";
+        options.jobs = threads;
+        options.json = json;
+        options.names = &inputs;
+        options.quiet = quiet;
+        return run_batch(inputs.size(), options, [&](std::size_t i, unsigned per_file) {
+            const std::size_t first = first_writer.at(outputs[i]);
+            if (first != i)
+                throw std::invalid_argument(inputs[i] + ": its output '" + outputs[i] + "' is also the output of '" +
+                                            inputs[first] + "': rename one, or decode them in separate calls");
+            check_batch_pair(inputs[i], outputs[i], ".vqt file");
+            return decode_one(s, inputs[i], outputs[i], per_file, nullptr);
+        });
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vqtex-decode: error: %s\n", e.what());
         return 1;

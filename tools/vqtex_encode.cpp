@@ -1,11 +1,16 @@
 // vqtex-encode - encode an example texture into a compact .vqt file holding
-// only TSVQ codebooks (paper section 6), through the public API only.
+// only TSVQ codebooks (paper section 6), through the public API only. One
+// example (`vqtex-encode IN OUT.vqt`) or a batch (`vqtex-encode IN... -o DIR`).
 #include <cstdio>
-#include <fstream>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "batch.hpp"
 #include "cli_common.hpp"
 #include "image_io.hpp"
 #include "sequence_io.hpp"
@@ -13,17 +18,20 @@
 #include "vqtex/vqtex.hpp"
 
 using namespace vqtex_tools;
+namespace fs = std::filesystem;
+
+namespace {
 
 // The animated-texture path (paper section 5.2): a frame sequence in, a
 // .vqt file out.
-int encode_animation(const std::string& input, const std::string& output, vqtex_volume_encode_params& p, bool json,
-                     bool quiet) {
+FileReport encode_animation(const std::string& input, const std::string& output, vqtex_volume_encode_params p,
+                            bool quiet, ProgressBar* bar) {
     LoadedSequence seq = load_sequence(input);
-    if (!seq.notice.empty() && !quiet)
-        std::fprintf(stderr, "vqtex-encode: note: %s: %s\n", input.c_str(), seq.notice.c_str());
-    ProgressBar bar(!quiet && !json);
-    p.codec.progress = ProgressBar::callback;
-    p.codec.progress_user = &bar;
+    if (!seq.notice.empty() && !quiet) write_stderr("vqtex-encode: note: " + input + ": " + seq.notice + "\n");
+    if (bar) {
+        p.codec.progress = ProgressBar::callback;
+        p.codec.progress_user = bar;
+    }
     const vqtex_volume v{seq.width, seq.height, seq.frames, seq.channels, seq.pixels.data()};
     uint8_t* data = nullptr;
     size_t size = 0;
@@ -31,43 +39,120 @@ int encode_animation(const std::string& input, const std::string& output, vqtex_
     vqtex_error err{};
     const double t0 = now_seconds();
     const vqtex_status st = vqtex_encode_volume(&p, &v, &data, &size, &stats, &err);
-    bar.finish();
-    if (st != VQTEX_OK) {
-        std::fprintf(stderr, "vqtex-encode: error: %s\n", err.detail);
-        return 1;
-    }
+    if (bar) bar->finish();
+    if (st != VQTEX_OK) throw std::runtime_error(err.detail);
     const vqtex_cpp::Buffer file(data, size);  // owns the bytes from here
     save_bytes(output, std::vector<uint8_t>(file.data(), file.data() + file.size()));
     const double seconds = now_seconds() - t0;
-    if (json) {
-        std::printf("{\"input\":%s,\"output\":%s,\"width\":%u,\"height\":%u,\"frames\":%u,\"channels\":%u,"
-                    "\"bytes\":%zu,\"encode_seconds\":%.6f}\n",
-                    json_string(input).c_str(), json_string(output).c_str(), seq.width, seq.height, seq.frames,
-                    seq.channels, size, seconds);
-    } else if (!quiet) {
-        std::printf("%s (%ux%u, %u frames, %u channels) -> %s\n", input.c_str(), seq.width, seq.height, seq.frames,
-                    seq.channels, output.c_str());
-        std::printf("%zu bytes, %.3f bits per example pixel, %.3f s\n", size,
-                    8.0 * double(size) / (double(seq.width) * seq.height * seq.frames), seconds);
-    }
-    return 0;
+    FileReport r;
+    char line[2048];
+    r.json = {{"input", input},       {"output", output},          {"width", seq.width}, {"height", seq.height},
+              {"frames", seq.frames}, {"channels", seq.channels},  {"bytes", size},      {"encode_seconds", seconds}};
+    std::snprintf(line, sizeof line, "%s (%ux%u, %u frames, %u channels) -> %s\n", input.c_str(), seq.width,
+                  seq.height, seq.frames, seq.channels, output.c_str());
+    r.text = line;
+    std::snprintf(line, sizeof line, "%zu bytes, %.3f bits per example pixel, %.3f s\n", size,
+                  8.0 * double(size) / (double(seq.width) * seq.height * seq.frames), seconds);
+    r.text += line;
+    return r;
 }
+
+// What the options set, for every file.
+struct Settings {
+    vqtex_encode_params params;  // without threads and progress
+    std::string shapes;
+    int quality = VQTEX_QUALITY_DEFAULT;
+    bool levels_given = false;
+    bool quiet = false;
+};
+
+// Encodes `input` into `output` with `threads` library threads; `bar` draws
+// a single file's progress (null in a batch). Throws a one-line message.
+FileReport encode_one(const Settings& s, const std::string& input, const std::string& output, unsigned threads,
+                      ProgressBar* bar) {
+    vqtex_encode_params p = s.params;
+    p.threads = threads;
+    if (is_sequence(input)) {
+        if (p.target_size)
+            throw std::invalid_argument("--target-size is not supported for animations: use --quality");
+        if (p.codebook == VQTEX_CODEBOOK_ATLAS)
+            throw std::invalid_argument("--atlas is for still textures (animations store trees)");
+        vqtex_volume_encode_params vp;
+        vqtex_volume_encode_params_init(&vp);
+        const float train_fraction = vp.codec.model.train_fraction;
+        vp.codec = p;
+        vp.codec.model.train_fraction = train_fraction;
+        if (!s.levels_given) vp.codec.model.levels = 0;
+        if (!s.shapes.empty()) parse_shapes3(s.shapes, vp.shapes);
+        return encode_animation(input, output, vp, s.quiet, bar);
+    }
+    if (!s.shapes.empty()) parse_shapes(s.shapes, p.model);
+    LoadedImage example = load_image(input);
+    if (!example.notice.empty() && !s.quiet)
+        write_stderr("vqtex-encode: note: " + input + ": " + example.notice + "\n");
+    if (bar) {
+        p.progress = ProgressBar::callback;
+        p.progress_user = bar;
+    }
+    vqtex_image img{example.width, example.height, example.channels, example.pixels.data()};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_encode_stats stats{};
+    vqtex_error err{};
+    const double t0 = now_seconds();
+    const vqtex_status st = vqtex_encode(&p, &img, &data, &size, &stats, &err);
+    if (bar) bar->finish();
+    if (st != VQTEX_OK) throw std::runtime_error(err.detail);
+    const vqtex_cpp::Buffer file(data, size);  // owns the bytes from here
+    save_bytes(output, std::vector<uint8_t>(file.data(), file.data() + file.size()));
+    const double seconds = now_seconds() - t0;
+    const double pixels = double(example.width) * example.height;
+    const int quality = p.target_size ? int(stats.quality) : s.quality;
+    FileReport r;
+    char line[2048];
+    r.json = {{"input", input},
+              {"output", output},
+              {"width", example.width},
+              {"height", example.height},
+              {"channels", example.channels},
+              {"bytes", size},
+              {"bpp", 8.0 * double(size) / pixels},
+              {"quality", quality},
+              {"attempts", stats.attempts},
+              {"encode_seconds", seconds},
+              {"codewords", std::vector<uint32_t>(stats.codewords, stats.codewords + stats.levels)},
+              {"entries", std::vector<uint32_t>(stats.entries, stats.entries + stats.levels)}};
+    std::snprintf(line, sizeof line, "%s (%ux%u, %u channels) -> %s\n", input.c_str(), example.width,
+                  example.height, example.channels, output.c_str());
+    r.text = line;
+    std::snprintf(line, sizeof line, "%zu bytes, %.3f bits per example pixel, quality %d%s, %.3f s\n", size,
+                  8.0 * double(size) / pixels, quality, p.target_size ? " (target-size search)" : "", seconds);
+    r.text += line;
+    return r;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"vqtex-encode: encode an example texture into a .vqt codebook file.\n"
                  "Example: vqtex-encode corpus/cellular_128.png cellular.vqt --quality 60"};
     app.set_version_flag("--version", std::string("vqtex ") + vqtex_version_string());
-    std::string input, output, codewords, shapes;
+    std::vector<std::string> files;
+    std::string out_dir, suffix, codewords, shapes;
     int quality = VQTEX_QUALITY_DEFAULT;
     uint32_t precision = 0, pixel_precision = 0, entries = 0, levels = 0, backtrack = 0, threads = 0;
     uint32_t smoothing = 0, closing_divisor = 0, closing_window = 0;
     bool no_entry_keys = false;
     uint64_t target_size = 0, seed = 1;
     bool json = false, quiet = false, no_closing = false, tileable = false, atlas = false;
-    app.add_option("input", input,
-                   "example image (any format OpenImageIO reads), or an animation: a numbered sequence "
-                   "'frames/frame_%03d.png', a folder of frames, or a multi-image file")->required();
-    app.add_option("output", output, "output .vqt file")->required();
+    app.add_option("files", files,
+                   "EXAMPLE OUTPUT.vqt: an image (any format OpenImageIO reads) or an animation (a numbered "
+                   "sequence 'frames/frame_%03d.png', a folder of frames, or a multi-image file); with -o: "
+                   "examples and folders of images, one texture each")
+        ->required();
+    auto* out_dir_opt = app.add_option("-o,--output-dir", out_dir,
+                                       "batch: write OUTDIR/NAME[SUFFIX].vqt for every example (created if missing)");
+    app.add_option("--suffix", suffix, "batch: text added to each output's name");
     app.add_option("-q,--quality", quality, "preset from 0 (smallest file) to 100 (best texture)")
         ->check(CLI::Range(0, 100))->capture_default_str();
     app.add_option("--target-size", target_size, "largest file in bytes: picks the best preset that fits");
@@ -93,8 +178,9 @@ int main(int argc, char** argv) {
     app.add_option("--seed", seed, "default decoding seed stored in the file")->capture_default_str();
     app.add_flag("--no-seam-closing", no_closing, "omit the seam-closing trees (smaller, visible seam)");
     app.add_flag("--tileable-example", tileable, "the example tiles: use wrap-around neighbourhoods");
-    app.add_option("-j,--threads", threads, "threads (default: all cores; output is identical)");
-    app.add_flag("--json", json, "print machine-readable statistics on stdout");
+    app.add_option("-j,--threads", threads,
+                   "threads (default: all cores), shared between the files of a batch; output is identical");
+    app.add_flag("--json", json, "print machine-readable statistics on stdout (one JSON line per file)");
     app.add_flag("--quiet", quiet, "print nothing but errors");
     CLI11_PARSE(app, argc, argv);
 
@@ -107,8 +193,6 @@ int main(int argc, char** argv) {
                 throw std::invalid_argument("--codewords takes counts for the codec (e.g. 512 or 512,256)");
             parse_codewords(codewords, p.model);
         }
-        const bool animated = is_sequence(input);
-        if (!shapes.empty() && !animated) parse_shapes(shapes, p.model);
         if (entries) p.model.entries_per_leaf = entries;
         if (precision) p.precision = precision;
         if (pixel_precision) p.pixel_precision = pixel_precision;
@@ -125,62 +209,62 @@ int main(int argc, char** argv) {
         p.model.example_tileable = tileable ? 1 : 0;
         p.seed = seed;
         p.target_size = target_size;
-        p.threads = threads;
         if (atlas) p.codebook = VQTEX_CODEBOOK_ATLAS;
+        Settings s;
+        s.params = p;
+        s.shapes = shapes;
+        s.quality = quality;
+        s.levels_given = levels != 0;
+        s.quiet = quiet;
 
-        if (animated) {
-            if (target_size) throw std::invalid_argument("--target-size is not supported for animations: use --quality");
-            if (atlas) throw std::invalid_argument("--atlas is for still textures (animations store trees)");
-            vqtex_volume_encode_params vp;
-            vqtex_volume_encode_params_init(&vp);
-            const float train_fraction = vp.codec.model.train_fraction;
-            vp.codec = p;
-            vp.codec.model.train_fraction = train_fraction;
-            if (!levels) vp.codec.model.levels = 0;
-            if (!shapes.empty()) parse_shapes3(shapes, vp.shapes);
-            return encode_animation(input, output, vp, json, quiet);
+        if (!*out_dir_opt) {
+            if (files.size() != 2)
+                throw std::invalid_argument(files.size() < 2 ? "give an OUTPUT .vqt after '" + files[0] +
+                                                                   "', or -o DIR to encode into a folder"
+                                                             : "several examples need -o DIR for their outputs");
+            ProgressBar bar(!quiet && !json);
+            const FileReport r = encode_one(s, files[0], files[1], threads, &bar);
+            if (json)
+                std::fputs(json_line(r.json).c_str(), stdout);
+            else if (!quiet)
+                std::fputs(r.text.c_str(), stdout);
+            return 0;
         }
-        LoadedImage example = load_image(input);
-        if (!example.notice.empty() && !quiet)
-            std::fprintf(stderr, "vqtex-encode: note: %s: %s\n", input.c_str(), example.notice.c_str());
-        ProgressBar bar(!quiet && !json);
-        p.progress = ProgressBar::callback;
-        p.progress_user = &bar;
-        vqtex_image img{example.width, example.height, example.channels, example.pixels.data()};
-        uint8_t* data = nullptr;
-        size_t size = 0;
-        vqtex_encode_stats stats{};
-        vqtex_error err{};
-        const double t0 = now_seconds();
-        if (vqtex_encode(&p, &img, &data, &size, &stats, &err) != VQTEX_OK) {
-            bar.finish();
-            std::fprintf(stderr, "vqtex-encode: error: %s\n", err.detail);
-            return 1;
+
+        // Batch: a folder means its images, each a texture of its own (an
+        // animation in a batch is given as a numbered pattern).
+        prepare_output_folder(out_dir);
+        const std::vector<std::string> inputs = expand_inputs(files, image_extensions());
+        std::vector<std::string> outputs;
+        std::map<std::string, std::size_t> first_writer;
+        for (const std::string& in : inputs) {
+            // A pattern's stem holds the %d field: name the texture after the folder part before it.
+            std::string stem_source = in;
+            if (is_frame_pattern(in)) stem_source = fs::path(in).parent_path().string();
+            outputs.push_back(batch_output_name(stem_source, out_dir, suffix, "vqt"));
+            first_writer.emplace(outputs.back(), outputs.size() - 1);
         }
-        bar.finish();
-        const vqtex_cpp::Buffer file(data, size);  // owns the bytes from here
-        save_bytes(output, std::vector<uint8_t>(file.data(), file.data() + file.size()));
-        const double seconds = now_seconds() - t0;
-        const double pixels = double(example.width) * example.height;
-        if (json) {
-            std::printf("{\"input\":%s,\"output\":%s,\"width\":%u,\"height\":%u,\"channels\":%u,"
-                        "\"bytes\":%zu,\"bpp\":%.4f,\"quality\":%d,\"attempts\":%u,\"encode_seconds\":%.6f,"
-                        "\"codewords\":[",
-                        json_string(input).c_str(), json_string(output).c_str(), example.width, example.height,
-                        example.channels, size, 8.0 * double(size) / pixels,
-                        target_size ? int(stats.quality) : quality, stats.attempts, seconds);
-            for (uint32_t l = 0; l < stats.levels; ++l) std::printf("%s%u", l ? "," : "", stats.codewords[l]);
-            std::printf("],\"entries\":[");
-            for (uint32_t l = 0; l < stats.levels; ++l) std::printf("%s%u", l ? "," : "", stats.entries[l]);
-            std::printf("]}\n");
-        } else if (!quiet) {
-            std::printf("%s (%ux%u, %u channels) -> %s\n", input.c_str(), example.width, example.height,
-                        example.channels, output.c_str());
-            std::printf("%zu bytes, %.3f bits per example pixel, quality %d%s, %.3f s\n", size,
-                        8.0 * double(size) / pixels, target_size ? int(stats.quality) : quality,
-                        target_size ? " (target-size search)" : "", seconds);
-        }
-        return 0;
+        BatchOptions options;
+        options.program = "vqtex-encode";
+        options.jobs = threads;
+        options.json = json;
+        options.names = &inputs;
+        options.quiet = quiet;
+        return run_batch(inputs.size(), options, [&](std::size_t i, unsigned per_file) {
+            const std::size_t first = first_writer.at(outputs[i]);
+            if (first != i)
+                throw std::invalid_argument(inputs[i] + ": its output '" + outputs[i] + "' is also the output of '" +
+                                            inputs[first] + "': rename one, or encode them in separate calls");
+            check_batch_pair(inputs[i], outputs[i], "image file (an animation in a batch is a pattern: 'DIR/frame_%03d.png')");
+            try {
+                return encode_one(s, inputs[i], outputs[i], per_file, nullptr);
+            } catch (const std::exception& e) {
+                // The library's reasons do not name the file; a batch must.
+                const std::string why = e.what();
+                if (why.find(inputs[i]) != std::string::npos) throw;
+                throw std::runtime_error(inputs[i] + ": " + why);
+            }
+        });
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vqtex-encode: error: %s\n", e.what());
         return 1;

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "batch.hpp"
 #include "cli_common.hpp"
 #include "image_io.hpp"
 #include "vqtex/vqtex.h"
@@ -87,9 +88,17 @@ int main(int argc, char** argv) {
     app.add_option("-j,--threads", threads, "threads (default: all cores; output is identical)");
     app.add_flag("--json", json, "print machine-readable statistics on stdout");
     app.add_flag("--quiet", quiet, "print nothing but errors");
+    int png_compression = WriteOptions{}.png_compression;
+    app.add_option("--png-compression", png_compression,
+                   "zlib level of PNG outputs, 0 (fastest) to 9 (smallest files)")
+        ->check(CLI::Range(0, 9))
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     try {
+        WriteOptions write;
+        write.png_compression = png_compression;
+        set_write_options(write);
         const bool has_mask = files.size() == 3;
         if (has_mask && alpha) throw std::runtime_error("give either a MASK image or --alpha, not both");
         if (!has_mask && !alpha && extend.empty())
@@ -168,14 +177,21 @@ int main(int argc, char** argv) {
         uint64_t filled = 0;
         for (uint32_t l = 0; l < stats.levels; ++l) filled += l == 0 ? stats.filled[0] : 0;
         if (json) {
-            std::printf("{\"input\":%s,\"output\":%s,\"width\":%u,\"height\":%u,\"channels\":%u,"
-                        "\"method\":%s,\"search\":%s,\"levels\":%u,\"filled_pixels\":%llu,"
-                        "\"analyse_seconds\":%.6f,\"fill_seconds\":%.6f,\"total_seconds\":%.6f,\"examples\":[",
-                        json_string(input).c_str(), json_string(output).c_str(), out_w, out_h, image.channels,
-                        json_string(method).c_str(), exhaustive ? "\"exhaustive\"" : "\"tsvq\"", stats.levels,
-                        (unsigned long long)filled, stats.analyse_seconds, stats.fill_seconds, t2 - t_load);
-            for (uint32_t l = 0; l < stats.levels; ++l) std::printf("%s%u", l ? "," : "", stats.examples[l]);
-            std::printf("]}\n");
+            const nlohmann::ordered_json j{
+                {"input", input},
+                {"output", output},
+                {"width", out_w},
+                {"height", out_h},
+                {"channels", image.channels},
+                {"method", method},
+                {"search", exhaustive ? "exhaustive" : "tsvq"},
+                {"levels", stats.levels},
+                {"filled_pixels", filled},
+                {"analyse_seconds", stats.analyse_seconds},
+                {"fill_seconds", stats.fill_seconds},
+                {"total_seconds", t2 - t_load},
+                {"examples", std::vector<uint32_t>(stats.examples, stats.examples + stats.levels)}};
+            std::fputs(json_line(j).c_str(), stdout);
         } else if (!quiet) {
             std::printf("image     %s  %ux%u, %u channel%s\n", input.c_str(), image.width, image.height,
                         image.channels, image.channels == 1 ? "" : "s");

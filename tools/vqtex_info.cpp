@@ -1,104 +1,140 @@
 // vqtex-info - verify a .vqt file and show what it holds and where its
-// bytes go, through the public API only.
+// bytes go, through the public API only. Reads no image, so it never loads
+// the image I/O module and starts in milliseconds.
+#include <cstdarg>
 #include <cstdio>
+#include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "batch.hpp"
 #include "cli_common.hpp"
 #include "image_io.hpp"
 #include "vqtex/vqtex.h"
 
 using namespace vqtex_tools;
+namespace fs = std::filesystem;
+
+namespace {
+
+// printf into a growing string: the report is printed whole, in input order.
+__attribute__((format(printf, 2, 3))) void add(std::string& out, const char* format, ...) {
+    char line[512];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(line, sizeof line, format, args);
+    va_end(args);
+    out += line;
+}
+
+FileReport info_one(const std::string& input) {
+    if (fs::is_directory(input)) throw std::runtime_error("folder '" + input + "' holds no .vqt file");
+    const std::vector<uint8_t> bytes = load_bytes(input);
+    vqtex_file_info info{};
+    vqtex_error err{};
+    if (vqtex_inspect(bytes.data(), bytes.size(), 0, &info, &err) != VQTEX_OK)
+        throw std::runtime_error(input + ": " + err.detail);
+    // Bytes per kind of section, all levels together.
+    // Format v3 holds an atlas and the engine's parameters instead.
+    const bool atlas = info.format_version == 3;
+    const char* tree_kinds[] = {"LEVL", "HIST", "TOPO", "CODE", "ENTR"};
+    const char* tree_meaning[] = {"level parameters", "noise histograms", "tree topology + leaf weights",
+                                  "leaf codewords", "leaf entries (pixels + keys)"};
+    const char* atlas_kinds[] = {"ATLS", "SYNP"};
+    const char* atlas_meaning[] = {"atlas (AV1 image)", "synthesis parameters"};
+    const char** kinds = atlas ? atlas_kinds : tree_kinds;
+    const char** meaning = atlas ? atlas_meaning : tree_meaning;
+    const int kind_count = atlas ? 2 : 5;
+    uint64_t per_kind[5] = {}, overhead = info.file_bytes;
+    for (uint32_t i = 0; i < info.section_count; ++i)
+        for (int k = 0; k < kind_count; ++k)
+            if (std::string(info.sections[i].tag) == kinds[k]) {
+                per_kind[k] += info.sections[i].stored_bytes;
+                overhead -= info.sections[i].stored_bytes;
+            }
+    FileReport r;
+    auto& j = r.json;
+    j["file"] = input;
+    j["bytes"] = info.file_bytes;
+    j["format_version"] = info.format_version;
+    j["exemplar_width"] = info.exemplar_width;
+    j["exemplar_height"] = info.exemplar_height;
+    j["channels"] = info.channels;
+    j["levels"] = info.levels;
+    j["seam_closing"] = info.seam_closing;
+    j["precision"] = info.precision;
+    j["seed"] = info.seed;
+    j["exemplar_frames"] = info.exemplar_frames;
+    j["codewords"] = nlohmann::ordered_json::array();
+    for (uint32_t l = 0; l < info.levels; ++l) j["codewords"].push_back(info.codewords[l]);
+    j["sections"] = nlohmann::ordered_json::array();
+    for (uint32_t i = 0; i < info.section_count; ++i)
+        j["sections"].push_back({{"tag", info.sections[i].tag},
+                                 {"level", info.sections[i].level},
+                                 {"kind", info.sections[i].kind},
+                                 {"raw", info.sections[i].raw_bytes},
+                                 {"stored", info.sections[i].stored_bytes}});
+    j["header_and_checksum"] = overhead;
+
+    std::string& t = r.text;
+    add(t, "%s: vqtex format %u, %llu bytes, checksum OK\n", input.c_str(), info.format_version,
+        (unsigned long long)info.file_bytes);
+    add(t, "example   %ux%u, %u channel%s; default seed %llu\n", info.exemplar_width, info.exemplar_height,
+        info.channels, info.channels == 1 ? "" : "s", (unsigned long long)info.seed);
+    if (info.exemplar_frames) {
+        add(t, "animation %u example frames; windows", info.exemplar_frames);
+        for (uint32_t l = 0; l < info.levels; ++l)
+            add(t, " {%ux%ux%u,%u}", info.shapes[l].rows, info.shapes[l].cols, info.window_frames[l],
+                info.shapes[l].levels);
+        add(t, " (finest first)\n");
+    }
+    if (atlas)
+        add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels\n", info.levels, info.codewords[0]);
+    else
+        add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
+            info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",
+            info.precision, info.pixel_precision);
+    for (uint32_t l = 0; l < info.levels && !atlas; ++l)
+        add(t, "  level %u  {%ux%u,%u}  %5u codewords  %6u entries  %5u closing codewords\n", l, info.shapes[l].rows,
+            info.shapes[l].cols, info.shapes[l].levels, info.codewords[l], info.entries[l],
+            info.closing_codewords[l]);
+    add(t, "bytes by section kind (stored, with section headers):\n");
+    for (int k = 0; k < kind_count; ++k)
+        add(t, "  %s  %-32s %8llu  %5.1f%%\n", kinds[k], meaning[k], (unsigned long long)per_kind[k],
+            100.0 * double(per_kind[k]) / double(info.file_bytes));
+    add(t, "  ----  %-32s %8llu  %5.1f%%\n", "file header and checksum", (unsigned long long)overhead,
+        100.0 * double(overhead) / double(info.file_bytes));
+    add(t, "sections:\n");
+    for (uint32_t i = 0; i < info.section_count; ++i)
+        add(t, "  %s level %u %-8s raw %8llu  stored %8llu\n", info.sections[i].tag, info.sections[i].level,
+            info.sections[i].kind == 2 ? "seam" : info.sections[i].kind ? "closing" : "",
+            (unsigned long long)info.sections[i].raw_bytes, (unsigned long long)info.sections[i].stored_bytes);
+    return r;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"vqtex-info: verify a .vqt file and print its contents and byte breakdown."};
+    CLI::App app{"vqtex-info: verify .vqt files and print their contents and byte breakdown.\n"
+                 "Batch: vqtex-info textures/ more.vqt --json   (one JSON line per file)"};
     app.set_version_flag("--version", std::string("vqtex ") + vqtex_version_string());
-    std::string input;
+    std::vector<std::string> files;
+    uint32_t threads = 0;
     bool json = false;
-    app.add_option("input", input, ".vqt file")->required();
-    app.add_flag("--json", json, "machine-readable output");
+    app.add_option("files", files, ".vqt files, or folders of them")->required();
+    app.add_flag("--json", json, "machine-readable output, one JSON line per file");
+    app.add_option("-j,--threads", threads, "files checked at once (default: all cores)");
     CLI11_PARSE(app, argc, argv);
-    try {
-        const std::vector<uint8_t> bytes = load_bytes(input);
-        vqtex_file_info info{};
-        vqtex_error err{};
-        if (vqtex_inspect(bytes.data(), bytes.size(), 0, &info, &err) != VQTEX_OK) {
-            std::fprintf(stderr, "vqtex-info: error: %s: %s\n", input.c_str(), err.detail);
-            return 1;
-        }
-        // Bytes per kind of section, all levels together.
-        // Format v3 holds an atlas and the engine's parameters instead.
-        const bool atlas = info.format_version == 3;
-        const char* tree_kinds[] = {"LEVL", "HIST", "TOPO", "CODE", "ENTR"};
-        const char* tree_meaning[] = {"level parameters", "noise histograms", "tree topology + leaf weights",
-                                      "leaf codewords", "leaf entries (pixels + keys)"};
-        const char* atlas_kinds[] = {"ATLS", "SYNP"};
-        const char* atlas_meaning[] = {"atlas (AV1 image)", "synthesis parameters"};
-        const char** kinds = atlas ? atlas_kinds : tree_kinds;
-        const char** meaning = atlas ? atlas_meaning : tree_meaning;
-        const int kind_count = atlas ? 2 : 5;
-        uint64_t per_kind[5] = {}, overhead = info.file_bytes;
-        for (uint32_t i = 0; i < info.section_count; ++i)
-            for (int k = 0; k < kind_count; ++k)
-                if (std::string(info.sections[i].tag) == kinds[k]) {
-                    per_kind[k] += info.sections[i].stored_bytes;
-                    overhead -= info.sections[i].stored_bytes;
-                }
-        if (json) {
-            std::printf("{\"file\":%s,\"bytes\":%llu,\"format_version\":%u,\"exemplar_width\":%u,"
-                        "\"exemplar_height\":%u,\"channels\":%u,\"levels\":%u,\"seam_closing\":%u,"
-                        "\"precision\":%u,\"seed\":%llu,\"exemplar_frames\":%u,\"codewords\":[",
-                        json_string(input).c_str(), (unsigned long long)info.file_bytes, info.format_version,
-                        info.exemplar_width, info.exemplar_height, info.channels, info.levels, info.seam_closing,
-                        info.precision, (unsigned long long)info.seed, info.exemplar_frames);
-            for (uint32_t l = 0; l < info.levels; ++l) std::printf("%s%u", l ? "," : "", info.codewords[l]);
-            std::printf("],\"sections\":[");
-            for (uint32_t i = 0; i < info.section_count; ++i)
-                std::printf("%s{\"tag\":\"%s\",\"level\":%u,\"kind\":%u,\"raw\":%llu,\"stored\":%llu}", i ? "," : "",
-                            info.sections[i].tag, info.sections[i].level, info.sections[i].kind,
-                            (unsigned long long)info.sections[i].raw_bytes,
-                            (unsigned long long)info.sections[i].stored_bytes);
-            std::printf("],\"header_and_checksum\":%llu}\n", (unsigned long long)overhead);
-            return 0;
-        }
-        std::printf("%s: vqtex format %u, %llu bytes, checksum OK\n", input.c_str(), info.format_version,
-                    (unsigned long long)info.file_bytes);
-        std::printf("example   %ux%u, %u channel%s; default seed %llu\n", info.exemplar_width,
-                    info.exemplar_height, info.channels, info.channels == 1 ? "" : "s",
-                    (unsigned long long)info.seed);
-        if (info.exemplar_frames) {
-            std::printf("animation %u example frames; windows", info.exemplar_frames);
-            for (uint32_t l = 0; l < info.levels; ++l)
-                std::printf(" {%ux%ux%u,%u}", info.shapes[l].rows, info.shapes[l].cols, info.window_frames[l],
-                            info.shapes[l].levels);
-            std::printf(" (finest first)\n");
-        }
-        if (atlas)
-            std::printf("decoding  coherent engine, %u levels, an atlas of %u pixels\n", info.levels, info.codewords[0]);
-        else
-            std::printf("decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
-                        info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",
-                        info.precision, info.pixel_precision);
-        for (uint32_t l = 0; l < info.levels && !atlas; ++l)
-            std::printf("  level %u  {%ux%u,%u}  %5u codewords  %6u entries  %5u closing codewords\n", l,
-                        info.shapes[l].rows, info.shapes[l].cols, info.shapes[l].levels, info.codewords[l],
-                        info.entries[l], info.closing_codewords[l]);
-        std::printf("bytes by section kind (stored, with section headers):\n");
-        for (int k = 0; k < kind_count; ++k)
-            std::printf("  %s  %-32s %8llu  %5.1f%%\n", kinds[k], meaning[k], (unsigned long long)per_kind[k],
-                        100.0 * double(per_kind[k]) / double(info.file_bytes));
-        std::printf("  ----  %-32s %8llu  %5.1f%%\n", "file header and checksum", (unsigned long long)overhead,
-                    100.0 * double(overhead) / double(info.file_bytes));
-        std::printf("sections:\n");
-        for (uint32_t i = 0; i < info.section_count; ++i)
-            std::printf("  %s level %u %-8s raw %8llu  stored %8llu\n", info.sections[i].tag, info.sections[i].level,
-                        info.sections[i].kind == 2 ? "seam" : info.sections[i].kind ? "closing" : "", (unsigned long long)info.sections[i].raw_bytes,
-                        (unsigned long long)info.sections[i].stored_bytes);
-        return 0;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "vqtex-info: error: %s\n", e.what());
-        return 1;
-    }
+    const std::vector<std::string> inputs = expand_inputs(files, {".vqt"});
+    BatchOptions options;
+    options.program = "vqtex-info";
+    options.jobs = threads;
+    options.json = json;
+    options.names = &inputs;
+    options.name_key = "file";
+    options.progress = inputs.size() > 1;
+    return run_batch(inputs.size(), options, [&](std::size_t i, unsigned) { return info_one(inputs[i]); });
 }

@@ -1,14 +1,18 @@
 // vqtex-synth - synthesise a new, tileable texture of any size from an
 // example image (paper sections 2-4), or an animation from an example frame
 // sequence (section 5.2, on the coherent engine), through the public API
-// only.
+// only. One example (`vqtex-synth IN OUT`) or a batch of still examples
+// (`vqtex-synth IN... -o DIR`).
 #include <algorithm>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "batch.hpp"
 #include "cli_common.hpp"
 #include "image_io.hpp"
 #include "sequence_io.hpp"
@@ -20,50 +24,113 @@ using namespace vqtex_tools;
 namespace {
 
 // The animated path: a frame sequence in, a numbered frame sequence out.
-int synthesize_animation(const std::string& input, const std::string& output, vqtex_synth_params& params,
-                         uint32_t frames, bool json, bool quiet) {
+FileReport synthesize_animation(vqtex_synth_params params, uint32_t frames, bool quiet, const std::string& input,
+                                const std::string& output, unsigned threads, ProgressBar* bar) {
+    params.threads = threads;
     if (!is_frame_pattern(output))
         throw std::invalid_argument("output '" + output +
                                     "' needs one frame-number field for an animation, e.g. out/frame_%03d.png");
     LoadedSequence seq = load_sequence(input);
-    if (!seq.notice.empty() && !quiet)
-        std::fprintf(stderr, "vqtex-synth: note: %s: %s\n", input.c_str(), seq.notice.c_str());
-    ProgressBar bar(!quiet && !json);
-    params.progress = ProgressBar::callback;
-    params.progress_user = &bar;
+    if (!seq.notice.empty() && !quiet) write_stderr("vqtex-synth: note: " + input + ": " + seq.notice + "\n");
+    if (bar) {
+        params.progress = ProgressBar::callback;
+        params.progress_user = bar;
+    }
     const vqtex_volume example{seq.width, seq.height, seq.frames, seq.channels, seq.pixels.data()};
     vqtex_cpp::Volume out;  // owns the result
     vqtex_synth_stats stats{};
     vqtex_error err{};
     const double t0 = now_seconds();
     const vqtex_status st = vqtex_synthesize_volume(&params, &example, frames, out.out(), &stats, &err);
-    bar.finish();
-    if (st != VQTEX_OK) {
-        std::fprintf(stderr, "vqtex-synth: error: %s\n", err.detail);
-        return 1;
-    }
+    if (bar) bar->finish();
+    if (st != VQTEX_OK) throw std::runtime_error(err.detail);
     const double t1 = now_seconds();
     const std::vector<std::string> written = save_sequence(output, out.get());
-    if (json) {
-        std::printf("{\"input\":%s,\"output\":%s,\"example_width\":%u,\"example_height\":%u,"
-                    "\"example_frames\":%u,\"channels\":%u,\"width\":%u,\"height\":%u,\"frames\":%u,"
-                    "\"seed\":%llu,\"levels\":%u,\"analyse_seconds\":%.6f,\"synthesise_seconds\":%.6f,"
-                    "\"seconds_per_frame\":%.6f}\n",
-                    json_string(input).c_str(), json_string(output).c_str(), seq.width, seq.height, seq.frames,
-                    seq.channels, out.width(), out.height(), out.frames(), (unsigned long long)params.seed,
-                    stats.levels, stats.analyse_seconds, stats.synthesise_seconds,
-                    stats.synthesise_seconds / double(std::max(out.frames(), 1u)));
-    } else if (!quiet) {
-        std::printf("example   %s  %ux%u, %u frames, %u channel%s\n", input.c_str(), seq.width, seq.height,
-                    seq.frames, seq.channels, seq.channels == 1 ? "" : "s");
-        std::printf("output    %s .. %s  %u frames of %ux%u, tileable, seed %llu\n", written.front().c_str(),
-                    written.back().c_str(), out.frames(), out.width(), out.height(),
-                    (unsigned long long)params.seed);
-        std::printf("time      analyse %.3f s, synthesise %.3f s (%.3f s per frame), total %.3f s\n",
-                    stats.analyse_seconds, stats.synthesise_seconds,
-                    stats.synthesise_seconds / double(std::max(out.frames(), 1u)), t1 - t0);
+    const double per_frame = stats.synthesise_seconds / double(std::max(out.frames(), 1u));
+    FileReport r;
+    r.json = {{"input", input},
+              {"output", output},
+              {"example_width", seq.width},
+              {"example_height", seq.height},
+              {"example_frames", seq.frames},
+              {"channels", seq.channels},
+              {"width", out.width()},
+              {"height", out.height()},
+              {"frames", out.frames()},
+              {"seed", params.seed},
+              {"levels", stats.levels},
+              {"analyse_seconds", stats.analyse_seconds},
+              {"synthesise_seconds", stats.synthesise_seconds},
+              {"seconds_per_frame", per_frame}};
+    char line[1024];
+    auto add = [&](int n) { r.text.append(line, std::size_t(std::clamp(n, 0, int(sizeof line) - 1))); };
+    add(std::snprintf(line, sizeof line, "example   %s  %ux%u, %u frames, %u channel%s\n", input.c_str(), seq.width,
+                      seq.height, seq.frames, seq.channels, seq.channels == 1 ? "" : "s"));
+    add(std::snprintf(line, sizeof line, "output    %s .. %s  %u frames of %ux%u, tileable, seed %llu\n",
+                      written.front().c_str(), written.back().c_str(), out.frames(), out.width(), out.height(),
+                      (unsigned long long)params.seed));
+    add(std::snprintf(line, sizeof line, "time      analyse %.3f s, synthesise %.3f s (%.3f s per frame), total %.3f s\n",
+                      stats.analyse_seconds, stats.synthesise_seconds, per_frame, t1 - t0));
+    return r;
+}
+
+// Synthesises from `input` into `output` with `threads` library threads;
+// `bar` draws a single file's progress (null in a batch). Throws a one-line
+// message on failure.
+FileReport synth_one(vqtex_synth_params params, bool exhaustive, bool quiet, const std::string& input,
+                     const std::string& output, unsigned threads, ProgressBar* bar) {
+    params.threads = threads;
+    const double t_load = now_seconds();
+    LoadedImage example = load_image(input);
+    if (!example.notice.empty() && !quiet) write_stderr("vqtex-synth: note: " + input + ": " + example.notice + "\n");
+    if (bar) {
+        params.progress = ProgressBar::callback;
+        params.progress_user = bar;
     }
-    return 0;
+    vqtex_image ex_img{example.width, example.height, example.channels, example.pixels.data()};
+    vqtex_cpp::Image out;  // owns the result
+    vqtex_synth_stats stats{};
+    vqtex_error err{};
+    const double t0 = now_seconds();
+    const vqtex_status st = vqtex_synthesize(&params, &ex_img, out.out(), &stats, &err);
+    if (bar) bar->finish();
+    if (st != VQTEX_OK) throw std::runtime_error(err.detail);
+    const double t1 = now_seconds();
+    save_image(output, out.width(), out.height(), out.channels(), out.data());
+    const double t2 = now_seconds();
+    FileReport r;
+    r.json = {{"input", input},
+              {"output", output},
+              {"example_width", example.width},
+              {"example_height", example.height},
+              {"channels", example.channels},
+              {"width", params.width},
+              {"height", params.height},
+              {"seed", params.seed},
+              {"search", exhaustive ? "exhaustive" : "tsvq"},
+              {"levels", stats.levels},
+              {"model_bytes", stats.model_bytes},
+              {"analyse_seconds", stats.analyse_seconds},
+              {"synthesise_seconds", stats.synthesise_seconds},
+              {"total_seconds", t2 - t_load},
+              {"codewords", std::vector<uint32_t>(stats.codewords, stats.codewords + stats.levels)}};
+    char line[1024];
+    auto add = [&](int n) { r.text.append(line, std::size_t(std::clamp(n, 0, int(sizeof line) - 1))); };
+    add(std::snprintf(line, sizeof line, "example   %s  %ux%u, %u channel%s\n", input.c_str(), example.width,
+                      example.height, example.channels, example.channels == 1 ? "" : "s"));
+    add(std::snprintf(line, sizeof line, "model     %u levels, %s search, %.1f KiB in memory\n", stats.levels,
+                      exhaustive ? "exhaustive" : "TSVQ", double(stats.model_bytes) / 1024.0));
+    for (uint32_t l = 0; l < stats.levels; ++l)
+        add(std::snprintf(line, sizeof line, "  level %u  {%ux%u,%u}  %6u vectors  %6u %s  depth %u\n", l,
+                          stats.shapes[l].rows, stats.shapes[l].cols, stats.shapes[l].levels,
+                          stats.training_vectors[l], stats.codewords[l], exhaustive ? "candidates" : "codewords",
+                          stats.tree_depth[l]));
+    add(std::snprintf(line, sizeof line, "output    %s  %ux%u, tileable, seed %llu\n", output.c_str(), params.width,
+                      params.height, (unsigned long long)params.seed));
+    add(std::snprintf(line, sizeof line, "time      analyse %.3f s, synthesise %.3f s (%.0f pixels/s), total %.3f s\n",
+                      stats.analyse_seconds, stats.synthesise_seconds,
+                      double(params.width) * params.height / std::max(stats.synthesise_seconds, 1e-9), t1 - t0));
+    return r;
 }
 
 }  // namespace
@@ -72,7 +139,9 @@ int main(int argc, char** argv) {
     CLI::App app{"vqtex-synth: synthesise a tileable texture of any size from an example image.\n"
                  "Example: vqtex-synth corpus/bricks_128.png bricks_512.png --size 512x512"};
     app.set_version_flag("--version", std::string("vqtex ") + vqtex_version_string());
-    std::string input, output, size = "256x256", shapes, codewords, leaf = "medoid", init = "parent";
+    std::vector<std::string> files;
+    std::string out_dir, format = "png", suffix;
+    std::string size = "256x256", shapes, codewords, leaf = "medoid", init = "parent";
     uint64_t seed = 1;
     uint32_t levels = 0, backtrack = 0, threads = 0, tolerance = 0, entries = 0;
     bool no_seam_closing = false;
@@ -80,13 +149,15 @@ int main(int argc, char** argv) {
     bool exhaustive = false, tsvq = false, tileable = false, json = false, quiet = false, paper = false;
     std::string engine = "coherent";
     uint32_t coherence = 0, passes = 0, jitter = 0;
+    app.add_option("files", files,
+                   "EXAMPLE OUTPUT (any format OpenImageIO reads and writes, from the extension), or with -o: "
+                   "examples and folders of them")
+        ->required();
+    auto* out_dir_opt = app.add_option("-o,--output-dir", out_dir,
+                                       "batch: write OUTDIR/NAME[SUFFIX].FORMAT for every example (created if missing)");
+    app.add_option("--format", format, "batch: output format, as a file extension")->capture_default_str();
+    app.add_option("--suffix", suffix, "batch: text added to each output's name");
     uint32_t frames = 0;
-    app.add_option("input", input,
-                   "example image (any format OpenImageIO reads), or an animation: a numbered sequence "
-                   "'frames/frame_%03d.png', a folder of frames, or a multi-image file")->required();
-    app.add_option("output", output,
-                   "output image (format from the extension: .png, .tif, .exr ...); for an animation a "
-                   "numbered sequence such as 'out/frame_%03d.png'")->required();
     auto* frames_opt = app.add_option("--frames", frames,
                                       "animation: output frames, 1 to 16384 (default: the example's count)")
                            ->check(CLI::Range(1, 16384));
@@ -128,9 +199,15 @@ int main(int argc, char** argv) {
     app.add_flag("--no-seam-closing", no_seam_closing,
                  "skip re-matching the rows around the top/bottom wrap (the paper's plain scan)");
     app.add_flag("--tileable-example", tileable, "the example tiles: use wrap-around neighbourhoods");
-    app.add_option("-j,--threads", threads, "threads (default: all cores; output is identical)");
-    app.add_flag("--json", json, "print machine-readable statistics on stdout");
+    app.add_option("-j,--threads", threads,
+                   "threads (default: all cores), shared between the files of a batch; output is identical");
+    app.add_flag("--json", json, "print machine-readable statistics on stdout (one JSON line per file)");
     app.add_flag("--quiet", quiet, "print nothing but errors");
+    int png_compression = WriteOptions{}.png_compression;
+    app.add_option("--png-compression", png_compression,
+                   "zlib level of PNG outputs, 0 (fastest) to 9 (smallest files)")
+        ->check(CLI::Range(0, 9))
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
     if (paper) engine = "paper";
     if (engine == "paper") {
@@ -151,6 +228,9 @@ int main(int argc, char** argv) {
     }
 
     try {
+        WriteOptions write;
+        write.png_compression = png_compression;
+        set_write_options(write);
         vqtex_synth_params params;
         vqtex_synth_params_init(&params);
         params.engine = engine == "paper" ? VQTEX_ENGINE_PAPER : VQTEX_ENGINE_COHERENT;
@@ -172,72 +252,63 @@ int main(int argc, char** argv) {
         params.model.leaf = leaf == "centroid" ? VQTEX_LEAF_CENTROID : VQTEX_LEAF_MEDOID;
         params.model.example_tileable = tileable ? 1 : 0;
         params.search = exhaustive ? VQTEX_SEARCH_EXHAUSTIVE : VQTEX_SEARCH_TSVQ;
-        params.threads = threads;
         params.tolerance = tolerance;
         params.model.seam_closing = no_seam_closing ? 0 : 1;
         params.init = init == "noise" ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
 
-        if (is_sequence(input)) {
-            if (engine == "paper")
+        if (!*out_dir_opt) {
+            if (files.size() != 2)
+                throw std::invalid_argument(files.size() < 2 ? "give an OUTPUT image after '" + files[0] +
+                                                                   "', or -o DIR to synthesise into a folder"
+                                                             : "several examples need -o DIR for their outputs");
+            const bool animated = is_sequence(files[0]);
+            if (animated && engine == "paper")
                 throw std::invalid_argument("animations synthesise with the coherent engine only (the paper's engine: "
                                             "vqtex-encode the sequence, then vqtex-decode)");
-            return synthesize_animation(input, output, params, frames, json, quiet);
+            if (!animated && frames_opt->count())
+                throw std::invalid_argument("--frames needs an animation: a frame sequence as input");
+            ProgressBar bar(!quiet && !json);
+            const FileReport r =
+                animated ? synthesize_animation(params, frames, quiet, files[0], files[1], threads, &bar)
+                         : synth_one(params, exhaustive, quiet, files[0], files[1], threads, &bar);
+            if (json)
+                std::fputs(json_line(r.json).c_str(), stdout);
+            else if (!quiet)
+                std::fputs(r.text.c_str(), stdout);
+            return 0;
         }
         if (frames_opt->count())
-            throw std::invalid_argument("--frames needs an animation: a frame sequence as input");
-        const double t_load = now_seconds();
-        LoadedImage example = load_image(input);
-        if (!example.notice.empty() && !quiet)
-            std::fprintf(stderr, "vqtex-synth: note: %s: %s\n", input.c_str(), example.notice.c_str());
-        ProgressBar bar(!quiet && !json);
-        params.progress = ProgressBar::callback;
-        params.progress_user = &bar;
-
-        vqtex_image ex_img{example.width, example.height, example.channels, example.pixels.data()};
-        vqtex_cpp::Image out;  // owns the result
-        vqtex_synth_stats stats{};
-        vqtex_error err{};
-        const double t0 = now_seconds();
-        if (vqtex_synthesize(&params, &ex_img, out.out(), &stats, &err) != VQTEX_OK) {
-            bar.finish();
-            std::fprintf(stderr, "vqtex-synth: error: %s\n", err.detail);
-            return 1;
+            throw std::invalid_argument("--frames is for one animation at a time (no -o DIR)");
+        // Batch: OUTDIR/NAME[SUFFIX].FORMAT for every example.
+        prepare_output_folder(out_dir);
+        const std::vector<std::string> inputs = expand_inputs(files, image_extensions());
+        std::vector<std::string> outputs;
+        std::map<std::string, std::size_t> first_writer;
+        for (const std::string& in : inputs) {
+            outputs.push_back(batch_output_name(in, out_dir, suffix, format));
+            first_writer.emplace(outputs.back(), outputs.size() - 1);
         }
-        const double t1 = now_seconds();
-        bar.finish();
-        save_image(output, out.width(), out.height(), out.channels(), out.data());
-        const double t2 = now_seconds();
-        if (json) {
-            std::printf("{\"input\":%s,\"output\":%s,\"example_width\":%u,\"example_height\":%u,"
-                        "\"channels\":%u,\"width\":%u,\"height\":%u,\"seed\":%llu,\"search\":%s,"
-                        "\"levels\":%u,\"model_bytes\":%llu,\"analyse_seconds\":%.6f,"
-                        "\"synthesise_seconds\":%.6f,\"total_seconds\":%.6f,\"codewords\":[",
-                        json_string(input).c_str(), json_string(output).c_str(), example.width,
-                        example.height, example.channels, params.width, params.height,
-                        (unsigned long long)seed, exhaustive ? "\"exhaustive\"" : "\"tsvq\"",
-                        stats.levels, (unsigned long long)stats.model_bytes, stats.analyse_seconds,
-                        stats.synthesise_seconds, t2 - t_load);
-            for (uint32_t l = 0; l < stats.levels; ++l)
-                std::printf("%s%u", l ? "," : "", stats.codewords[l]);
-            std::printf("]}\n");
-        } else if (!quiet) {
-            std::printf("example   %s  %ux%u, %u channel%s\n", input.c_str(), example.width,
-                        example.height, example.channels, example.channels == 1 ? "" : "s");
-            std::printf("model     %u levels, %s search, %.1f KiB in memory\n", stats.levels,
-                        exhaustive ? "exhaustive" : "TSVQ", double(stats.model_bytes) / 1024.0);
-            for (uint32_t l = 0; l < stats.levels; ++l)
-                std::printf("  level %u  {%ux%u,%u}  %6u vectors  %6u %s  depth %u\n", l,
-                            stats.shapes[l].rows, stats.shapes[l].cols, stats.shapes[l].levels,
-                            stats.training_vectors[l], stats.codewords[l],
-                            exhaustive ? "candidates" : "codewords", stats.tree_depth[l]);
-            std::printf("output    %s  %ux%u, tileable, seed %llu\n", output.c_str(), params.width,
-                        params.height, (unsigned long long)seed);
-            std::printf("time      analyse %.3f s, synthesise %.3f s (%.0f pixels/s), total %.3f s\n",
-                        stats.analyse_seconds, stats.synthesise_seconds,
-                        double(params.width) * params.height / std::max(stats.synthesise_seconds, 1e-9),
-                        t1 - t0);
-        }
-        return 0;
+        BatchOptions options;
+        options.program = "vqtex-synth";
+        options.jobs = threads;
+        options.json = json;
+        options.names = &inputs;
+        options.quiet = quiet;
+        return run_batch(inputs.size(), options, [&](std::size_t i, unsigned per_file) {
+            const std::size_t first = first_writer.at(outputs[i]);
+            if (first != i)
+                throw std::invalid_argument(inputs[i] + ": its output '" + outputs[i] + "' is also the output of '" +
+                                            inputs[first] + "': rename one, or use separate calls");
+            check_batch_pair(inputs[i], outputs[i], "image file");
+            try {
+                return synth_one(params, exhaustive, quiet, inputs[i], outputs[i], per_file, nullptr);
+            } catch (const std::exception& e) {
+                // The library's reasons do not name the file; a batch must.
+                const std::string why = e.what();
+                if (why.find(inputs[i]) != std::string::npos) throw;
+                throw std::runtime_error(inputs[i] + ": " + why);
+            }
+        });
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vqtex-synth: error: %s\n", e.what());
         return 1;
