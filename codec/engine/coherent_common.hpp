@@ -110,7 +110,10 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
         const int sx = subset[0], sy = subset[1];
         const int rows = (h - sy + 1) / 2, cols = (w - sx + 1) / 2;
         if (rows <= 0 || cols <= 0) continue;
-        parallel_for(threads, std::size_t(rows), 4, [&](std::size_t r0, std::size_t r1) {
+        // Chunks of at least ~4096 pixels: at the coarse levels waking a
+        // thread costs more than the rows it would take.
+        const std::size_t grain = std::max<std::size_t>(4, std::size_t(4096 / cols));
+        parallel_for(threads, std::size_t(rows), grain, [&](std::size_t r0, std::size_t r1) {
             int xs[kSide], ys[kSide];
             for (std::size_t r = r0; r < r1; ++r) {
                 const int y = sy + 2 * int(r);
@@ -138,13 +141,12 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
                 }
             }
         });
-        parallel_for(threads, std::size_t(rows), 16, [&](std::size_t r0, std::size_t r1) {
-            for (std::size_t r = r0; r < r1; ++r) {
-                T* row = map.data() + (sy + 2 * r) * std::size_t(w);
-                const T* in = chosen.data() + r * std::size_t(cols);
-                for (int i = 0; i < cols; ++i) row[sx + 2 * i] = in[i];
-            }
-        });
+        // Putting the choices in place is a copy: one thread is as fast.
+        for (int r = 0; r < rows; ++r) {
+            T* row = map.data() + (sy + 2 * std::size_t(r)) * std::size_t(w);
+            const T* in = chosen.data() + std::size_t(r) * std::size_t(cols);
+            for (int i = 0; i < cols; ++i) row[sx + 2 * i] = in[i];
+        }
         if (revisit) {
             // Every pixel whose window holds a moved one is due again; marked
             // after the subset, on one thread, so no flag is written twice at once.

@@ -29,7 +29,7 @@ struct CoherentOptions {
     int width = 256, height = 256;
     uint64_t seed = 1;
     int threads = 1;
-    int passes = 2;         // correction passes at every level but the coarsest
+    int passes = 2;         // correction passes at every level but the coarsest (the finest: one fewer, at least 1)
     int coarse_passes = 4;  // at the coarsest, which starts from random positions
     int jitter = 0;         // per level, in 1/256 of the level's spacing
     int polish_passes = 1;       // finest level: passes matching raw colours (5x5)

@@ -160,7 +160,7 @@ typedef struct vqtex_synth_params {
     /* Coherent engine. */
     uint32_t coherence;        /* candidates per neighbour: its shifted source and the example
                                   positions that look most like it, 1 to 16 [--coherence] */
-    uint32_t passes;           /* correction passes per level, 1 to 8 [--passes] */
+    uint32_t passes;           /* correction passes per level (the finest: one fewer, then a colour pass), 1 to 8 [--passes] */
     uint32_t jitter;           /* variety: seeded displacement of each level's coordinates, in
                                   1/256 of the level's spacing, 0 to 1024 [--jitter] */
     /* Paper engine (the coherent one reads model.levels and
