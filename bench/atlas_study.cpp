@@ -22,6 +22,7 @@
 #include "format/atlas_coder.hpp"
 #include "format/atlas_encoder.hpp"
 #include "image_io.hpp"
+#include "metrics.hpp"
 
 #ifdef VQTEX_HAVE_WEBP
 #include <webp/decode.h>
@@ -38,13 +39,7 @@ struct Point {
 };
 
 double psnr(const Image& a, const Image& b) {
-    double se = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const double d = double(a.pixels[i]) - double(b.pixels[i]);
-        se += d * d;
-    }
-    const double mse = se / double(a.pixels.size());
-    return mse == 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
+    return vqtex_metrics::psnr(a.pixels.data(), b.pixels.data(), a.pixels.size());
 }
 
 std::vector<Point> sweep_av1(const Image& img, bool chroma444, int speed, int step, double* seconds) {

@@ -139,3 +139,17 @@ double sorted_quantile_sq_diff(std::vector<float>& a, std::vector<float>& b, lon
 }
 
 }  // namespace vqtex_metrics::detail
+
+namespace vqtex_metrics {
+
+double psnr(const uint8_t* reference, const uint8_t* decoded, std::size_t count) {
+  double squared = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double d = double(reference[i]) - double(decoded[i]);
+    squared += d * d;
+  }
+  const double mse = count ? squared / double(count) : 0.0;
+  return mse == 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
+}
+
+}  // namespace vqtex_metrics

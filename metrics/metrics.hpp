@@ -18,6 +18,7 @@
 //    of the wrong length) throw std::invalid_argument.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -157,6 +158,11 @@ CopyStats copy_stats(const Image& output, const Image& exemplar, int patch = 7, 
 // decoder that ignores its seed scores 0). Throws std::invalid_argument if
 // the sizes differ.
 double variety(const Image& a, const Image& b);
+
+// Peak signal-to-noise ratio of `count` 8-bit samples against a reference,
+// in dB (99 for identical samples): for a coder's fidelity, not a texture's
+// likeness.
+double psnr(const uint8_t* reference, const uint8_t* decoded, std::size_t count);
 
 // ---------------------------------------------------------------------------
 // 5. Tileability and straight discontinuities.

@@ -17,6 +17,7 @@
 #include "format/atlas_encoder.hpp"
 #include "format/atlas_file.hpp"
 #include "format/container.hpp"
+#include "metrics.hpp"
 #include "test_support.hpp"
 #include "vqtex/vqtex.hpp"
 
@@ -25,13 +26,7 @@ using namespace vqtex_test;
 namespace {
 
 double psnr(const vqtex::Image& a, const vqtex::Image& b) {
-    double se = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const double d = double(a.pixels[i]) - double(b.pixels[i]);
-        se += d * d;
-    }
-    const double mse = se / double(a.pixels.size());
-    return mse == 0 ? 99.0 : 10.0 * std::log10(255.0 * 255.0 / mse);
+    return vqtex_metrics::psnr(a.pixels.data(), b.pixels.data(), a.pixels.size());
 }
 
 vqtex::Image crop(const vqtex::Image& img, int w, int h, int channels) {

@@ -191,4 +191,34 @@ int run_batch(std::size_t files, const BatchOptions& options, const FileWork& wo
     return failed ? 1 : 0;
 }
 
+void BatchOutputs::add(const std::string& output) {
+    outputs_.push_back(output);
+    first_.emplace(output, outputs_.size() - 1);
+}
+
+void BatchOutputs::check_first(std::size_t i, const char* verb) const {
+    const std::size_t first = first_.at(outputs_[i]);
+    if (first != i)
+        throw std::invalid_argument(inputs_[i] + ": its output '" + outputs_[i] + "' is also the output of '" +
+                                    inputs_[first] + "': rename one, or " + verb + " them in separate calls");
+}
+
+BatchOptions batch_options(const char* program, unsigned jobs, bool json, bool quiet,
+                           const std::vector<std::string>& inputs) {
+    BatchOptions options;
+    options.program = program;
+    options.jobs = jobs;
+    options.json = json;
+    options.names = &inputs;
+    options.quiet = quiet;
+    return options;
+}
+
+void print_report(const FileReport& report, bool json, bool quiet) {
+    if (json)
+        std::fputs(json_line(report.json).c_str(), stdout);
+    else if (!quiet)
+        std::fputs(report.text.c_str(), stdout);
+}
+
 }  // namespace vqtex_tools

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,31 @@ struct BatchOptions {
 // stderr (and its JSON line, see BatchOptions) and the others go on. Returns the exit status: 0, or 1 when any
 // file failed.
 int run_batch(std::size_t files, const BatchOptions& options, const FileWork& work);
+
+// A batch's outputs, one per input, and the first input to claim each
+// name: a later input that would write the same file fails with a one-line
+// error instead of replacing the first one's output.
+class BatchOutputs {
+public:
+    explicit BatchOutputs(const std::vector<std::string>& inputs) : inputs_(inputs) {}
+    void add(const std::string& output);
+    const std::string& operator[](std::size_t i) const { return outputs_[i]; }
+    // Throws for input i when an earlier input claimed its output; `verb`
+    // says what separate calls would do ("decode", "encode" ...).
+    void check_first(std::size_t i, const char* verb) const;
+
+private:
+    const std::vector<std::string>& inputs_;
+    std::vector<std::string> outputs_;
+    std::map<std::string, std::size_t> first_;
+};
+
+// The options of a program's batch over `inputs`, named in its error lines.
+BatchOptions batch_options(const char* program, unsigned jobs, bool json, bool quiet,
+                           const std::vector<std::string>& inputs);
+
+// A single file's report on stdout: its JSON line, its text, or nothing.
+void print_report(const FileReport& report, bool json, bool quiet);
 
 // One JSON line; bytes that are not UTF-8 (file names may hold any) become
 // U+FFFD instead of failing.

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -171,10 +170,7 @@ int main(int argc, char** argv) {
                                                              : "several inputs need -o DIR for their outputs");
             ProgressBar bar(!quiet && !json);
             const FileReport r = decode_one(s, files[0], files[1], threads, &bar);
-            if (json)
-                std::fputs(json_line(r.json).c_str(), stdout);
-            else if (!quiet)
-                std::fputs(r.text.c_str(), stdout);
+            print_report(r, json, quiet);
             return 0;
         }
 
@@ -182,24 +178,12 @@ int main(int argc, char** argv) {
         // write the same file are an error for the second.
         prepare_output_folder(out_dir);
         const std::vector<std::string> inputs = expand_inputs(files, {".vqt"});
-        std::vector<std::string> outputs;
-        std::map<std::string, std::size_t> first_writer;
-        for (const std::string& in : inputs) {
-            const std::string stem_suffix = frames ? suffix + "_%04d" : suffix;
-            outputs.push_back(batch_output_name(in, out_dir, stem_suffix, format));
-            first_writer.emplace(outputs.back(), outputs.size() - 1);
-        }
-        BatchOptions options;
-        options.program = "vqtex-decode";
-        options.jobs = threads;
-        options.json = json;
-        options.names = &inputs;
-        options.quiet = quiet;
-        return run_batch(inputs.size(), options, [&](std::size_t i, unsigned per_file) {
-            const std::size_t first = first_writer.at(outputs[i]);
-            if (first != i)
-                throw std::invalid_argument(inputs[i] + ": its output '" + outputs[i] + "' is also the output of '" +
-                                            inputs[first] + "': rename one, or decode them in separate calls");
+        BatchOutputs outputs(inputs);
+        for (const std::string& in : inputs)
+            outputs.add(batch_output_name(in, out_dir, frames ? suffix + "_%04d" : suffix, format));
+        return run_batch(inputs.size(), batch_options("vqtex-decode", threads, json, quiet, inputs),
+                         [&](std::size_t i, unsigned per_file) {
+            outputs.check_first(i, "decode");
             check_batch_pair(inputs[i], outputs[i], ".vqt file");
             return decode_one(s, inputs[i], outputs[i], per_file, nullptr);
         });

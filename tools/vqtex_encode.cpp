@@ -3,7 +3,6 @@
 // example (`vqtex-encode IN OUT.vqt`) or a batch (`vqtex-encode IN... -o DIR`).
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -224,10 +223,7 @@ int main(int argc, char** argv) {
                                                              : "several examples need -o DIR for their outputs");
             ProgressBar bar(!quiet && !json);
             const FileReport r = encode_one(s, files[0], files[1], threads, &bar);
-            if (json)
-                std::fputs(json_line(r.json).c_str(), stdout);
-            else if (!quiet)
-                std::fputs(r.text.c_str(), stdout);
+            print_report(r, json, quiet);
             return 0;
         }
 
@@ -235,26 +231,15 @@ int main(int argc, char** argv) {
         // animation in a batch is given as a numbered pattern).
         prepare_output_folder(out_dir);
         const std::vector<std::string> inputs = expand_inputs(files, image_extensions());
-        std::vector<std::string> outputs;
-        std::map<std::string, std::size_t> first_writer;
+        BatchOutputs outputs(inputs);
         for (const std::string& in : inputs) {
             // A pattern's stem holds the %d field: name the texture after the folder part before it.
-            std::string stem_source = in;
-            if (is_frame_pattern(in)) stem_source = fs::path(in).parent_path().string();
-            outputs.push_back(batch_output_name(stem_source, out_dir, suffix, "vqt"));
-            first_writer.emplace(outputs.back(), outputs.size() - 1);
+            outputs.add(batch_output_name(is_frame_pattern(in) ? fs::path(in).parent_path().string() : in, out_dir,
+                                          suffix, "vqt"));
         }
-        BatchOptions options;
-        options.program = "vqtex-encode";
-        options.jobs = threads;
-        options.json = json;
-        options.names = &inputs;
-        options.quiet = quiet;
-        return run_batch(inputs.size(), options, [&](std::size_t i, unsigned per_file) {
-            const std::size_t first = first_writer.at(outputs[i]);
-            if (first != i)
-                throw std::invalid_argument(inputs[i] + ": its output '" + outputs[i] + "' is also the output of '" +
-                                            inputs[first] + "': rename one, or encode them in separate calls");
+        return run_batch(inputs.size(), batch_options("vqtex-encode", threads, json, quiet, inputs),
+                         [&](std::size_t i, unsigned per_file) {
+            outputs.check_first(i, "encode");
             check_batch_pair(inputs[i], outputs[i], "image file (an animation in a batch is a pattern: 'DIR/frame_%03d.png')");
             try {
                 return encode_one(s, inputs[i], outputs[i], per_file, nullptr);

@@ -5,7 +5,6 @@
 // (`vqtex-synth IN... -o DIR`).
 #include <algorithm>
 #include <cstdio>
-#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -271,10 +270,7 @@ int main(int argc, char** argv) {
             const FileReport r =
                 animated ? synthesize_animation(params, frames, quiet, files[0], files[1], threads, &bar)
                          : synth_one(params, exhaustive, quiet, files[0], files[1], threads, &bar);
-            if (json)
-                std::fputs(json_line(r.json).c_str(), stdout);
-            else if (!quiet)
-                std::fputs(r.text.c_str(), stdout);
+            print_report(r, json, quiet);
             return 0;
         }
         if (frames_opt->count())
@@ -282,23 +278,11 @@ int main(int argc, char** argv) {
         // Batch: OUTDIR/NAME[SUFFIX].FORMAT for every example.
         prepare_output_folder(out_dir);
         const std::vector<std::string> inputs = expand_inputs(files, image_extensions());
-        std::vector<std::string> outputs;
-        std::map<std::string, std::size_t> first_writer;
-        for (const std::string& in : inputs) {
-            outputs.push_back(batch_output_name(in, out_dir, suffix, format));
-            first_writer.emplace(outputs.back(), outputs.size() - 1);
-        }
-        BatchOptions options;
-        options.program = "vqtex-synth";
-        options.jobs = threads;
-        options.json = json;
-        options.names = &inputs;
-        options.quiet = quiet;
-        return run_batch(inputs.size(), options, [&](std::size_t i, unsigned per_file) {
-            const std::size_t first = first_writer.at(outputs[i]);
-            if (first != i)
-                throw std::invalid_argument(inputs[i] + ": its output '" + outputs[i] + "' is also the output of '" +
-                                            inputs[first] + "': rename one, or use separate calls");
+        BatchOutputs outputs(inputs);
+        for (const std::string& in : inputs) outputs.add(batch_output_name(in, out_dir, suffix, format));
+        return run_batch(inputs.size(), batch_options("vqtex-synth", threads, json, quiet, inputs),
+                         [&](std::size_t i, unsigned per_file) {
+            outputs.check_first(i, "synthesise");
             check_batch_pair(inputs[i], outputs[i], "image file");
             try {
                 return synth_one(params, exhaustive, quiet, inputs[i], outputs[i], per_file, nullptr);

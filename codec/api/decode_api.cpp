@@ -4,6 +4,7 @@
 // synthesises. Everything here is in the decoder-only library.
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 #include <new>
 
 #include "api/api_support.hpp"
@@ -33,6 +34,17 @@ void check_output_memory(uint64_t needed, std::size_t limit, const std::string& 
                                              " MiB: raise memory_limit (--memory-limit)");
 }
 
+// The requested output size, or the exemplar's when none is given.
+std::pair<uint32_t, uint32_t> output_size(const vqtex_decode_params* p, uint32_t exemplar_width,
+                                          uint32_t exemplar_height) {
+    const uint32_t w = p->width ? p->width : exemplar_width;
+    const uint32_t h = p->height ? p->height : exemplar_height;
+    if (w > kMaxOutputSide || h > kMaxOutputSide)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) +
+                                               " is out of range: give an explicit size");
+    return {w, h};
+}
+
 // A format v3 file (docs/FORMAT.md section 8): the atlas decoded, then the
 // coherent engine synthesises from it exactly as vqtex_synthesize would
 // from that image. Returns the texture alone: the engine has no pyramid of
@@ -40,11 +52,8 @@ void check_output_memory(uint64_t needed, std::size_t limit, const std::string& 
 std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
     const std::size_t limit = memory_limit_of(p);
     const AtlasFile f = decode_atlas_file(data, size, limit);
-    const uint32_t w = p->width ? p->width : f.header.exemplar_width;
-    const uint32_t h = p->height ? p->height : f.header.exemplar_height;
-    if (w > kMaxOutputSide || h > kMaxOutputSide)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) +
-                                               " is out of range: give an explicit size");
+    const std::pair<uint32_t, uint32_t> size_out = output_size(p, f.header.exemplar_width, f.header.exemplar_height);
+    const uint32_t w = size_out.first, h = size_out.second;
     uint64_t sections = 0;
     for (const Section& s : f.sections) sections += s.raw_size;
     check_output_memory(sections + atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels, f.header.levels,
@@ -74,11 +83,8 @@ std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* d
     if (is_atlas_file(data, size)) return decode_atlas_texture(p, data, size);
     const std::size_t limit = memory_limit_of(p);
     const DecodedFile f = decode_file(data, size, limit);
-    const uint32_t w = p->width ? p->width : f.header.exemplar_width;
-    const uint32_t h = p->height ? p->height : f.header.exemplar_height;
-    if (w > kMaxOutputSide || h > kMaxOutputSide)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) +
-                                               " is out of range: give an explicit size");
+    const std::pair<uint32_t, uint32_t> size_out = output_size(p, f.header.exemplar_width, f.header.exemplar_height);
+    const uint32_t w = size_out.first, h = size_out.second;
     // The output pyramid is at most 4/3 of the texture; check it against
     // what the trees left of the limit before allocating it.
     check_output_memory(uint64_t(w) * h * f.header.channels * 4 / 3 + f.model_bytes, limit,
