@@ -82,19 +82,23 @@ void untrack(const std::string& tmp) {
 
 // Moves a finished temporary file into place; on failure removes it, so a
 // failed write never leaves anything behind. Throws naming `path`.
+// The temporary stays tracked until it is renamed or removed: a SIGTERM
+// between the two would otherwise leave it behind (seen once in CI).
 void commit_temporary(const std::string& tmp, const std::string& path, bool ok, const std::string& why) {
     std::error_code ec;
-    untrack(tmp);
     if (!ok) {
         fs::remove(tmp, ec);
+        untrack(tmp);
         throw std::runtime_error("cannot write '" + path + "': " + why);
     }
     fs::rename(tmp, path, ec);
     if (ec) {
         const std::string message = ec.message();
         fs::remove(tmp, ec);
+        untrack(tmp);
         throw std::runtime_error("cannot write '" + path + "': " + message);
     }
+    untrack(tmp);
 }
 
 }  // namespace
@@ -227,9 +231,9 @@ std::string write_temporary(const std::string& path, const ImageLevel* levels, u
         const QuietStderr quiet;
         io.write(path, tmp, levels, count, g_write_options);
     } catch (...) {
-        untrack(tmp);
         std::error_code ec;
         fs::remove(tmp, ec);
+        untrack(tmp);
         throw;
     }
     return tmp;
