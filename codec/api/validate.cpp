@@ -115,6 +115,8 @@ void validate(const vqtex_encode_params* p) {
     if (p->smoothing < 1 || p->smoothing > 8) fail(VQTEX_ERROR_INVALID_ARGUMENT, "smoothing must be 1 to 8");
     check_backtrack(p->backtrack, 255, " for an encoded file");
     check_init(p->init);
+    if (!is_one_of(p->codebook, {VQTEX_CODEBOOK_TREES, VQTEX_CODEBOOK_ATLAS}))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown codebook kind: VQTEX_CODEBOOK_TREES or VQTEX_CODEBOOK_ATLAS");
 }
 
 void validate(const vqtex_volume_encode_params* p) {
