@@ -221,4 +221,12 @@ void print_report(const FileReport& report, bool json, bool quiet) {
         std::fputs(report.text.c_str(), stdout);
 }
 
+void require_single_pair(const std::vector<std::string>& files, const std::string& output, const std::string& verb,
+                         const std::string& inputs) {
+    if (files.size() < 2)
+        throw std::invalid_argument("give an " + output + " after '" + files[0] + "', or -o DIR to " + verb +
+                                    " into a folder");
+    if (files.size() > 2) throw std::invalid_argument("several " + inputs + " need -o DIR for their outputs");
+}
+
 }  // namespace vqtex_tools

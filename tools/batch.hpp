@@ -95,6 +95,12 @@ private:
 BatchOptions batch_options(const char* program, unsigned jobs, bool json, bool quiet,
                            const std::vector<std::string>& inputs);
 
+// Without -o DIR a call takes one input and its output: throws the one-line
+// error that says what is missing or too many (`output` names the output,
+// `verb` what a folder would receive, `inputs` what the inputs are).
+void require_single_pair(const std::vector<std::string>& files, const std::string& output, const std::string& verb,
+                         const std::string& inputs);
+
 // A single file's report on stdout: its JSON line, its text, or nothing.
 void print_report(const FileReport& report, bool json, bool quiet);
 

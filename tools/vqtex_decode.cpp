@@ -164,10 +164,7 @@ int main(int argc, char** argv) {
         set_write_options(write);
 
         if (!*out_dir_opt) {
-            if (files.size() != 2)
-                throw std::invalid_argument(files.size() < 2 ? "give an OUTPUT after '" + files[0] +
-                                                                   "', or -o DIR to decode into a folder"
-                                                             : "several inputs need -o DIR for their outputs");
+            require_single_pair(files, "OUTPUT", "decode", "inputs");
             ProgressBar bar(!quiet && !json);
             const FileReport r = decode_one(s, files[0], files[1], threads, &bar);
             print_report(r, json, quiet);

@@ -217,10 +217,7 @@ int main(int argc, char** argv) {
         s.quiet = quiet;
 
         if (!*out_dir_opt) {
-            if (files.size() != 2)
-                throw std::invalid_argument(files.size() < 2 ? "give an OUTPUT .vqt after '" + files[0] +
-                                                                   "', or -o DIR to encode into a folder"
-                                                             : "several examples need -o DIR for their outputs");
+            require_single_pair(files, "OUTPUT .vqt", "encode", "examples");
             ProgressBar bar(!quiet && !json);
             const FileReport r = encode_one(s, files[0], files[1], threads, &bar);
             print_report(r, json, quiet);

@@ -256,10 +256,7 @@ int main(int argc, char** argv) {
         params.init = init == "noise" ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
 
         if (!*out_dir_opt) {
-            if (files.size() != 2)
-                throw std::invalid_argument(files.size() < 2 ? "give an OUTPUT image after '" + files[0] +
-                                                                   "', or -o DIR to synthesise into a folder"
-                                                             : "several examples need -o DIR for their outputs");
+            require_single_pair(files, "OUTPUT image", "synthesise", "examples");
             const bool animated = is_sequence(files[0]);
             if (animated && engine == "paper")
                 throw std::invalid_argument("animations synthesise with the coherent engine only (the paper's engine: "

@@ -87,9 +87,8 @@ inline int child_coordinate(int size, bool wraps, int parent, int offset, int sp
 // skipping it gives the same bytes. Over the passes of one level (same
 // features) this skips most of the second pass.
 struct Revisit {
-    std::vector<uint8_t> due;    // evaluate at its next turn
-    std::vector<uint8_t> moved;  // changed at its last evaluation
-    explicit Revisit(std::size_t pixels) : due(pixels, 1), moved(pixels, 0) {}
+    std::vector<uint8_t> due;  // evaluate at its next turn
+    explicit Revisit(std::size_t pixels) : due(pixels, 1) {}
 };
 
 // One correction pass over a w x h torus of states `map` (any element
@@ -127,7 +126,6 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
                     } else if (revisit->due[at]) {
                         out[i] = correct(x, y, xs, ys);
                         revisit->due[at] = 0;
-                        revisit->moved[at] = !(out[i] == map[at]);
                     } else {
                         out[i] = map[at];
                     }
@@ -141,25 +139,23 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
                 }
             }
         });
-        // Putting the choices in place is a copy: one thread is as fast.
+        // Putting the choices in place is a copy: one thread is as fast. With
+        // `revisit`, every pixel whose window holds a changed one is due
+        // again, marked here, after the subset, so no flag is written twice
+        // at once.
         for (int r = 0; r < rows; ++r) {
-            T* row = map.data() + (sy + 2 * std::size_t(r)) * std::size_t(w);
+            const int y = sy + 2 * r;
+            T* row = map.data() + std::size_t(y) * std::size_t(w);
             const T* in = chosen.data() + std::size_t(r) * std::size_t(cols);
-            for (int i = 0; i < cols; ++i) row[sx + 2 * i] = in[i];
-        }
-        if (revisit) {
-            // Every pixel whose window holds a moved one is due again; marked
-            // after the subset, on one thread, so no flag is written twice at once.
-            for (int y = sy; y < h; y += 2)
-                for (int x = sx; x < w; x += 2) {
-                    uint8_t& moved = revisit->moved[std::size_t(y) * w + x];
-                    if (!moved) continue;
-                    moved = 0;
+            for (int i = 0; i < cols; ++i) {
+                const int x = sx + 2 * i;
+                if (revisit && !(row[x] == in[i]))
                     for (int dy = -kRadius; dy <= kRadius; ++dy) {
-                        uint8_t* row = revisit->due.data() + std::size_t(Image::wrap(y + dy, h)) * w;
-                        for (int dx = -kRadius; dx <= kRadius; ++dx) row[Image::wrap(x + dx, w)] = 1;
+                        uint8_t* due = revisit->due.data() + std::size_t(Image::wrap(y + dy, h)) * w;
+                        for (int dx = -kRadius; dx <= kRadius; ++dx) due[Image::wrap(x + dx, w)] = 1;
                     }
-                }
+                row[x] = in[i];
+            }
         }
     }
 }
@@ -187,14 +183,15 @@ std::pair<int, int> torus_origin(int w, int h, Step&& step) {
     return {ox, oy};
 }
 
-// `map` (w x h) rolled so that (ox, oy) becomes the origin.
-template <typename T>
-std::vector<T> rolled(const std::vector<T>& map, int w, int h, int ox, int oy) {
-    std::vector<T> out(map.size());
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            out[std::size_t(y) * w + x] = map[std::size_t(Image::wrap(y + oy, h)) * w + Image::wrap(x + ox, w)];
+// `image` rolled so that (ox, oy) becomes the origin.
+inline Image rolled(const Image& image, int ox, int oy) {
+    Image out(image.width, image.height, image.channels);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            copy_pixel(out.at(x, y), image.at(Image::wrap(x + ox, image.width), Image::wrap(y + oy, image.height)),
+                       image.channels);
     return out;
 }
+
 
 }  // namespace vqtex::coherent

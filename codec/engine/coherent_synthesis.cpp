@@ -14,6 +14,7 @@
 #include "engine/coherent_candidates.hpp"
 #include "engine/coherent_common.hpp"
 #include "engine/pyramid.hpp"
+#include "vqtex/vqtex.h"
 
 namespace vqtex {
 namespace {
@@ -198,15 +199,20 @@ PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& 
 }
 
 PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSets& sets,
-                                 const CoherentOptions& options, std::vector<PositionMap>* levels) {
+                                 const CoherentOptions& options) {
     const int top = int(space.levels.size()) - 1;
+    // The finest level runs one pass fewer: the colour polish follows it,
+    // and with the link bias its second pass changed the corpus scores by
+    // under 0.5% for a tenth of the synthesis time (SYNTHESIS.md).
+    const auto passes_at = [&](int l) {
+        return l == top ? options.coarse_passes : l == 0 ? std::max(1, options.passes - 1) : options.passes;
+    };
     uint64_t total = 0, done = 0;
     for (int l = top; l >= 0; --l) {
         const uint64_t area = uint64_t(pyramid_level_size(options.width, l)) * pyramid_level_size(options.height, l);
-        total += area * uint64_t(l == top ? options.coarse_passes : l == 0 ? std::max(1, options.passes - 1) : options.passes);
+        total += area * uint64_t(passes_at(l));
     }
     PositionMap map;
-    if (levels) levels->assign(space.levels.size(), PositionMap{});
     for (int l = top; l >= 0; --l) {
         const int w = pyramid_level_size(options.width, l), h = pyramid_level_size(options.height, l);
         const int spacing = space.levels[std::size_t(l)].spacing;
@@ -234,10 +240,7 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
                     }
         }
         const LevelView view{space, sets, l, spacing, space.levels[std::size_t(l)].features.data(), sets.k, dsp::kernels()};
-        // The finest level runs one pass fewer: the colour polish follows it,
-        // and with the link bias its second pass changed the corpus scores
-        // by under 0.5% for a tenth of the synthesis time (SYNTHESIS.md).
-        const int passes = l == top ? options.coarse_passes : l == 0 ? std::max(1, options.passes - 1) : options.passes;
+        const int passes = passes_at(l);
         coherent::Revisit revisit(map.positions.size());
         for (int pass = 0; pass < passes; ++pass) {
             correction_pass(view, map, options, &revisit);
@@ -252,27 +255,13 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
             coherent::Revisit revisit_colours(map.positions.size());
             for (int pass = 0; pass < options.polish_passes; ++pass) correction_pass(polish, map, options, &revisit_colours);
         }
-        if (levels) (*levels)[std::size_t(l)] = map;
     }
-    // Where to cut the torus open is free (coherent::torus_origin); the
-    // steps are read from the output's colours, gathered once.
-    const Image seen = read_positions(space.levels[0].colours, map, options.threads);
-    const auto step = [&](int x0, int y0, int x1, int y1) {
-        const uint8_t* a = seen.at(x0, y0);
-        const uint8_t* b = seen.at(x1, y1);
-        int d = 0;
-        for (int c = 0; c < seen.channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
-        return d;
-    };
-    const std::pair<int, int> origin = coherent::torus_origin(map.width, map.height, step);
-    if (options.roll && (origin.first || origin.second))
-        map.positions = coherent::rolled(map.positions, map.width, map.height, origin.first, origin.second);
     return map;
 }
 
 int coherent_levels(int width, int height) {
     int levels = 1;
-    while (levels < 8 && (4 << levels) <= std::min(width, height)) ++levels;
+    while (levels < VQTEX_MAX_LEVELS && (4 << levels) <= std::min(width, height)) ++levels;
     return levels;
 }
 
@@ -292,6 +281,19 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
     const auto t1 = Clock::now();
     CoherentResult r;
     r.image = read_positions(example, synthesize_positions(space, sets, options), options.threads);
+    if (options.roll) {
+        // Where to cut the torus open is free (coherent::torus_origin).
+        const Image& out = r.image;
+        const auto step = [&](int x0, int y0, int x1, int y1) {
+            const uint8_t* a = out.at(x0, y0);
+            const uint8_t* b = out.at(x1, y1);
+            int d = 0;
+            for (int c = 0; c < out.channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
+            return d;
+        };
+        const std::pair<int, int> origin = coherent::torus_origin(out.width, out.height, step);
+        if (origin.first || origin.second) r.image = coherent::rolled(out, origin.first, origin.second);
+    }
     for (const auto& l : space.levels) r.model_bytes += l.colours.byte_count() + l.features.size() * sizeof(int16_t);
     for (const auto& l : sets.levels) r.model_bytes += l.size() * sizeof(uint32_t);
     r.analyse_seconds = std::chrono::duration<double>(t1 - t0).count();

@@ -56,10 +56,10 @@ inline uint32_t pack_position(int x, int y) { return (uint32_t(y) << 16) | uint3
 inline int position_x(uint32_t p) { return int(p & 0xFFFF); }
 inline int position_y(uint32_t p) { return int(p >> 16); }
 
-// The finest level's positions (and, when `levels` is given, every level's,
-// finest first).
+// The finest level's positions, on the torus as synthesised (the cut that
+// `roll` asks for is made on the pixels, by synthesize_coherent).
 PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSets& sets,
-                                 const CoherentOptions& options, std::vector<PositionMap>* levels = nullptr);
+                                 const CoherentOptions& options);
 
 // The output pixels: the example's pixels at the positions.
 Image read_positions(const Image& example, const PositionMap& map, int threads = 1);
