@@ -12,10 +12,12 @@
 
 namespace vqtex_test {
 
-// Small settings that still exercise every section kind.
+// Small settings that still exercise every section kind of the trees
+// format (v1); the atlas format (v3, the default) has tests/test_atlas.cpp.
 inline vqtex_encode_params fast_encode_params() {
     vqtex_encode_params p;
     vqtex_encode_params_init(&p);
+    p.codebook = VQTEX_CODEBOOK_TREES;
     vqtex_encode_params_preset(&p, 10);
     p.threads = 1;
     return p;

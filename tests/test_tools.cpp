@@ -145,7 +145,16 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     r = info_tool(vqt);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("checksum OK"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("CODE"), std::string::npos) << r.output;
+    // A still texture is an atlas by default (format 3); --trees stores the
+    // paper's codebooks (format 1).
+    EXPECT_NE(r.output.find("format 3"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("ATLS"), std::string::npos) << r.output;
+    const std::string trees = (dir / "t.vqt").string();
+    ASSERT_EQ(encode_tool(corpus + "/cellular_128.png " + trees + " -q 10 --trees --quiet").status, 0);
+    const ToolRun ti = info_tool(trees);
+    EXPECT_NE(ti.output.find("format 1"), std::string::npos) << ti.output;
+    EXPECT_NE(ti.output.find("CODE"), std::string::npos) << ti.output;
+    EXPECT_NE(encode_tool(corpus + "/cellular_128.png " + trees + " --atlas --entries 4 --quiet").status, 0);
     // Same file, size and seed: the same pixels, on any thread count.
     const std::string png2 = (dir / "c2.png").string();
     ASSERT_EQ(decode_tool(vqt + " " + png2 + " --size 200x120 --seed 3 -j 1 --quiet").status, 0);
@@ -173,9 +182,10 @@ TEST(Tools, CorruptFileFailsWithoutOutput) {
     const std::string vqt = (dir / "bad.vqt").string(), out = (dir / "never.png").string();
     ASSERT_EQ(encode_tool(corpus + "/weave_128.png " + vqt + " -q 0 --quiet").status, 0);
     {
-        // A byte inside the last section's payload.
+        // A byte in the middle of the file: inside a section's payload.
+        const auto middle = std::streamoff(fs::file_size(vqt) / 2);
         std::fstream f(vqt, std::ios::in | std::ios::out | std::ios::binary);
-        f.seekp(-20, std::ios::end);
+        f.seekp(middle);
         f.put('\x7f');
     }
     ToolRun r = decode_tool(vqt + " " + out);
@@ -372,8 +382,9 @@ TEST(ToolsBatch, BadInputsFailAloneWithOneLineEach) {
     const fs::path damaged = dir / "damaged.vqt";
     fs::copy_file(vqts[0], damaged, fs::copy_options::overwrite_existing);
     {
+        const auto middle = std::streamoff(fs::file_size(damaged) / 2);
         std::fstream f(damaged, std::ios::in | std::ios::out | std::ios::binary);
-        f.seekp(-20, std::ios::end);
+        f.seekp(middle);
         f.put('\x7f');
     }
     const std::string missing = (dir / "missing.vqt").string();

@@ -62,6 +62,7 @@ struct Settings {
     std::string shapes;
     int quality = VQTEX_QUALITY_DEFAULT;
     bool levels_given = false;
+    bool atlas_asked = false;  // --atlas given (the default for still textures)
     bool quiet = false;
 };
 
@@ -74,8 +75,9 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
     if (is_sequence(input)) {
         if (p.target_size)
             throw std::invalid_argument("--target-size is not supported for animations: use --quality");
-        if (p.codebook == VQTEX_CODEBOOK_ATLAS)
+        if (s.atlas_asked)
             throw std::invalid_argument("--atlas is for still textures (animations store trees)");
+        p.codebook = VQTEX_CODEBOOK_TREES;
         vqtex_volume_encode_params vp;
         vqtex_volume_encode_params_init(&vp);
         const float train_fraction = vp.codec.model.train_fraction;
@@ -143,7 +145,7 @@ int main(int argc, char** argv) {
     uint32_t smoothing = 0, closing_divisor = 0, closing_window = 0;
     bool no_entry_keys = false;
     uint64_t target_size = 0, seed = 1;
-    bool json = false, quiet = false, no_closing = false, tileable = false, atlas = false;
+    bool json = false, quiet = false, no_closing = false, tileable = false, atlas = false, trees = false;
     app.add_option("files", files,
                    "EXAMPLE OUTPUT.vqt: an image (any format OpenImageIO reads) or an animation (a numbered "
                    "sequence 'frames/frame_%03d.png', a folder of frames, or a multi-image file); with -o: "
@@ -152,12 +154,19 @@ int main(int argc, char** argv) {
     auto* out_dir_opt = app.add_option("-o,--output-dir", out_dir,
                                        "batch: write OUTDIR/NAME[SUFFIX].vqt for every example (created if missing)");
     app.add_option("--suffix", suffix, "batch: text added to each output's name");
-    app.add_option("-q,--quality", quality, "preset from 0 (smallest file) to 100 (best texture)")
+    app.add_option("-q,--quality", quality,
+                   "preset from 0 (smallest file) to 100 (best texture); an atlas's byte budget: 1 KB per "
+                   "128x128 pixels at 0, doubling every 25 points (4 KB at 50, 16 KB at 100)")
         ->check(CLI::Range(0, 100))->capture_default_str();
-    app.add_option("--target-size", target_size, "largest file in bytes: picks the best preset that fits");
-    app.add_flag("--atlas", atlas,
-                 "store the example as an AV1 atlas decoded by the coherent engine (format v3; "
-                 "uses --quality or --target-size, --seed, --levels, --tileable-example)");
+    app.add_option("--target-size", target_size, "largest file in bytes: the best atlas (or trees preset) that fits");
+    auto* atlas_flag = app.add_flag("--atlas", atlas,
+                                    "store the example as an AV1 atlas decoded by the coherent engine (format v3, "
+                                    "the default for still textures; uses --quality or --target-size, --seed, "
+                                    "--levels, --tileable-example)");
+    app.add_flag("--trees", trees,
+                 "store the paper's TSVQ codebooks instead (format v1, decoded by the paper's engine; "
+                 "the options below that name TSVQ, codewords, entries or precision apply to it)")
+        ->excludes(atlas_flag);
     app.add_option("-k,--codewords", codewords, "TSVQ leaves: K for every level or K0,K1,.. finest first");
     app.add_option("--entries", entries, "outputs per leaf, 1 to 64")->check(CLI::Range(1, 64));
     app.add_option("-p,--precision", precision, "bits per codeword sample, 1 to 8")->check(CLI::Range(1, 8));
@@ -208,12 +217,20 @@ int main(int argc, char** argv) {
         p.model.example_tileable = tileable ? 1 : 0;
         p.seed = seed;
         p.target_size = target_size;
-        if (atlas) p.codebook = VQTEX_CODEBOOK_ATLAS;
+        // Options that only a trees file has make no sense for an atlas.
+        const bool tree_options = !codewords.empty() || entries || precision || pixel_precision || smoothing ||
+                                  no_entry_keys || closing_divisor || closing_window || backtrack || no_closing ||
+                                  !shapes.empty();
+        if (atlas && tree_options)
+            throw std::invalid_argument("codewords, entries, precision, smoothing, closing, backtrack and shapes "
+                                        "describe TSVQ trees: add --trees, or drop them for an atlas");
+        p.codebook = trees || tree_options ? VQTEX_CODEBOOK_TREES : VQTEX_CODEBOOK_ATLAS;
         Settings s;
         s.params = p;
         s.shapes = shapes;
         s.quality = quality;
         s.levels_given = levels != 0;
+        s.atlas_asked = atlas;
         s.quiet = quiet;
 
         if (!*out_dir_opt) {

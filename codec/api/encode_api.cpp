@@ -13,12 +13,10 @@
 #include "api/validate.hpp"
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"
-#include "format/atlas_coder.hpp"
-#include "format/atlas_encoder.hpp"
-#include "format/atlas_file.hpp"
 #include "format/model_codec.hpp"
 #include "common/parallel.hpp"
 #include "engine/synthesis.hpp"
+#include "analysis/atlas_choice.hpp"
 #include "analysis/texture_model.hpp"
 #include "vqtex/vqtex.h"
 
@@ -61,96 +59,6 @@ void fill_stats(vqtex_encode_stats* stats, const EncodeResult& r) {
     }
 }
 
-// ---- format v3: the atlas (issue 17, docs/FORMAT.md section 8) ----------
-
-// libaom's quality level for a preset: 0 -> 63 (coarsest) to 100 -> 15.
-// A 128x128 exemplar at the default preset (50) makes a file of about
-// 2-4 KB (docs/ATLAS.md); levels below 15 cost bytes that the synthesised
-// texture does not show.
-int atlas_cq_of_quality(int quality) { return 63 - (quality * 48 + 50) / 100; }
-
-// The part of the exemplar the atlas holds: the whole of it, or, when even
-// the coarsest quality does not fit the target, its top-left crop of
-// `scale`/16 of each side (a crop keeps the features at their scale, which
-// downscaling would not).
-Image atlas_crop(const Image& example, int scale) {
-    const int w = std::min(kMaxAtlasSide, std::max(kMinAtlasSide, example.width * scale / 16));
-    const int h = std::min(kMaxAtlasSide, std::max(kMinAtlasSide, example.height * scale / 16));
-    if (w == example.width && h == example.height) return example;
-    Image crop(std::min(w, example.width), std::min(h, example.height), example.channels);
-    for (int y = 0; y < crop.height; ++y)
-        std::memcpy(crop.at(0, y), example.at(0, y), std::size_t(crop.width) * std::size_t(crop.channels));
-    return crop;
-}
-
-struct AtlasEncode {
-    std::vector<uint8_t> bytes;
-    int cq = 0, levels = 0;
-    Image atlas;
-};
-
-AtlasEncode encode_atlas_once(const vqtex_encode_params& p, const Image& example, const Image& atlas, int cq) {
-    AtlasEncode r;
-    AtlasEncodeOptions o;
-    o.cq_level = cq;
-    const std::vector<uint8_t> bits = encode_atlas(atlas, o);
-    const int max_levels = coherent_levels(atlas.width, atlas.height);
-    r.levels = p.model.levels ? std::min(int(p.model.levels), max_levels) : max_levels;
-    FileHeader h;
-    h.exemplar_width = uint32_t(example.width);
-    h.exemplar_height = uint32_t(example.height);
-    h.channels = uint8_t(example.channels);
-    h.levels = uint8_t(r.levels);
-    h.seed = p.seed;
-    // The engine's defaults, as vqtex_synthesize runs it (synth_api.cpp).
-    AtlasSynthesisParams sp;
-    sp.example_tileable = p.model.example_tileable != 0;
-    r.bytes = encode_atlas_file(h, atlas.width, atlas.height, bits, sp);
-    r.cq = cq;
-    r.atlas = atlas;
-    return r;
-}
-
-// At a quality preset, or the finest quality level (then the largest crop)
-// whose file fits target_size; file size falls as the level rises, so each
-// search bisects.
-AtlasEncode encode_atlas_texture(const vqtex_encode_params& p, const Image& example, uint32_t* attempts) {
-    if (example.width < kMinAtlasSide || example.height < kMinAtlasSide)
-        fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "an atlas needs an example of at least " + std::to_string(kMinAtlasSide) +
-                                              "x" + std::to_string(kMinAtlasSide) + " pixels");
-    if (p.quality > 100) fail(VQTEX_ERROR_INVALID_ARGUMENT, "quality must be 0 to 100");
-    if (p.target_size == 0) {
-        *attempts = 1;
-        return encode_atlas_once(p, example, atlas_crop(example, 16), atlas_cq_of_quality(int(p.quality)));
-    }
-    *attempts = 0;
-    for (int scale = 16; scale >= 1; scale = scale * 3 / 4) {
-        const Image atlas = atlas_crop(example, scale);
-        AtlasEncode coarsest = encode_atlas_once(p, example, atlas, 63);
-        ++*attempts;
-        if (coarsest.bytes.size() <= p.target_size) {
-            int lo = 0, hi = 62;  // the answer lies in [lo, hi + 1]; hi + 1 = 63 fits
-            AtlasEncode best = std::move(coarsest);
-            while (lo <= hi) {
-                const int mid = (lo + hi) / 2;
-                AtlasEncode r = encode_atlas_once(p, example, atlas, mid);
-                ++*attempts;
-                if (r.bytes.size() <= p.target_size) {
-                    best = std::move(r);
-                    hi = mid - 1;
-                } else {
-                    lo = mid + 1;
-                }
-            }
-            return best;
-        }
-        if (atlas.width == kMinAtlasSide && atlas.height == kMinAtlasSide) break;
-        if (scale == 1) break;
-    }
-    fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no atlas fits in " + std::to_string(p.target_size) +
-                                         " bytes (the smallest needs more): raise --target-size");
-}
-
 }  // namespace
 
 extern "C" {
@@ -163,6 +71,7 @@ void vqtex_encode_params_init(vqtex_encode_params* p) {
     p->backtrack = 2;
     p->init = VQTEX_INIT_PARENT;
     p->seed = 1;
+    p->codebook = VQTEX_CODEBOOK_ATLAS;
     vqtex_encode_params_preset(p, VQTEX_QUALITY_DEFAULT);
 }
 
@@ -213,18 +122,24 @@ vqtex_status vqtex_encode(const vqtex_encode_params* params, const vqtex_image* 
         const ProgressFn progress = stage_progress(params->progress, params->progress_user, VQTEX_STAGE_ANALYSE);
         const auto t0 = std::chrono::steady_clock::now();
         if (params->codebook == VQTEX_CODEBOOK_ATLAS) {
-            uint32_t attempts = 0;
+            if (params->quality > 100) fail(VQTEX_ERROR_INVALID_ARGUMENT, "quality must be 0 to 100");
             if (progress && !progress(0, 1)) fail(VQTEX_ERROR_CANCELLED, "encoding cancelled by the progress callback");
-            const AtlasEncode r = encode_atlas_texture(*params, ex, &attempts);
+            AtlasChoiceOptions o;
+            o.budget = params->target_size ? params->target_size
+                                           : atlas_budget_of_quality(int(params->quality), ex.pixel_count());
+            o.levels = int(params->model.levels);
+            o.example_tileable = params->model.example_tileable != 0;
+            o.seed = params->seed;
+            const AtlasChoice r = choose_atlas(ex, o);
             if (progress && !progress(1, 1)) fail(VQTEX_ERROR_CANCELLED, "encoding cancelled by the progress callback");
-            copy_out(r.bytes, data, size);
+            copy_out(r.file, data, size);
             if (stats) {
                 *stats = vqtex_encode_stats{};
-                stats->bytes = r.bytes.size();
+                stats->bytes = r.file.size();
                 stats->levels = uint32_t(r.levels);
                 for (int l = 0; l < r.levels; ++l) stats->codewords[l] = uint32_t(r.atlas.pixel_count());
                 stats->quality = params->target_size ? 0u : params->quality;
-                stats->attempts = attempts;
+                stats->attempts = r.attempts;
                 stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             }
             return;

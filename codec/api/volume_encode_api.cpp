@@ -23,6 +23,7 @@ void vqtex_volume_encode_params_init(vqtex_volume_encode_params* p) {
     *p = vqtex_volume_encode_params{};
     p->struct_size = sizeof(vqtex_volume_encode_params);
     vqtex_encode_params_init(&p->codec);
+    p->codec.codebook = VQTEX_CODEBOOK_TREES;  // format 2: animations have no atlas yet
     // The paper's setting: codebooks from a random 10% of the example's
     // neighbourhoods; 3 levels (automatic_volume_levels).
     p->codec.model.levels = 0;

@@ -72,6 +72,8 @@ std::vector<uint8_t> encode_frame(int width, int height, const std::vector<uint8
     if (aom_codec_control(ctx.get(), AV1E_SET_COLOR_RANGE, int(AOM_CR_FULL_RANGE)) != AOM_CODEC_OK)
         aom_failed(ctx.get(), "colour range");
     if (aom_codec_control(ctx.get(), AV1E_SET_ROW_MT, 0u) != AOM_CODEC_OK) aom_failed(ctx.get(), "row threads");
+    for (const auto& [id, value] : o.controls)
+        if (aom_codec_control(ctx.get(), id, value) != AOM_CODEC_OK) aom_failed(ctx.get(), "control");
 
     std::unique_ptr<aom_image_t, ImageFree> img(
         aom_img_alloc(nullptr, full_chroma ? AOM_IMG_FMT_I444 : AOM_IMG_FMT_I420, unsigned(width), unsigned(height), 1));

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "common/image.hpp"
@@ -19,6 +20,9 @@ struct AtlasEncodeOptions {
     bool chroma444 = true;
     // libaom's speed, 0 (slowest, smallest) to 9.
     int speed = 4;
+    // Further libaom controls (aomcx.h id, integer value), set after the
+    // others: for studies (bench/atlas_choice.cpp).
+    std::vector<std::pair<int, int>> controls;
 };
 
 // The bitstream of atlas_coder.hpp for an image of 1 to 4 channels. One

@@ -208,13 +208,15 @@ VQTEX_API vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const 
 
 typedef enum vqtex_codebook {
     /* TSVQ codebooks (paper section 6), format version 1, decoded by the
-     * paper's engine (default). */
+     * paper's engine: the paper's literal codec, for comparison [--trees].
+     * Animations (vqtex_encode_volume) always store trees (format 2). */
     VQTEX_CODEBOOK_TREES = 0,
     /* An atlas: the example (or a crop of it) as an AV1 image, format
      * version 3, decoded by the coherent engine, which keeps the example's
-     * structure. Uses quality (or target_size), seed, model.example_tileable
-     * and threads; the other model and precision fields do not apply
-     * [--atlas]. */
+     * structure (default for still textures). Uses quality (a byte budget:
+     * 4 KB per 128x128 pixels at 50, doubling every 25 points) or
+     * target_size, seed, model.levels, model.example_tileable and threads;
+     * the other model and precision fields do not apply [--atlas]. */
     VQTEX_CODEBOOK_ATLAS = 1
 } vqtex_codebook;
 
@@ -232,7 +234,7 @@ typedef struct vqtex_encode_params {
     uint32_t threads;           /* 0 = all cores [--threads] */
     vqtex_progress_fn progress;
     void* progress_user;
-    vqtex_codebook codebook;    /* what the file stores: TSVQ trees (v1) or an atlas (v3) [--atlas] */
+    vqtex_codebook codebook;    /* what the file stores: an atlas (v3, default) or TSVQ trees (v1) [--trees] */
     uint32_t quality;           /* the preset last applied, 0..100: the atlas's quality when
                                    target_size is 0 */
 } vqtex_encode_params;

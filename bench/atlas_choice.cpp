@@ -1,0 +1,174 @@
+// atlas_choice.cpp - the study behind the encoder's choice of atlas (issue
+// 17, docs/ATLAS.md "Which atlas"): for each photograph (exemplar = its
+// top-left quarter, held-out = its bottom-right quarter, as vqtex-bench
+// cuts them) and each byte target, every candidate region of the exemplar
+// is coded as a format v3 file at the finest AV1 level that fits, decoded
+// at 2x2 the exemplar with the public API, and scored twice:
+//  * against the held-out crop (what the benchmark measures; the encoder
+//    never sees it);
+//  * against the exemplar itself (what the encoder can measure, its proxy).
+// One CSV line per (texture, target, candidate), so that the oracle choice
+// and the proxy's choice can be compared offline.
+//
+//   atlas-choice [--targets 1000,2000,4000] [--sides 128,96,64] IMAGE...
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/image.hpp"
+#include "engine/coherent_synthesis.hpp"
+#include "format/atlas_coder.hpp"
+#include "format/atlas_encoder.hpp"
+#include "format/atlas_file.hpp"
+#include "image_io.hpp"
+#include "metrics.hpp"
+#include "vqtex/vqtex.h"
+
+namespace {
+
+using vqtex::Image;
+
+std::vector<int> parse_list(const char* s) {
+    std::vector<int> v;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, ',')) v.push_back(std::atoi(item.c_str()));
+    return v;
+}
+
+Image crop(const Image& src, int x0, int y0, int w, int h) {
+    Image out(w, h, src.channels);
+    for (int y = 0; y < h; ++y)
+        std::memcpy(out.at(0, y), src.at(x0, y0 + y), std::size_t(w) * std::size_t(src.channels));
+    return out;
+}
+
+vqtex_metrics::Image to_metrics(const Image& img) {
+    return {img.width, img.height, img.channels, img.pixels};
+}
+
+std::vector<std::pair<int, int>> g_controls;
+
+std::vector<uint8_t> atlas_file(const Image& example, const Image& atlas, int cq, int speed) {
+    vqtex::AtlasEncodeOptions o;
+    o.controls = g_controls;
+    o.cq_level = cq;
+    o.speed = speed;
+    const std::vector<uint8_t> bits = vqtex::encode_atlas(atlas, o);
+    vqtex::FileHeader h;
+    h.exemplar_width = uint32_t(example.width);
+    h.exemplar_height = uint32_t(example.height);
+    h.channels = uint8_t(example.channels);
+    h.levels = uint8_t(vqtex::coherent_levels(atlas.width, atlas.height));
+    h.seed = 1;
+    return vqtex::encode_atlas_file(h, atlas.width, atlas.height, bits, vqtex::AtlasSynthesisParams{});
+}
+
+// The finest level whose file fits, or an empty file. `coded` keeps the
+// files of the levels tried, which the targets share.
+std::vector<uint8_t> fit(const Image& example, const Image& atlas, std::size_t target, int speed, int* cq_out,
+                         std::map<int, std::vector<uint8_t>>& coded) {
+    auto file_at = [&](int cq) -> const std::vector<uint8_t>& {
+        auto it = coded.find(cq);
+        if (it == coded.end()) it = coded.emplace(cq, atlas_file(example, atlas, cq, speed)).first;
+        return it->second;
+    };
+    std::vector<uint8_t> best = file_at(63);
+    if (best.size() > target) return {};
+    int lo = 0, hi = 62, cq = 63;
+    while (lo <= hi) {
+        const int mid = (lo + hi) / 2;
+        const std::vector<uint8_t>& f = file_at(mid);
+        if (f.size() <= target) {
+            best = f;
+            cq = mid;
+            hi = mid - 1;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    *cq_out = cq;
+    return best;
+}
+
+Image decode(const std::vector<uint8_t>& file, int w, int h, uint64_t seed) {
+    vqtex_decode_params p;
+    vqtex_decode_params_init(&p);
+    p.width = uint32_t(w);
+    p.height = uint32_t(h);
+    p.seed = seed;
+    p.threads = 2;
+    vqtex_image out;
+    vqtex_error err;
+    if (vqtex_decode(&p, file.data(), file.size(), &out, &err) != VQTEX_OK) {
+        std::fprintf(stderr, "decode failed: %s\n", err.detail);
+        std::exit(1);
+    }
+    Image img(int(out.width), int(out.height), int(out.channels));
+    std::memcpy(img.pixels.data(), out.pixels, img.pixels.size());
+    vqtex_image_free(&out);
+    return img;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::vector<int> targets{1000, 2000, 4000};
+    std::vector<int> sides{128, 112, 96, 80, 64, 48};
+    int speed = 4;
+    std::vector<std::string> files;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--targets" && i + 1 < argc) targets = parse_list(argv[++i]);
+        else if (a == "--sides" && i + 1 < argc) sides = parse_list(argv[++i]);
+        else if (a == "--speed" && i + 1 < argc) speed = std::atoi(argv[++i]);
+        else if (a == "--aom" && i + 1 < argc) {  // id=value,...
+            std::stringstream ss(argv[++i]);
+            std::string item;
+            while (std::getline(ss, item, ','))
+                g_controls.push_back({std::atoi(item.c_str()), std::atoi(item.c_str() + item.find('=') + 1)});
+        }
+        else files.push_back(a);
+    }
+    std::printf("texture,target,side,x,y,cq,bytes,h_compl,h_swd,h_coh,p_compl,p_swd,p_coh\n");
+    for (const std::string& f : files) {
+        const vqtex_tools::LoadedImage li = vqtex_tools::load_image(f);
+        Image whole(int(li.width), int(li.height), int(li.channels));
+        whole.pixels = li.pixels;
+        const int w = whole.width / 2, h = whole.height / 2;
+        const Image exemplar = crop(whole, 0, 0, w, h), held = crop(whole, w, h, w, h);
+        const std::string name = f.substr(f.find_last_of('/') + 1);
+        for (int side : sides) {
+            if (side > w || side > h) continue;
+            std::vector<std::pair<int, int>> origins{{0, 0}};
+            if (side < w) origins.push_back({(w - side) / 2, (h - side) / 2});
+            for (auto [x0, y0] : origins) {
+                const Image atlas = crop(exemplar, x0, y0, side, side);
+                std::map<int, std::vector<uint8_t>> coded;
+                for (int target : targets) {
+                    int cq = -1;
+                    const std::vector<uint8_t> file = fit(exemplar, atlas, std::size_t(target), speed, &cq, coded);
+                    if (file.empty()) continue;
+                    const Image out = decode(file, 2 * w, 2 * h, 1);
+                    const auto om = to_metrics(out), hm = to_metrics(held);
+                    const double hc = vqtex_metrics::completeness(hm, om);
+                    const double hs = vqtex_metrics::sliced_wasserstein(om, hm).mean;
+                    const Image proxy = decode(file, 2 * w, 2 * h, 2);
+                    const auto pm = to_metrics(proxy), em = to_metrics(exemplar);
+                    const double pc = vqtex_metrics::completeness(em, pm);
+                    const double ps = vqtex_metrics::sliced_wasserstein(pm, em).mean;
+                    const double ph = vqtex_metrics::coherence(pm, em);
+                    const double hh = vqtex_metrics::coherence(om, em);
+                    std::printf("%s,%d,%d,%d,%d,%d,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", name.c_str(), target, side,
+                                x0, y0, cq, file.size(), hc, hs, hh, pc, ps, ph);
+                    std::fflush(stdout);
+                }
+            }
+        }
+    }
+    return 0;
+}

@@ -1,0 +1,43 @@
+// atlas_choice.hpp - what a format v3 file stores (issue 17, docs/ATLAS.md
+// "Which atlas"): the part of the example that becomes the atlas and the
+// AV1 quality it is coded at, for a byte budget. The codeword count, the
+// paper's rate knob (section 6), is the atlas's area; the quality preset
+// names a budget per example pixel, and the finest AV1 level that fits it
+// is taken.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/image.hpp"
+
+namespace vqtex {
+
+struct AtlasChoiceOptions {
+    uint64_t budget = 0;            // bytes the whole file may take
+    int levels = 0;                 // the engine's stack depth; 0 = the deepest the atlas allows
+    bool example_tileable = false;  // the example wraps
+    uint64_t seed = 1;              // the file's default decoding seed
+};
+
+struct AtlasChoice {
+    std::vector<uint8_t> file;  // a whole version 3 file
+    int cq = 0;                 // libaom's level, 0..63
+    int levels = 0;
+    Image atlas;                // what was coded (before coding)
+    uint32_t attempts = 0;      // AV1 encodes tried
+};
+
+// The byte budget of a quality preset for an example of `pixels` pixels:
+// 1000 bytes per 128x128 at quality 0, doubling every 25 points (4 KB at
+// the default 50, 16 KB at 100), and never under 512 bytes, about the
+// smallest file of an 8x8 atlas.
+uint64_t atlas_budget_of_quality(int quality, uint64_t pixels);
+
+// The finest AV1 level of the whole example whose file fits the budget;
+// when even the coarsest does not, the largest top-left crop (12/16, 9/16...
+// of each side) that fits. Throws LIMIT_EXCEEDED when nothing fits. The
+// bytes do not depend on the caller's thread count (libaom runs on one).
+AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options);
+
+}  // namespace vqtex
