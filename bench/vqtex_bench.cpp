@@ -730,6 +730,11 @@ int main(int argc, char** argv) {
                 writer.add(r, floor);
                 return sheet_panels;
             }
+            // The decode as it is (exemplar-sized) is a same-protocol row
+            // only: r.protocol says "large" above when same is not run, for
+            // the status rows, and a large run then also scored the small
+            // decode under the peer's name, beside its tiled decode.
+            r.protocol = "same";
             score(r, peer.decoded);
             r.protocol = "large";
             score(r, tiled(peer.decoded, int(w) * 2, int(h) * 2));
