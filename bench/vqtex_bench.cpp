@@ -623,14 +623,16 @@ int main(int argc, char** argv) {
     app.add_flag("--no-peers", no_peers, "vqtex only");
     app.add_flag("--quick", quick, "two textures, one rate");
     app.add_flag("--no-times", no_times, "write 0 for times (for baselines reviewed as diffs)");
-    app.add_option("--sheets", sheets, "write contact sheets (exemplar | held-out | vqtex | peers) into this folder");
+    app.add_option("--sheets", sheets, "write contact sheets into this folder (same: exemplar | held-out | vqtex | peers; "
+                   "large: ... | each peer+synth | each peer+gmic; docs/METRICS.md)");
     app.add_option("--protocols", protocols, "protocols to run, comma-separated: same, large, synth")
         ->delimiter(',')
         ->check(CLI::IsMember({"same", "large", "synth"}))
         ->capture_default_str();
     app.add_option("--synth-size", synth_size, "synth protocol: output side (default: 2x the exemplar's width and height)")
         ->check(CLI::Range(8u, 16384u));
-    app.add_option("--synth-cache", synth_cache, "synth protocol: keep G'MIC's outputs here, by texture, size and seed");
+    app.add_option("--synth-cache", synth_cache, "keep G'MIC's outputs here (synth protocol, large protocol's gmic rows), "
+                   "by texture, size, seed and input pixels");
     CLI11_PARSE(app, argc, argv);
     if (quick) {
         limit = 2;
