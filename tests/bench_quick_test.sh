@@ -38,5 +38,21 @@ for t in textures:
             assert r["status"] in ("ok", "missing", "no-fit"), r
             if r["status"] == "ok":
                 assert int(r["bytes"]) <= int(find(t, "same", "vqtex")[0]["bytes"]), f"{codec} over budget: {r}"
+    # The large protocol's syntheses of each fitting peer's decode: vqtex's
+    # engine (scored) and G'MIC (scored, or 'missing': gmic is optional).
+    for r in rows:
+        if r["texture"] != t or r["protocol"] != "large" or r["status"] != "ok" \
+                or r["codec"] not in ("jpeg", "webp", "avif", "jxl"):
+            continue
+        for kind in ("+synth", "+gmic"):
+            got = find(t, "large", r["codec"] + kind)
+            assert len(got) == 1, f"{t} {r['codec']}{kind}: {len(got)} rows"
+            assert got[0]["status"] in (("ok",) if kind == "+synth" else ("ok", "missing")), got[0]
+            assert got[0]["bytes"] == r["bytes"], (got[0], r)
+    g = find(t, "large", "ceiling:gmic-from-exemplar")
+    assert len(g) == 1 and g[0]["status"] in ("ok", "missing"), g
 print(f"bench quick: {len(rows)} rows OK")
 PY
+# The large protocol's summary ends with issue 17's comparison.
+grep -q "^large protocol: vqtex against peer + synthesis" "$tmp/summary.txt"
+grep -Eq "^  (compl|SWD|coher) .*(PASS|FAIL|n/a)" "$tmp/summary.txt"
