@@ -33,6 +33,16 @@ constexpr Variant kVariants[] = {
     {"keys1level", 20, true, true, true, 1, 2, 0, 1},
 };
 
+// Seed sizes. The fuzzer's speed is that of the inputs it keeps, which
+// start as these: a v1/v2 file's trees grow with the example, and a v3
+// decoder's analysis (PCA of every level) with the atlas's pixels and
+// levels. 32x32 examples keep the 2-level pyramids the presets give 40x40
+// ones (24x24 fell to 1 level); a 16x16 atlas has 3 levels, a 12x12 one 2
+// (coherent_levels), so stacks deeper than 1 are still reached at a
+// fraction of a 32x32 atlas's cost (4 levels).
+constexpr uint32_t kSide = 32;
+constexpr uint32_t kAtlasSides[] = {16, 12};
+
 std::vector<uint8_t> crop(const vqtex_tools::LoadedImage& img, uint32_t side, uint32_t channels) {
     std::vector<uint8_t> out;
     for (uint32_t y = 0; y < side; ++y)
@@ -66,7 +76,7 @@ int main(int argc, char** argv) {
         // Channel counts cycle so that every count appears with every variant.
         for (size_t v = 0; v < std::size(kVariants); ++v) {
             const Variant& var = kVariants[v];
-            const uint32_t channels = uint32_t(1 + (i + v) % 4), side = 40;
+            const uint32_t channels = uint32_t(1 + (i + v) % 4), side = kSide;
             std::vector<uint8_t> pixels = crop(img, side, channels);
             vqtex_encode_params p;
             vqtex_encode_params_init(&p);
@@ -105,7 +115,7 @@ int main(int argc, char** argv) {
     // size, so the fuzzers reach the ATLS and SYNP sections and dav1d.
     for (size_t i = 0; i < std::size(images); ++i) {
         const vqtex_tools::LoadedImage img = vqtex_tools::load_image((corpus / images[i]).string());
-        const uint32_t channels = uint32_t(1 + i % 4), side = 32;
+        const uint32_t channels = uint32_t(1 + i % 4), side = kAtlasSides[i % std::size(kAtlasSides)];
         std::vector<uint8_t> pixels = crop(img, side, channels);
         vqtex_encode_params p;
         vqtex_encode_params_init(&p);

@@ -183,15 +183,4 @@ std::pair<int, int> torus_origin(int w, int h, Step&& step) {
     return {ox, oy};
 }
 
-// `image` rolled so that (ox, oy) becomes the origin.
-inline Image rolled(const Image& image, int ox, int oy) {
-    Image out(image.width, image.height, image.channels);
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x)
-            copy_pixel(out.at(x, y), image.at(Image::wrap(x + ox, image.width), Image::wrap(y + oy, image.height)),
-                       image.channels);
-    return out;
-}
-
-
 }  // namespace vqtex::coherent

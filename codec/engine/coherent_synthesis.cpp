@@ -251,9 +251,12 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
         if (l == 0 && options.polish_passes > 0) {
             // Seams between coherent copies are placed by colours at last:
             // the coherence of the output's own pixels is what a viewer sees.
+            // Every pixel is due again (other features); the flags of the
+            // level's passes are reused rather than a second set allocated
+            // beside them (a byte per output pixel).
             const LevelView polish{space, sets, 0, 1, space.pixels.data(), 1, dsp::kernels()};
-            coherent::Revisit revisit_colours(map.positions.size());
-            for (int pass = 0; pass < options.polish_passes; ++pass) correction_pass(polish, map, options, &revisit_colours);
+            std::fill(revisit.due.begin(), revisit.due.end(), uint8_t(1));
+            for (int pass = 0; pass < options.polish_passes; ++pass) correction_pass(polish, map, options, &revisit);
         }
     }
     return map;
@@ -280,20 +283,7 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     const auto t1 = Clock::now();
     CoherentResult r;
-    r.image = read_positions(example, synthesize_positions(space, sets, options), options.threads);
-    if (options.roll) {
-        // Where to cut the torus open is free (coherent::torus_origin).
-        const Image& out = r.image;
-        const auto step = [&](int x0, int y0, int x1, int y1) {
-            const uint8_t* a = out.at(x0, y0);
-            const uint8_t* b = out.at(x1, y1);
-            int d = 0;
-            for (int c = 0; c < out.channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
-            return d;
-        };
-        const std::pair<int, int> origin = coherent::torus_origin(out.width, out.height, step);
-        if (origin.first || origin.second) r.image = coherent::rolled(out, origin.first, origin.second);
-    }
+    r.image = read_positions(example, synthesize_positions(space, sets, options), options.roll, options.threads);
     for (const auto& l : space.levels) r.model_bytes += l.colours.byte_count() + l.features.size() * sizeof(int16_t);
     for (const auto& l : sets.levels) r.model_bytes += l.size() * sizeof(uint32_t);
     r.analyse_seconds = std::chrono::duration<double>(t1 - t0).count();
@@ -301,16 +291,58 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
     return r;
 }
 
-Image read_positions(const Image& example, const PositionMap& map, int threads) {
-    Image out(map.width, map.height, example.channels);
-    parallel_for(threads, std::size_t(map.height), 16, [&](std::size_t y0, std::size_t y1) {
-        for (int y = int(y0); y < int(y1); ++y)
-            for (int x = 0; x < map.width; ++x) {
-                const uint32_t p = map.positions[std::size_t(y) * map.width + x];
-                copy_pixel(out.at(x, y), example.at(position_x(p), position_y(p)), example.channels);
+Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads) {
+    const int w = map.width, h = map.height;
+    // Where to cut the torus open is free (coherent::torus_origin); the
+    // change between two output pixels is read through their positions, the
+    // same sums as on the pixels themselves.
+    std::pair<int, int> origin{0, 0};
+    if (roll) {
+        const auto step = [&](int x0, int y0, int x1, int y1) {
+            const uint32_t p0 = map.positions[std::size_t(y0) * w + x0], p1 = map.positions[std::size_t(y1) * w + x1];
+            const uint8_t* a = example.at(position_x(p0), position_y(p0));
+            const uint8_t* b = example.at(position_x(p1), position_y(p1));
+            int d = 0;
+            for (int c = 0; c < example.channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
+            return d;
+        };
+        origin = coherent::torus_origin(w, h, step);
+    }
+    const int ox = origin.first, oy = origin.second;
+    // Output pixel (x, y) is the example's pixel at the position of (x + ox,
+    // y + oy) on the torus, read through `index(i)` for map entry i.
+    const auto read = [&](auto&& index) {
+        Image out(w, h, example.channels);
+        parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
+            for (int y = int(y0); y < int(y1); ++y) {
+                const std::size_t row = std::size_t(Image::wrap(y + oy, h)) * std::size_t(w);
+                for (int x = 0; x < w; ++x)
+                    copy_pixel(out.at(x, y), example.pixels.data() +
+                                                 std::size_t(index(row + std::size_t(Image::wrap(x + ox, w)))) *
+                                                     std::size_t(example.channels),
+                               example.channels);
             }
+        });
+        return out;
+    };
+    const auto pixel_of = [&](uint32_t p) {
+        return uint32_t(position_y(p)) * uint32_t(example.width) + uint32_t(position_x(p));
+    };
+    if (example.pixel_count() > 65536)
+        return read([&](std::size_t i) { return pixel_of(map.positions[i]); });
+    // A small example (an atlas of up to 256x256, the common case): its
+    // pixel indices take 16 bits, so the positions are narrowed first and
+    // let go before the output is allocated. Peak: the positions and the
+    // narrow copy (6 bytes per output pixel), then the narrow copy and the
+    // output, instead of the positions and the output (4 + channels bytes,
+    // and the output's own copy in a cut torus besides).
+    std::vector<uint16_t> narrow(map.positions.size());
+    parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
+        for (std::size_t i = y0 * std::size_t(w); i < y1 * std::size_t(w); ++i)
+            narrow[i] = uint16_t(pixel_of(map.positions[i]));
     });
-    return out;
+    std::vector<uint32_t>().swap(map.positions);
+    return read([&](std::size_t i) { return narrow[i]; });
 }
 
 }  // namespace vqtex

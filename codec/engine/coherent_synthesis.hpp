@@ -57,12 +57,14 @@ inline int position_x(uint32_t p) { return int(p & 0xFFFF); }
 inline int position_y(uint32_t p) { return int(p >> 16); }
 
 // The finest level's positions, on the torus as synthesised (the cut that
-// `roll` asks for is made on the pixels, by synthesize_coherent).
+// `roll` asks for is made by read_positions).
 PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSets& sets,
                                  const CoherentOptions& options);
 
-// The output pixels: the example's pixels at the positions.
-Image read_positions(const Image& example, const PositionMap& map, int threads = 1);
+// The output pixels: the example's pixels at the positions, with the torus
+// cut open where the pixels change least when `roll` is set. Takes the map
+// so as to let it go before the output is allocated (peak memory).
+Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads = 1);
 
 // Stack depth for an example: the coarsest level's spacing is a quarter of
 // the example's smaller side, so its 5x5 neighbourhoods of 5x5 appearance

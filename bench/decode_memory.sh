@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# decode_memory.sh - peak memory of decoding a format v3 (atlas) file
+# against issue 17's budget: at most twice the output (W x H x channels
+# bytes) plus 16 MB.
+#
+#   bash bench/decode_memory.sh [BUILD_DIR] [SIDES] [THREADS]
+#
+# Defaults: build/, sides "512 2048 4096", threads "1 2". The file is made
+# from corpus/cellular_128.png (3 channels) with
+# `vqtex-encode --atlas --target-size 4000`. Two figures per size:
+#   library  - what one vqtex_decode call adds to the resident set, in a
+#              fresh process (bench_scaling --memory-child: its high-water
+#              mark, getrusage ru_maxrss, less the resident set just before
+#              the call), i.e. what the budget is about;
+#   command  - the whole peak of `vqtex-decode FILE OUT.png --size WxH`
+#              (/usr/bin/time %M), libraries, file reading and the PNG
+#              writer included, for reference.
+# Prints a Markdown table (MiB; 1 MiB = 1024 KiB).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${1:-$root/build}"
+sides="${2:-512 2048 4096}"
+threads_list="${3:-1 2}"
+for tool in "$build/bench/bench_scaling" "$build/vqtex-encode" "$build/vqtex-decode"; do
+    [[ -x "$tool" ]] || { echo "decode_memory: $tool is missing: build with benchmarks (scripts/build.sh)" >&2; exit 1; }
+done
+[[ -x /usr/bin/time ]] || { echo "decode_memory: /usr/bin/time is missing (apt-get install time)" >&2; exit 1; }
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+file="$tmp/cellular_atlas.vqt"
+"$build/vqtex-encode" "$root/corpus/cellular_128.png" "$file" --atlas --target-size 4000 --quiet
+channels=3
+mib() { awk -v k="$1" 'BEGIN {printf "%.1f", k / 1024}'; }
+
+echo "File: corpus/cellular_128.png --atlas --target-size 4000 ($(stat -c %s "$file") bytes, $channels channels)."
+echo
+echo "| output | threads | output MiB | budget MiB (2x + 16) | library peak MiB | within | command peak MiB |"
+echo "|---|---|---|---|---|---|---|"
+status=0
+for side in $sides; do
+    for threads in $threads_list; do
+        output_kib=$((side * side * channels / 1024))
+        budget_kib=$((2 * output_kib + 16 * 1024))
+        library_kib="$("$build/bench/bench_scaling" --memory-child "$file" --sizes "$side" -j "$threads")"
+        command_kib="$(/usr/bin/time -f '%M' "$build/vqtex-decode" "$file" "$tmp/out.png" --size "${side}x${side}" \
+            -j "$threads" --quiet 2>&1 >/dev/null | tail -1)"
+        within=yes
+        if ((library_kib > budget_kib)); then
+            within=NO
+            status=1
+        fi
+        echo "| ${side}x${side} | $threads | $(mib "$output_kib") | $(mib "$budget_kib") | $(mib "$library_kib") | $within |" \
+             "$(mib "$command_kib") |"
+    done
+done
+exit "$status"
