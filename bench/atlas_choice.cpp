@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "common/image.hpp"
+#include "epitome.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "format/atlas_coder.hpp"
 #include "format/atlas_encoder.hpp"
@@ -53,9 +54,14 @@ vqtex_metrics::Image to_metrics(const Image& img) {
 
 std::vector<std::pair<int, int>> g_controls;
 
+bool g_tileable = false;  // the atlas being coded wraps (an epitome)
+vqtex::AtlasSynthesisParams g_params;  // the engine's, from --passes etc.
+bool g_chroma444 = true;
+
 std::vector<uint8_t> atlas_file(const Image& example, const Image& atlas, int cq, int speed) {
     vqtex::AtlasEncodeOptions o;
     o.controls = g_controls;
+    o.chroma444 = g_chroma444;
     o.cq_level = cq;
     o.speed = speed;
     const std::vector<uint8_t> bits = vqtex::encode_atlas(atlas, o);
@@ -65,7 +71,9 @@ std::vector<uint8_t> atlas_file(const Image& example, const Image& atlas, int cq
     h.channels = uint8_t(example.channels);
     h.levels = uint8_t(vqtex::coherent_levels(atlas.width, atlas.height));
     h.seed = 1;
-    return vqtex::encode_atlas_file(h, atlas.width, atlas.height, bits, vqtex::AtlasSynthesisParams{});
+    vqtex::AtlasSynthesisParams sp = g_params;
+    sp.example_tileable = g_tileable;
+    return vqtex::encode_atlas_file(h, atlas.width, atlas.height, bits, sp);
 }
 
 // The finest level whose file fits, or an empty file. `coded` keeps the
@@ -119,6 +127,10 @@ Image decode(const std::vector<uint8_t>& file, int w, int h, uint64_t seed) {
 int main(int argc, char** argv) {
     std::vector<int> targets{1000, 2000, 4000};
     std::vector<int> sides{128, 112, 96, 80, 64, 48};
+    std::vector<int> epitomes;
+    vqtex::EpitomeOptions eo;
+    eo.threads = 2;
+    std::string dump;
     int speed = 4;
     std::vector<std::string> files;
     for (int i = 1; i < argc; ++i) {
@@ -126,6 +138,19 @@ int main(int argc, char** argv) {
         if (a == "--targets" && i + 1 < argc) targets = parse_list(argv[++i]);
         else if (a == "--sides" && i + 1 < argc) sides = parse_list(argv[++i]);
         else if (a == "--speed" && i + 1 < argc) speed = std::atoi(argv[++i]);
+        else if (a == "--epitomes" && i + 1 < argc) epitomes = parse_list(argv[++i]);
+        else if (a == "--patch" && i + 1 < argc) eo.patch = std::atoi(argv[++i]);
+        else if (a == "--stride" && i + 1 < argc) eo.stride = std::atoi(argv[++i]);
+        else if (a == "--iterations" && i + 1 < argc) eo.iterations = std::atoi(argv[++i]);
+        else if (a == "--dump" && i + 1 < argc) dump = argv[++i];
+        else if (a == "--sharp") eo.sharp = true;
+        else if (a == "--420") g_chroma444 = false;
+        else if (a == "--passes" && i + 1 < argc) g_params.passes = std::atoi(argv[++i]);
+        else if (a == "--coarse-passes" && i + 1 < argc) g_params.coarse_passes = std::atoi(argv[++i]);
+        else if (a == "--polish" && i + 1 < argc) g_params.polish_passes = std::atoi(argv[++i]);
+        else if (a == "--coherence" && i + 1 < argc) g_params.coherence = std::atoi(argv[++i]);
+        else if (a == "--bias" && i + 1 < argc) g_params.coherence_bias = std::atoi(argv[++i]);
+        else if (a == "--jitter" && i + 1 < argc) g_params.jitter = std::atoi(argv[++i]);
         else if (a == "--aom" && i + 1 < argc) {  // id=value,...
             std::stringstream ss(argv[++i]);
             std::string item;
@@ -142,31 +167,45 @@ int main(int argc, char** argv) {
         const int w = whole.width / 2, h = whole.height / 2;
         const Image exemplar = crop(whole, 0, 0, w, h), held = crop(whole, w, h, w, h);
         const std::string name = f.substr(f.find_last_of('/') + 1);
+        struct Candidate {
+            int side, x, y;  // x = -1: an epitome
+            Image atlas;
+        };
+        std::vector<Candidate> candidates;
         for (int side : sides) {
             if (side > w || side > h) continue;
-            std::vector<std::pair<int, int>> origins{{0, 0}};
-            if (side < w) origins.push_back({(w - side) / 2, (h - side) / 2});
-            for (auto [x0, y0] : origins) {
-                const Image atlas = crop(exemplar, x0, y0, side, side);
-                std::map<int, std::vector<uint8_t>> coded;
-                for (int target : targets) {
-                    int cq = -1;
-                    const std::vector<uint8_t> file = fit(exemplar, atlas, std::size_t(target), speed, &cq, coded);
-                    if (file.empty()) continue;
-                    const Image out = decode(file, 2 * w, 2 * h, 1);
-                    const auto om = to_metrics(out), hm = to_metrics(held);
-                    const double hc = vqtex_metrics::completeness(hm, om);
-                    const double hs = vqtex_metrics::sliced_wasserstein(om, hm).mean;
-                    const Image proxy = decode(file, 2 * w, 2 * h, 2);
-                    const auto pm = to_metrics(proxy), em = to_metrics(exemplar);
-                    const double pc = vqtex_metrics::completeness(em, pm);
-                    const double ps = vqtex_metrics::sliced_wasserstein(pm, em).mean;
-                    const double ph = vqtex_metrics::coherence(pm, em);
-                    const double hh = vqtex_metrics::coherence(om, em);
-                    std::printf("%s,%d,%d,%d,%d,%d,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", name.c_str(), target, side,
-                                x0, y0, cq, file.size(), hc, hs, hh, pc, ps, ph);
-                    std::fflush(stdout);
-                }
+            candidates.push_back({side, 0, 0, crop(exemplar, 0, 0, side, side)});
+            if (side < w)
+                candidates.push_back({side, (w - side) / 2, (h - side) / 2,
+                                      crop(exemplar, (w - side) / 2, (h - side) / 2, side, side)});
+        }
+        for (int side : epitomes) {
+            eo.width = eo.height = side;
+            candidates.push_back({side, -1, -1, vqtex::learn_epitome(exemplar, eo)});
+            if (!dump.empty())
+                vqtex_tools::save_image(dump + "/" + name + "_epitome" + std::to_string(side) + ".png", uint32_t(side),
+                                        uint32_t(side), uint32_t(exemplar.channels), candidates.back().atlas.pixels.data());
+        }
+        for (const Candidate& cand : candidates) {
+            g_tileable = cand.x < 0;
+            std::map<int, std::vector<uint8_t>> coded;
+            for (int target : targets) {
+                int cq = -1;
+                const std::vector<uint8_t> file = fit(exemplar, cand.atlas, std::size_t(target), speed, &cq, coded);
+                if (file.empty()) continue;
+                const Image out = decode(file, 2 * w, 2 * h, 1);
+                const auto om = to_metrics(out), hm = to_metrics(held);
+                const double hc = vqtex_metrics::completeness(hm, om);
+                const double hs = vqtex_metrics::sliced_wasserstein(om, hm).mean;
+                const Image proxy = decode(file, 2 * w, 2 * h, 2);
+                const auto pm = to_metrics(proxy), em = to_metrics(exemplar);
+                const double pc = vqtex_metrics::completeness(em, pm);
+                const double ps = vqtex_metrics::sliced_wasserstein(pm, em).mean;
+                const double ph = vqtex_metrics::coherence(pm, em);
+                const double hh = vqtex_metrics::coherence(om, em);
+                std::printf("%s,%d,%d,%d,%d,%d,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", name.c_str(), target, cand.side,
+                            cand.x, cand.y, cq, file.size(), hc, hs, hh, pc, ps, ph);
+                std::fflush(stdout);
             }
         }
     }

@@ -4,16 +4,20 @@
 #include "analysis/atlas_choice.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
 #include <string>
 
 #include "common/error.hpp"
+#include "common/parallel.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "format/atlas_coder.hpp"
 #include "format/atlas_encoder.hpp"
 #include "format/atlas_file.hpp"
+#include "metrics.hpp"
+#include "vqtex/vqtex.h"
 
 namespace vqtex {
 
@@ -100,6 +104,48 @@ private:
     std::map<int, std::vector<uint8_t>> files_;
 };
 
+// A crop of `side` x `side` pixels at (x, y).
+Image square_crop(const Image& example, int x, int y, int side) {
+    Image crop(side, side, example.channels);
+    for (int row = 0; row < side; ++row)
+        std::memcpy(crop.at(0, row), example.at(x, y + row), std::size_t(side) * std::size_t(example.channels));
+    return crop;
+}
+
+vqtex_metrics::Image as_metrics_image(const Image& img) { return {img.width, img.height, img.channels, img.pixels}; }
+
+// What the encoder can measure of a file: the texture the decoder makes
+// from it (2x2 the example, a seed of its own), against the example.
+struct ProxyScores {
+    double completeness = 0, swd = 0, coherence = 0;
+};
+
+ProxyScores proxy_scores(const Image& example, const std::vector<uint8_t>& file) {
+    vqtex_decode_params p;
+    vqtex_decode_params_init(&p);
+    p.width = uint32_t(2 * example.width);
+    p.height = uint32_t(2 * example.height);
+    p.seed = 2;
+    p.threads = 1;  // the candidates run on the threads
+    vqtex_image out{};
+    vqtex_error err{};
+    if (vqtex_decode(&p, file.data(), file.size(), &out, &err) != VQTEX_OK)
+        fail(VQTEX_ERROR_INTERNAL, std::string("a candidate atlas did not decode: ") + err.detail);
+    vqtex_metrics::Image texture{int(out.width), int(out.height), int(out.channels),
+                                 std::vector<uint8_t>(out.pixels, out.pixels + std::size_t(out.width) * out.height * out.channels)};
+    vqtex_image_free(&out);
+    const vqtex_metrics::Image reference = as_metrics_image(example);
+    ProxyScores s;
+    s.completeness = vqtex_metrics::completeness(reference, texture);
+    s.swd = vqtex_metrics::sliced_wasserstein(texture, reference).mean;
+    s.coherence = vqtex_metrics::coherence(texture, reference);
+    return s;
+}
+
+// Budgets up to this many bytes per example pixel (about 2 KB for
+// 128x128) also try crops: above it, no crop was ever chosen (docs/ATLAS.md).
+constexpr double kCropBytesPerPixel = 0.13;
+
 }  // namespace
 
 AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options) {
@@ -107,7 +153,62 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
         fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "an atlas needs an example of at least " + std::to_string(kMinAtlasSide) +
                                               "x" + std::to_string(kMinAtlasSide) + " pixels");
     uint32_t attempts = 0;
-    for (int scale = 16; scale >= 1; scale = scale * 3 / 4) {
+    AtlasChoice whole;
+    {
+        LevelSearch search(example, example, options, &attempts);
+        const int cq = search.finest_fitting();
+        if (cq >= 0) whole = search.choice(cq);
+    }
+    if (!whole.file.empty()) {
+        if (double(options.budget) > kCropBytesPerPixel * double(example.pixel_count()) ||
+            std::min(example.width, example.height) < 4 * kMinAtlasSide)
+            return whole;
+        // A smaller part of the example coded more finely is sharper but
+        // has less variety (docs/ATLAS.md "Which atlas"). The encoder keeps
+        // the crops whose texture finds the example's windows as well as the
+        // whole example's does (completeness), and among them takes the one
+        // whose texture looks most like the example (SWD and coherence, each
+        // relative to the whole example's).
+        const int side = std::min(example.width, example.height);
+        std::vector<std::array<int, 3>> regions;  // x, y, side
+        for (int s : {side * 3 / 4, side / 2}) {
+            regions.push_back({0, 0, s});
+            regions.push_back({(example.width - s) / 2, (example.height - s) / 2, s});
+        }
+        std::vector<AtlasChoice> crops(regions.size());
+        std::vector<ProxyScores> scores(regions.size() + 1);
+        std::vector<uint32_t> crop_attempts(regions.size(), 0);
+        parallel_for(options.threads, regions.size() + 1, 1, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i) {
+                if (i == regions.size()) {
+                    scores[i] = proxy_scores(example, whole.file);
+                    continue;
+                }
+                const auto [x, y, s] = regions[i];
+                LevelSearch search(example, square_crop(example, x, y, s), options, &crop_attempts[i]);
+                const int cq = search.finest_fitting();
+                if (cq < 0) continue;
+                crops[i] = search.choice(cq);
+                scores[i] = proxy_scores(example, crops[i].file);
+            }
+        });
+        const ProxyScores& w = scores.back();
+        AtlasChoice* best = &whole;
+        double best_score = 2.0;  // the whole example's: 1 + 1
+        for (std::size_t i = 0; i < regions.size(); ++i) {
+            attempts += crop_attempts[i];
+            if (crops[i].file.empty() || scores[i].completeness > w.completeness) continue;
+            const double score = scores[i].swd / std::max(w.swd, 1e-9) + scores[i].coherence / std::max(w.coherence, 1e-9);
+            if (score < best_score) {
+                best_score = score;
+                best = &crops[i];
+            }
+        }
+        AtlasChoice chosen = std::move(*best);
+        chosen.attempts = attempts;
+        return chosen;
+    }
+    for (int scale = 12; scale >= 1; scale = scale * 3 / 4) {
         Image atlas = top_left_crop(example, scale);
         const bool smallest = (atlas.width == kMinAtlasSide && atlas.height == kMinAtlasSide) || scale == 1;
         LevelSearch search(example, std::move(atlas), options, &attempts);

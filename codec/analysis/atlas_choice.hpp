@@ -18,6 +18,7 @@ struct AtlasChoiceOptions {
     int levels = 0;                 // the engine's stack depth; 0 = the deepest the atlas allows
     bool example_tileable = false;  // the example wraps
     uint64_t seed = 1;              // the file's default decoding seed
+    int threads = 1;                // the file does not depend on it
 };
 
 struct AtlasChoice {
@@ -34,10 +35,15 @@ struct AtlasChoice {
 // smallest file of an 8x8 atlas.
 uint64_t atlas_budget_of_quality(int quality, uint64_t pixels);
 
-// The finest AV1 level of the whole example whose file fits the budget;
-// when even the coarsest does not, the largest top-left crop (12/16, 9/16...
-// of each side) that fits. Throws LIMIT_EXCEEDED when nothing fits. The
-// bytes do not depend on the caller's thread count (libaom runs on one).
+// The finest AV1 level of the whole example whose file fits the budget.
+// At budgets of at most 0.13 bytes per example pixel, crops of 3/4 and 1/2
+// of the side (top-left and centre), each at its finest fitting level,
+// compete with it: each file is decoded and its texture scored against the
+// example with metrics/ (docs/ATLAS.md "Which atlas" gives the rule). When
+// even the coarsest level of the whole example does not fit, the largest
+// top-left crop (12/16, 9/16... of each side) that fits. Throws
+// LIMIT_EXCEEDED when nothing fits. The bytes do not depend on the thread
+// count (libaom runs on one thread; the metrics are seeded).
 AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options);
 
 }  // namespace vqtex

@@ -130,6 +130,7 @@ vqtex_status vqtex_encode(const vqtex_encode_params* params, const vqtex_image* 
             o.levels = int(params->model.levels);
             o.example_tileable = params->model.example_tileable != 0;
             o.seed = params->seed;
+            o.threads = threads;
             const AtlasChoice r = choose_atlas(ex, o);
             if (progress && !progress(1, 1)) fail(VQTEX_ERROR_CANCELLED, "encoding cancelled by the progress callback");
             copy_out(r.file, data, size);
