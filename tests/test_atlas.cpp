@@ -219,6 +219,29 @@ TEST(AtlasFile, EncodingIsDeterministicForAnyThreadCount) {
     EXPECT_EQ(encode(ex, p), a);
 }
 
+// The encoder's atlas choice (docs/ATLAS.md "Which atlas"): a texture
+// whose 16-pixel period any crop holds whole gains nothing from the whole
+// example's area, so at a low budget a crop, coded more finely, is chosen;
+// a budget above 0.13 bytes per pixel codes the whole example.
+TEST(AtlasFile, LowBudgetsChooseACropOnlyWhenItKeepsTheVariety) {
+    vqtex::Image periodic(128, 128, 3);
+    uint64_t state = 0x9e3779b97f4a7c15ull;
+    auto next = [&state] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return uint8_t(state >> 56);
+    };
+    std::vector<uint8_t> tile(16 * 16 * 3);
+    for (uint8_t& v : tile) v = next();
+    for (int y = 0; y < 128; ++y)
+        for (int x = 0; x < 128; ++x)
+            for (int c = 0; c < 3; ++c) periodic.at(x, y)[c] = tile[std::size_t(((y % 16) * 16 + x % 16) * 3 + c)];
+    vqtex_encode_stats low{}, high{};
+    encode(periodic, atlas_params(1500), &low);
+    encode(periodic, atlas_params(8000), &high);
+    EXPECT_LT(low.codewords[0], 128u * 128u) << "a crop holds the whole period";
+    EXPECT_EQ(high.codewords[0], 128u * 128u);
+}
+
 TEST(AtlasFile, TargetSizeIsMetFromOneKilobyteUp) {
     const vqtex::Image ex = load_corpus("bricks_128.png");
     std::size_t previous = 0;
