@@ -212,8 +212,9 @@ typedef enum vqtex_codebook {
      * Animations (vqtex_encode_volume) always store trees (format 2). */
     VQTEX_CODEBOOK_TREES = 0,
     /* An atlas: the example (or a crop of it) as an AV1 image, format
-     * version 3, decoded by the coherent engine, which keeps the example's
-     * structure (default for still textures). Uses quality (a byte budget:
+     * version 4 (version 3 files still decode), decoded by the coherent
+     * engine, which keeps the example's structure (default for still
+     * textures). Uses quality (a byte budget:
      * 4 KB per 128x128 pixels at 50, doubling every 25 points) or
      * target_size, seed, model.levels, model.example_tileable and threads;
      * the other model and precision fields do not apply [--atlas]. */
