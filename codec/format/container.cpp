@@ -88,8 +88,8 @@ uint16_t read_format_version(const uint8_t* data, std::size_t size) {
 FileHeader read_header(const uint8_t* data, std::size_t size) {
     if (read_format_version(data, size) == kCompactAtlasFormatVersion)
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
-             "file is a compact atlas texture (format version 4), which has no section table: decode it with "
-             "vqtex_decode (vqtex-decode without --frames)");
+             "file holds a still texture (an atlas with the compact header of format version 4), not an "
+             "animation: decode it with vqtex_decode (vqtex-decode without --frames)");
     if (size < kHeaderSize + kTrailerSize)
         fail(VQTEX_ERROR_TRUNCATED, "file ends inside the header (" + std::to_string(size) + " bytes)");
 
