@@ -103,7 +103,8 @@ std::vector<uint8_t> varints(std::initializer_list<uint64_t> values) {
 // A v4 file from its packed byte, the bytes of its fields and what follows
 // them (the bitstream), with a correct checksum: what a hostile writer can
 // make (docs/FORMAT.md 8.7).
-std::vector<uint8_t> compact_file(uint8_t packed, const std::vector<uint8_t>& fields, const std::vector<uint8_t>& tail) {
+std::vector<uint8_t> compact_file(uint8_t packed, const std::vector<uint8_t>& fields,
+                                  const std::vector<uint8_t>& tail) {
     vqtex::ByteWriter w;
     w.bytes(vqtex::kMagic, sizeof vqtex::kMagic);
     w.u16(4);
@@ -401,7 +402,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
     const Case cases[] = {
         {3, 64, 64, 64, 64, 1, false, 18},  // 10 + packed + 64 + 64 + seed + CRC
         {1, 16, 16, 16, 16, 0, false, 18},
-        {2, 12, 16, 64, 64, 300, true, 29},   // + 64, 64; seed 2 bytes; parameters 8 (bias 300 takes 2)
+        {2, 12, 16, 64, 64, 300, true, 29},               // + 64, 64; seed 2 bytes; parameters 8 (bias 300 takes 2)
         {4, 40, 24, 64, 64, (1ull << 40) + 3, true, 33},  // seed of 41 bits: 6 bytes
     };
     const vqtex::Image rgba = load_corpus("leaves_rgba_64.png");
@@ -427,8 +428,8 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         }
         const std::vector<uint8_t> v4 = vqtex::encode_atlas_file(h, c.aw, c.ah, bits, sp);
         const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(h, c.aw, c.ah, bits, sp);
-        const std::string what = std::to_string(c.channels) + " channels, " + std::to_string(c.aw) + "x" +
-                                 std::to_string(c.ah) + " atlas";
+        const std::string what =
+            std::to_string(c.channels) + " channels, " + std::to_string(c.aw) + "x" + std::to_string(c.ah) + " atlas";
         EXPECT_EQ(v4.size(), bits.size() + c.overhead) << what;
         EXPECT_EQ(bitstream_of(v4), bits) << what;
         const vqtex::AtlasFile f4 = vqtex::decode_atlas_file(v4.data(), v4.size(), 1u << 30);
@@ -450,7 +451,8 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         EXPECT_EQ(f4.params.jitter, sp.jitter) << what;
         EXPECT_EQ(f4.parameter_bytes, c.parameters ? 8u : 0u) << what;
         EXPECT_EQ(f4.atlas.pixels, f3.atlas.pixels) << what;
-        EXPECT_EQ(f4.atlas.pixels, vqtex::decode_atlas(bits.data(), bits.size(), c.aw, c.ah, c.channels, "atlas").pixels);
+        EXPECT_EQ(f4.atlas.pixels,
+                  vqtex::decode_atlas(bits.data(), bits.size(), c.aw, c.ah, c.channels, "atlas").pixels);
         for (const vqtex_decode_params& p : {decode_params(0, 0), decode_params(40, 30, 9)}) {
             const vqtex::Image a = decode(v4, p), b = decode(v3, p);
             EXPECT_EQ(a.width, p.width ? int(p.width) : int(c.ew)) << what;
@@ -482,9 +484,10 @@ TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
             bad[i] ^= uint8_t(1 << bit);
             vqtex_status st = VQTEX_OK;
             decode(bad, p, &st);
-            const vqtex_status expected = i < 8    ? VQTEX_ERROR_BAD_MAGIC
-                                          : i < 10 ? VQTEX_ERROR_UNSUPPORTED_VERSION  // 4 flips to 0, 5, 6, 12... never 1-3
-                                                   : VQTEX_ERROR_CHECKSUM;
+            const vqtex_status expected = i < 8 ? VQTEX_ERROR_BAD_MAGIC
+                                          : i < 10
+                                              ? VQTEX_ERROR_UNSUPPORTED_VERSION  // 4 flips to 0, 5, 6, 12... never 1-3
+                                              : VQTEX_ERROR_CHECKSUM;
             EXPECT_EQ(st, expected) << "byte " << i << " bit " << bit;
         }
 }
@@ -530,9 +533,8 @@ TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
     EXPECT_EQ(status_of(compact_file(packed | 1 << 7, varints({128, 128, 1}), bits)), VQTEX_OK) << "a wrapping atlas";
     // Seeds: all 64 bits, in at most 10 minimal bytes.
     EXPECT_EQ(status_of(compact_file(packed, varints({128, 128, ~0ull}), bits)), VQTEX_OK);
-    EXPECT_EQ(status_of(compact_file(packed, {0x80, 0x01, 0x80, 0x01, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF,
-                                              0x02},
-                                     bits)),
+    EXPECT_EQ(status_of(compact_file(
+                  packed, {0x80, 0x01, 0x80, 0x01, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x02}, bits)),
               corrupt)
         << "a seed above 64 bits";
     // Every byte of the bitstream changed, checksum repaired: dav1d sees it

@@ -15,12 +15,12 @@
 #include <vector>
 
 #include "alloc_counter.hpp"
+#include "codec_support.hpp"
 #include "common/bitstream.hpp"
 #include "common/checksum.hpp"
-#include "codec_support.hpp"
+#include "engine/neighborhood.hpp"
 #include "format/atlas_file.hpp"
 #include "format/container.hpp"
-#include "engine/neighborhood.hpp"
 #include "test_support.hpp"
 #include "tsvq/tsvq_tree.hpp"
 

@@ -47,8 +47,7 @@ FileReport info_one(const std::string& input) {
     const char* tree_meaning[] = {"level parameters", "noise histograms", "tree topology + leaf weights",
                                   "leaf codewords", "leaf entries (pixels + keys)"};
     const char* atlas_kinds[] = {"ATLS", "SYNP"};
-    const char* atlas_meaning[] = {compact ? "AV1 bitstream (the atlas)" : "atlas (AV1 image)",
-                                   "synthesis parameters"};
+    const char* atlas_meaning[] = {compact ? "AV1 bitstream (the atlas)" : "atlas (AV1 image)", "synthesis parameters"};
     const char** kinds = atlas ? atlas_kinds : tree_kinds;
     const char** meaning = atlas ? atlas_meaning : tree_meaning;
     const int kind_count = atlas ? 2 : 5;
@@ -104,8 +103,7 @@ FileReport info_one(const std::string& input) {
         add(t, "atlas     %ux%u, coded as AV1%s\n", info.atlas_width, info.atlas_height,
             compact ? "; compact header (format 4)" : "");
         add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels\n", info.levels, info.codewords[0]);
-    }
-    else
+    } else
         add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
             info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",
             info.precision, info.pixel_precision);

@@ -21,7 +21,7 @@ struct AtlasChoiceOptions {
 };
 
 struct AtlasChoice {
-    std::vector<uint8_t> file;  // a whole file, format version 4
+    std::vector<uint8_t> file;  // a whole version 3 file
     int cq = 0;                 // libaom's level, 0..63
     int levels = 0;
     Image atlas;                // what was coded (before coding)

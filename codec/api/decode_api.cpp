@@ -54,8 +54,8 @@ std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint
     const AtlasFile f = decode_atlas_file(data, size, limit);
     const std::pair<uint32_t, uint32_t> size_out = output_size(p, f.header.exemplar_width, f.header.exemplar_height);
     const uint32_t w = size_out.first, h = size_out.second;
-    check_output_memory(f.input_bytes + atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels, f.header.levels,
-                                                       f.params.coherence, w, h),
+    check_output_memory(f.input_bytes + atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels,
+                                                            f.header.levels, f.params.coherence, w, h),
                         limit, "a " + std::to_string(w) + "x" + std::to_string(h) + " output");
     CoherentOptions opt;
     opt.width = int(w);

@@ -84,17 +84,18 @@ void check_atlas(int aw, int ah, int levels, int channels, std::size_t input_byt
                                       std::to_string(coherent_levels(aw, ah)));
     const uint64_t atlas_memory = uint64_t(aw) * uint64_t(ah) * (uint64_t(channels) + 8) + kDav1dFixedBytes;
     if (atlas_memory + input_bytes > memory_limit)
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "decoding the " + std::to_string(aw) + "x" + std::to_string(ah) +
-                                             " atlas needs about " + std::to_string((atlas_memory + input_bytes) >> 20) +
-                                             " MiB, above the memory limit of " + std::to_string(memory_limit >> 20) +
-                                             " MiB: raise memory_limit (--memory-limit)");
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED,
+             "decoding the " + std::to_string(aw) + "x" + std::to_string(ah) + " atlas needs about " +
+                 std::to_string((atlas_memory + input_bytes) >> 20) + " MiB, above the memory limit of " +
+                 std::to_string(memory_limit >> 20) + " MiB: raise memory_limit (--memory-limit)");
 }
 
 // Version 4: the CRC first (the file has no sizes to walk), then the fields
 // in their order, each checked as it is read.
 AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     if (size < kCompactMinSize)
-        fail(VQTEX_ERROR_TRUNCATED, "file is " + std::to_string(size) + " bytes; a format version 4 file has at least " +
+        fail(VQTEX_ERROR_TRUNCATED, "file is " + std::to_string(size) +
+                                        " bytes; a format version 4 file has at least " +
                                         std::to_string(kCompactMinSize));
     const std::size_t end = size - kTrailerSize;
     const uint32_t stored_crc = uint32_t(data[end]) | uint32_t(data[end + 1]) << 8 | uint32_t(data[end + 2]) << 16 |
@@ -219,8 +220,8 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
         atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide || atlas_width > kMaxAtlasSide ||
         atlas_height > kMaxAtlasSide || atlas_bitstream.empty())
         fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 4 can hold");
-    const bool exemplar_size = header.exemplar_width != uint32_t(atlas_width) ||
-                               header.exemplar_height != uint32_t(atlas_height);
+    const bool exemplar_size =
+        header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
     const bool parameters = !are_v4_defaults(params);
     ByteWriter w;
     w.bytes(kMagic, sizeof kMagic);
