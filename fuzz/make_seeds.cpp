@@ -1,8 +1,9 @@
 // make_seeds.cpp - writes the fuzzers' seed corpora from the project's own
 // corpus/ images, with the public API: valid .vqt files covering every
 // format feature (keyed and keyless entries, noise and parent init, seam
-// closing on and off, 1 to 4 channels, every precision; format v3 atlas
-// files), and encoder inputs
+// closing on and off, 1 to 4 channels, every precision; format v4 atlas
+// files as the encoder writes them, the same as v3, and v4 files with a
+// stored exemplar size and stored parameters), and encoder inputs
 // in fuzz_encode.cpp's layout. Small crops keep the seeds small, which is
 // what mutation works best on. Usage: make_seeds CORPUS_DIR OUT_DIR
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "format/atlas_file.hpp"
 #include "image_io.hpp"
 #include "vqtex/vqtex.h"
 
@@ -111,8 +113,11 @@ int main(int argc, char** argv) {
             files += 2;
         }
     }
-    // Format v3 (atlas) files: each channel count, a preset and a target
-    // size, so the fuzzers reach the ATLS and SYNP sections and dav1d.
+    // Atlas files: each channel count, a preset and a target size, as the
+    // encoder writes them (v4) and as v3 (ATLS and SYNP sections), so the
+    // fuzzers reach both readers and dav1d; every other one also as a v4
+    // file with the packed byte's optional fields, an exemplar size that
+    // is not the atlas's and parameters that are not the defaults.
     for (size_t i = 0; i < std::size(images); ++i) {
         const vqtex_tools::LoadedImage img = vqtex_tools::load_image((corpus / images[i]).string());
         const uint32_t channels = uint32_t(1 + i % 4), side = kAtlasSides[i % std::size(kAtlasSides)];
@@ -130,8 +135,32 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "make_seeds: %s atlas: %s\n", images[i], err.detail);
             return 1;
         }
-        write(out / "decode" / (fs::path(images[i]).stem().string() + "_atlas_c" + std::to_string(channels) + ".vqt"),
-              data, size);
+        const std::string name = fs::path(images[i]).stem().string() + "_atlas_c" + std::to_string(channels);
+        write(out / "decode" / (name + ".vqt"), data, size);
+        try {
+            const vqtex::AtlasFile f = vqtex::decode_atlas_file(data, size, 32u << 20);
+            const std::vector<uint8_t> bits(data + f.bitstream_offset, data + f.bitstream_offset + f.atlas_bytes);
+            const std::vector<uint8_t> v3 =
+                vqtex::encode_atlas_file_v3(f.header, f.atlas.width, f.atlas.height, bits, f.params);
+            write(out / "decode" / (name + "_v3.vqt"), v3.data(), v3.size());
+            ++files;
+            if (i % 2 == 0) {
+                vqtex::FileHeader h = f.header;
+                h.exemplar_width += 5;
+                h.seed = 1000;
+                vqtex::AtlasSynthesisParams sp;
+                sp.example_tileable = true;
+                sp.passes = 3;
+                sp.coherence = 2;
+                sp.jitter = 30;
+                const std::vector<uint8_t> v4 = vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, sp);
+                write(out / "decode" / (name + "_fields.vqt"), v4.data(), v4.size());
+                ++files;
+            }
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "make_seeds: %s atlas: %s\n", images[i], e.what());
+            return 1;
+        }
         vqtex_free(data);
         ++files;
     }

@@ -1,7 +1,8 @@
-// test_atlas.cpp - format v3 (issue 17; docs/FORMAT.md section 8): the atlas
-// coder (AV1 raw OBUs, libaom and dav1d) on its own, then whole files: round
-// trip, rate control, bit-exact decoding across thread counts, the decoder
-// running the same engine as vqtex_synthesize, hostile files, the golden file.
+// test_atlas.cpp - formats v3 and v4 (issue 17; docs/FORMAT.md section 8):
+// the atlas coder (AV1 raw OBUs, libaom and dav1d) on its own, then whole
+// files: round trip, rate control, bit-exact decoding across thread counts,
+// the decoder running the same engine as vqtex_synthesize, v4 decoding as
+// v3 from the same bitstream, hostile files, the golden files.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "common/bitstream.hpp"
 #include "common/checksum.hpp"
 #include "common/error.hpp"
+#include "engine/coherent_synthesis.hpp"
 #include "format/atlas_coder.hpp"
 #include "format/atlas_encoder.hpp"
 #include "format/atlas_file.hpp"
@@ -75,6 +77,42 @@ std::size_t atlas_payload_offset(const std::vector<uint8_t>& file) {
         }
     ADD_FAILURE() << "no ATLS section";
     return 0;
+}
+
+// The atlas bitstream of a v4 file, and the same content as a v3 file
+// (the encoder writes v4; v3 must go on decoding).
+std::vector<uint8_t> bitstream_of(const std::vector<uint8_t>& v4) {
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(v4.data(), v4.size(), 1u << 30);
+    EXPECT_EQ(f.header.version, 4);
+    return std::vector<uint8_t>(v4.begin() + std::ptrdiff_t(f.bitstream_offset),
+                                v4.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
+}
+
+std::vector<uint8_t> as_v3(const std::vector<uint8_t>& v4) {
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(v4.data(), v4.size(), 1u << 30);
+    return vqtex::encode_atlas_file_v3(f.header, f.atlas.width, f.atlas.height, bitstream_of(v4), f.params);
+}
+
+// Varints as the files write them.
+std::vector<uint8_t> varints(std::initializer_list<uint64_t> values) {
+    vqtex::ByteWriter w;
+    for (uint64_t v : values) w.varint(v);
+    return std::move(w.data());
+}
+
+// A v4 file from its packed byte, the bytes of its fields and what follows
+// them (the bitstream), with a correct checksum: what a hostile writer can
+// make (docs/FORMAT.md 8.7).
+std::vector<uint8_t> compact_file(uint8_t packed, const std::vector<uint8_t>& fields,
+                                  const std::vector<uint8_t>& tail) {
+    vqtex::ByteWriter w;
+    w.bytes(vqtex::kMagic, sizeof vqtex::kMagic);
+    w.u16(4);
+    w.u8(packed);
+    w.bytes(fields);
+    w.bytes(tail);
+    w.u32(vqtex::crc32(w.data().data(), w.size()));
+    return std::move(w.data());
 }
 
 std::vector<uint8_t> read_file(const std::string& path) {
@@ -173,9 +211,23 @@ TEST(AtlasFile, RoundTripDecodesAtAnySizeAndInspects) {
     EXPECT_EQ(stats.bytes, file.size());
     EXPECT_EQ(stats.levels, 6u);
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
-    EXPECT_EQ(info.format_version, 3u);
+    EXPECT_EQ(info.format_version, 4u);
     EXPECT_EQ(info.exemplar_width, 128u);
     EXPECT_EQ(info.levels, 6u);
+    EXPECT_EQ(info.atlas_width, 128u);
+    EXPECT_EQ(info.atlas_height, 128u);
+    // Where the bytes go: the AV1 bitstream, no parameters (the defaults),
+    // and 20 bytes of header and checksum (docs/FORMAT.md 8.7).
+    ASSERT_EQ(info.section_count, 2u);
+    EXPECT_STREQ(info.sections[0].tag, "ATLS");
+    EXPECT_EQ(info.sections[0].stored_bytes, file.size() - 20);
+    EXPECT_STREQ(info.sections[1].tag, "SYNP");
+    EXPECT_EQ(info.sections[1].stored_bytes, 0u);
+    const std::vector<uint8_t> v3 = as_v3(file);
+    const vqtex_file_info info3 = vqtex_cpp::inspect(v3.data(), v3.size());
+    EXPECT_EQ(info3.format_version, 3u);
+    EXPECT_EQ(info3.atlas_width, 128u);
+    EXPECT_EQ(v3.size(), file.size() + 71) << "91 bytes of v3 container against 20";
     const vqtex::Image dflt = decode(file, decode_params(0, 0));
     EXPECT_EQ(dflt.width, 128);
     EXPECT_EQ(dflt.height, 128);
@@ -255,13 +307,15 @@ TEST(AtlasFile, TargetSizeIsMetFromOneKilobyteUp) {
     }
     // Below what the coarsest level of the whole exemplar needs, the atlas
     // becomes a crop, still decodable.
-    const std::vector<uint8_t> tiny = encode(ex, atlas_params(200));
-    EXPECT_LE(tiny.size(), 200u);
+    // (Format v4's header left the coarsest whole atlas at 141 bytes: 120
+    // asks for a crop.)
+    const std::vector<uint8_t> tiny = encode(ex, atlas_params(120));
+    EXPECT_LE(tiny.size(), 120u);
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(tiny.data(), tiny.size(), 1u << 30);
     EXPECT_LT(f.atlas.width, 128);
     EXPECT_EQ(decode(tiny, decode_params(0, 0)).width, 128) << "the default output stays the exemplar's size";
     vqtex_status st = VQTEX_OK;
-    vqtex_encode_params p = atlas_params(60);
+    vqtex_encode_params p = atlas_params(30);  // an 8x8 atlas takes 40
     vqtex_image in{128, 128, 3, const_cast<uint8_t*>(ex.pixels.data())};
     uint8_t* data = nullptr;
     size_t size = 0;
@@ -273,7 +327,7 @@ TEST(AtlasFile, TargetSizeIsMetFromOneKilobyteUp) {
 
 TEST(AtlasFile, EveryTruncationAndHeaderFlipIsRejected) {
     const vqtex::Image ex = load_corpus("checks_p16_64.png");
-    const std::vector<uint8_t> file = encode(ex, atlas_params(600));
+    const std::vector<uint8_t> file = as_v3(encode(ex, atlas_params(600)));
     const vqtex_decode_params p = decode_params(24, 20);
     for (std::size_t n = 0; n < file.size(); ++n) {
         const std::vector<uint8_t> cut(file.begin(), file.begin() + std::ptrdiff_t(n));
@@ -293,7 +347,7 @@ TEST(AtlasFile, EveryTruncationAndHeaderFlipIsRejected) {
 
 TEST(AtlasFile, HostileSectionsAreCorruptOrOverTheLimitNeverACrash) {
     const vqtex::Image ex = load_corpus("cellular_128.png");
-    const std::vector<uint8_t> file = encode(ex, atlas_params(800));
+    const std::vector<uint8_t> file = as_v3(encode(ex, atlas_params(800)));
     const std::size_t at = atlas_payload_offset(file);
     const vqtex_decode_params p = decode_params(24, 20);
     auto status_of = [&](std::vector<uint8_t> bad) {
@@ -355,6 +409,184 @@ TEST(AtlasFile, HostileSectionsAreCorruptOrOverTheLimitNeverACrash) {
     EXPECT_EQ(vqtex_decode_volume(&p, 4, file.data(), file.size(), &v, &err), VQTEX_ERROR_INVALID_ARGUMENT);
 }
 
+// Format v4 holds what v3 holds behind a smaller header: from the same
+// bitstream, header fields and parameters, the two decode to the same
+// pixels, at the default size and seed and at others. The cases cover each
+// channel count, a crop (the exemplar size stored), non-default parameters
+// with a wrapping atlas, and a seed that needs six varint bytes.
+TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
+    struct Case {
+        int channels, aw, ah;
+        uint32_t ew, eh;
+        uint64_t seed;
+        bool parameters;
+        std::size_t overhead;  // of the v4 file: everything but the bitstream
+    };
+    const Case cases[] = {
+        {3, 64, 64, 64, 64, 1, false, 18},  // 10 + packed + 64 + 64 + seed + CRC
+        {1, 16, 16, 16, 16, 0, false, 18},
+        {2, 12, 16, 64, 64, 300, true, 29},               // + 64, 64; seed 2 bytes; parameters 8 (bias 300 takes 2)
+        {4, 40, 24, 64, 64, (1ull << 40) + 3, true, 33},  // seed of 41 bits: 6 bytes
+    };
+    const vqtex::Image rgba = load_corpus("leaves_rgba_64.png");
+    for (const Case& c : cases) {
+        const vqtex::Image img = crop(rgba, c.aw, c.ah, c.channels);
+        vqtex::AtlasEncodeOptions o;
+        o.cq_level = 20;
+        const std::vector<uint8_t> bits = vqtex::encode_atlas(img, o);
+        vqtex::FileHeader h;
+        h.exemplar_width = c.ew;
+        h.exemplar_height = c.eh;
+        h.channels = uint8_t(c.channels);
+        h.levels = uint8_t(vqtex::coherent_levels(c.aw, c.ah));
+        h.seed = c.seed;
+        vqtex::AtlasSynthesisParams sp;
+        if (c.parameters) {
+            sp.example_tileable = true;
+            sp.passes = 3;
+            sp.coherence_bias = 300;
+            sp.coherence = 2;
+            sp.roll = false;
+            sp.jitter = 40;
+        }
+        const std::vector<uint8_t> v4 = vqtex::encode_atlas_file(h, c.aw, c.ah, bits, sp);
+        const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(h, c.aw, c.ah, bits, sp);
+        const std::string what =
+            std::to_string(c.channels) + " channels, " + std::to_string(c.aw) + "x" + std::to_string(c.ah) + " atlas";
+        EXPECT_EQ(v4.size(), bits.size() + c.overhead) << what;
+        EXPECT_EQ(bitstream_of(v4), bits) << what;
+        const vqtex::AtlasFile f4 = vqtex::decode_atlas_file(v4.data(), v4.size(), 1u << 30);
+        const vqtex::AtlasFile f3 = vqtex::decode_atlas_file(v3.data(), v3.size(), 1u << 30);
+        EXPECT_EQ(f4.header.version, 4);
+        EXPECT_EQ(f3.header.version, 3);
+        EXPECT_EQ(f4.header.exemplar_width, c.ew) << what;
+        EXPECT_EQ(f4.header.exemplar_height, c.eh) << what;
+        EXPECT_EQ(f4.header.channels, f3.header.channels) << what;
+        EXPECT_EQ(f4.header.levels, f3.header.levels) << what;
+        EXPECT_EQ(f4.header.seed, c.seed) << what;
+        EXPECT_EQ(f4.params.example_tileable, sp.example_tileable) << what;
+        EXPECT_EQ(f4.params.passes, sp.passes) << what;
+        EXPECT_EQ(f4.params.coarse_passes, sp.coarse_passes) << what;
+        EXPECT_EQ(f4.params.polish_passes, sp.polish_passes) << what;
+        EXPECT_EQ(f4.params.coherence_bias, sp.coherence_bias) << what;
+        EXPECT_EQ(f4.params.coherence, sp.coherence) << what;
+        EXPECT_EQ(f4.params.roll, sp.roll) << what;
+        EXPECT_EQ(f4.params.jitter, sp.jitter) << what;
+        EXPECT_EQ(f4.parameter_bytes, c.parameters ? 8u : 0u) << what;
+        EXPECT_EQ(f4.atlas.pixels, f3.atlas.pixels) << what;
+        EXPECT_EQ(f4.atlas.pixels,
+                  vqtex::decode_atlas(bits.data(), bits.size(), c.aw, c.ah, c.channels, "atlas").pixels);
+        for (const vqtex_decode_params& p : {decode_params(0, 0), decode_params(40, 30, 9)}) {
+            const vqtex::Image a = decode(v4, p), b = decode(v3, p);
+            EXPECT_EQ(a.width, p.width ? int(p.width) : int(c.ew)) << what;
+            EXPECT_EQ(a.pixels, b.pixels) << what << ", output " << p.width << "x" << p.height;
+        }
+    }
+}
+
+// Every truncation and every bit of every byte flipped: the checksum comes
+// before any field is read (docs/FORMAT.md 8.7), so the status is known
+// exactly for each.
+TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
+    const vqtex::Image ex = load_corpus("checks_p16_64.png");
+    const std::vector<uint8_t> file = encode(ex, atlas_params(600));
+    ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 4u);
+    const vqtex_decode_params p = decode_params(24, 20);
+    for (std::size_t n = 0; n < file.size(); ++n) {
+        const std::vector<uint8_t> cut(file.begin(), file.begin() + std::ptrdiff_t(n));
+        vqtex_status st = VQTEX_OK;
+        decode(cut, p, &st);
+        // Under 18 bytes (signature, version, packed byte, three one-byte
+        // varints, CRC) a file cannot be version 4; beyond, the last four
+        // bytes are not the checksum of the rest.
+        EXPECT_EQ(st, n < 18 ? VQTEX_ERROR_TRUNCATED : VQTEX_ERROR_CHECKSUM) << "prefix of " << n << " bytes";
+    }
+    for (std::size_t i = 0; i < file.size(); ++i)
+        for (int bit = 0; bit < 8; ++bit) {
+            std::vector<uint8_t> bad = file;
+            bad[i] ^= uint8_t(1 << bit);
+            vqtex_status st = VQTEX_OK;
+            decode(bad, p, &st);
+            const vqtex_status expected = i < 8 ? VQTEX_ERROR_BAD_MAGIC
+                                          : i < 10
+                                              ? VQTEX_ERROR_UNSUPPORTED_VERSION  // 4 flips to 0, 5, 6, 12... never 1-3
+                                              : VQTEX_ERROR_CHECKSUM;
+            EXPECT_EQ(st, expected) << "byte " << i << " bit " << bit;
+        }
+}
+
+// With the checksum repaired, each field's checks: values out of range,
+// fields stored that must not be, varints that are not minimal, a
+// bitstream that does not match its size, the memory limit.
+TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
+    const vqtex::Image ex = load_corpus("cellular_128.png");
+    const std::vector<uint8_t> file = encode(ex, atlas_params(800));
+    const std::vector<uint8_t> bits = bitstream_of(file);
+    const uint8_t packed = 2 | 5 << 2;  // 3 channels, 6 levels, nothing else
+    ASSERT_EQ(compact_file(packed, varints({128, 128, 1}), bits), file) << "the layout of docs/FORMAT.md 8.7";
+    const vqtex_decode_params p = decode_params(24, 20);
+    auto status_of = [&](const std::vector<uint8_t>& bad) {
+        vqtex_status st = VQTEX_OK;
+        decode(bad, p, &st);
+        return st;
+    };
+    const vqtex_status corrupt = VQTEX_ERROR_CORRUPT;
+    EXPECT_EQ(status_of(compact_file(packed | 7 << 2, varints({128, 128, 1}), bits)), corrupt) << "8 levels";
+    EXPECT_EQ(status_of(compact_file(packed - 1, varints({128, 128, 1}), bits)), corrupt) << "2 channels";
+    EXPECT_EQ(status_of(compact_file(packed, varints({127, 128, 1}), bits)), corrupt) << "not the frame's width";
+    EXPECT_EQ(status_of(compact_file(packed, varints({7, 128, 1}), bits)), corrupt) << "atlas below 8";
+    EXPECT_EQ(status_of(compact_file(packed, varints({4097, 128, 1}), bits)), corrupt) << "atlas above 4096";
+    EXPECT_EQ(status_of(compact_file(packed, {0x80, 0x81, 0x00, 0x80, 0x01, 0x01}, bits)), corrupt)
+        << "a width of 128 in three bytes";
+    EXPECT_EQ(status_of(compact_file(packed, {0x80, 0x80, 0x80}, {})), corrupt) << "a varint running into the CRC";
+    EXPECT_EQ(status_of(compact_file(packed, varints({128, 128, 1}), {})), corrupt) << "no bitstream";
+    // The exemplar size: stored only when it is not the atlas's.
+    EXPECT_EQ(status_of(compact_file(packed | 1 << 5, varints({128, 128, 128, 128, 1}), bits)), corrupt);
+    EXPECT_EQ(status_of(compact_file(packed | 1 << 5, varints({128, 128, 0, 128, 1}), bits)), corrupt);
+    EXPECT_EQ(status_of(compact_file(packed | 1 << 5, varints({128, 128, 65537, 128, 1}), bits)), corrupt);
+    const std::vector<uint8_t> wide = compact_file(packed | 1 << 5, varints({128, 128, 200, 128, 1}), bits);
+    EXPECT_EQ(decode(wide, decode_params(0, 0)).width, 200) << "the default output is the exemplar's size";
+    // The parameters: stored only when they are not the defaults, each in range.
+    EXPECT_EQ(status_of(compact_file(packed | 1 << 6, varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0}), bits)), corrupt);
+    EXPECT_EQ(status_of(compact_file(packed | 1 << 6, varints({128, 128, 1, 17, 4, 1, 256, 1, 1, 0}), bits)), corrupt);
+    EXPECT_EQ(status_of(compact_file(packed | 1 << 6, varints({128, 128, 1, 2, 4, 1, 256, 1, 2, 0}), bits)), corrupt);
+    EXPECT_EQ(status_of(compact_file(packed | 1 << 6, varints({128, 128, 1, 2, 4, 1, 1025, 1, 1, 0}), bits)), corrupt);
+    EXPECT_EQ(status_of(compact_file(packed | 1 << 6, varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 257}), bits)), corrupt);
+    EXPECT_EQ(status_of(compact_file(packed | 1 << 6, varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 16}), bits)), VQTEX_OK);
+    EXPECT_EQ(status_of(compact_file(packed | 1 << 7, varints({128, 128, 1}), bits)), VQTEX_OK) << "a wrapping atlas";
+    // Seeds: all 64 bits, in at most 10 minimal bytes.
+    EXPECT_EQ(status_of(compact_file(packed, varints({128, 128, ~0ull}), bits)), VQTEX_OK);
+    EXPECT_EQ(status_of(compact_file(
+                  packed, {0x80, 0x01, 0x80, 0x01, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x02}, bits)),
+              corrupt)
+        << "a seed above 64 bits";
+    // Every byte of the bitstream changed, checksum repaired: dav1d sees it
+    // all; any outcome but a crash or an unknown status is fine.
+    int rejected = 0;
+    for (std::size_t i = 16; i + 4 < file.size(); i += 7) {
+        std::vector<uint8_t> bad = file;
+        bad[i] ^= 0xA5;
+        fix_crc(bad);
+        const vqtex_status st = status_of(bad);
+        EXPECT_TRUE(st == VQTEX_OK || st == VQTEX_ERROR_CORRUPT || st == VQTEX_ERROR_LIMIT_EXCEEDED)
+            << "byte " << i << ": status " << st;
+        rejected += st != VQTEX_OK;
+    }
+    EXPECT_GT(rejected, 0);
+    // The memory limit covers the atlas and dav1d before they are allocated.
+    vqtex_decode_params low = p;
+    low.memory_limit = 1u << 20;
+    vqtex_status st = VQTEX_OK;
+    decode(file, low, &st);
+    EXPECT_EQ(st, VQTEX_ERROR_LIMIT_EXCEEDED);
+    vqtex_file_info info{};
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_inspect(file.data(), file.size(), 1u << 20, &info, &err), VQTEX_ERROR_LIMIT_EXCEEDED);
+    // An atlas file is not an animation.
+    vqtex_volume v{};
+    EXPECT_EQ(vqtex_decode_volume(&p, 4, file.data(), file.size(), &v, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+}
+
 // Pins format version 3 and its decoder (tests/golden/README.md):
 // vqtex-encode corpus/cellular_128.png cellular_v3.vqt --atlas --target-size 1500,
 // decoded at 96x80 with seed 5.
@@ -365,6 +597,19 @@ TEST(AtlasFile, GoldenFileDecodesToKnownPixels) {
     const vqtex::Image img = decode(bytes, decode_params(96, 80, 5));
     const uint64_t hash = fnv1a(img.pixels.data(), img.pixels.size());
     EXPECT_EQ(hash, 0x19992b20449039bdull) << std::hex << "decoded hash 0x" << hash;
+}
+
+// Pins format version 4 and its decoder (tests/golden/README.md):
+// vqtex-encode corpus/cellular_128.png cellular_v4.vqt --target-size 1500,
+// decoded at 96x80 with seed 5.
+TEST(AtlasFile, GoldenCompactFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes = read_file(std::string(VQTEX_GOLDEN_DIR) + "/cellular_v4.vqt");
+    ASSERT_FALSE(bytes.empty()) << "missing tests/golden/cellular_v4.vqt";
+    EXPECT_EQ(bytes.size(), 1480u);
+    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).format_version, 4u);
+    const vqtex::Image img = decode(bytes, decode_params(96, 80, 5));
+    const uint64_t hash = fnv1a(img.pixels.data(), img.pixels.size());
+    EXPECT_EQ(hash, 0x2eda1c7bb1a70f4bull) << std::hex << "decoded hash 0x" << hash;
 }
 
 TEST(AtlasFile, ParametersOutsideTheAtlasPathAreRefused) {

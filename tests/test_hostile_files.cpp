@@ -15,11 +15,12 @@
 #include <vector>
 
 #include "alloc_counter.hpp"
+#include "codec_support.hpp"
 #include "common/bitstream.hpp"
 #include "common/checksum.hpp"
-#include "codec_support.hpp"
-#include "format/container.hpp"
 #include "engine/neighborhood.hpp"
+#include "format/atlas_file.hpp"
+#include "format/container.hpp"
 #include "test_support.hpp"
 #include "tsvq/tsvq_tree.hpp"
 
@@ -541,35 +542,48 @@ TEST(HostileFiles, DecodingStaysWithinTheMemoryLimit) {
     expect_limit_is_kept(file);
 }
 
-// Format v3 (docs/FORMAT.md section 8): the atlas's announced size is
-// checked against the limit before dav1d or the decoded atlas allocate
+// Formats v3 and v4 (docs/FORMAT.md section 8): the atlas's announced size
+// is checked against the limit before dav1d or the decoded atlas allocate
 // anything, and a whole decode stays within the limit its check computes.
 // (dav1d allocates with malloc, which the counter does not see: its share
-// is the 8 MiB plus 8 bytes per atlas pixel that the check reserves.)
+// is the 8 MiB plus 8 bytes per atlas pixel that the check reserves.) The
+// encoder writes v4; the v3 file is the same content in the container.
 TEST(HostileFiles, AtlasFilesStayWithinTheMemoryLimit) {
     vqtex_encode_params ep;
     vqtex_encode_params_init(&ep);
     ep.codebook = VQTEX_CODEBOOK_ATLAS;
     ep.threads = 1;
     ep.target_size = 1500;
-    const std::vector<uint8_t> file = encode(load_corpus("cellular_128.png"), ep);
-    expect_limit_is_kept(file);
-    // The ATLS payload starts with the atlas width and height, 128 each as
-    // two-byte varints (80 01); 4096 is 80 20. A 4096x4096 atlas at a
-    // 32 MiB limit is refused before anything of its size is allocated.
-    std::vector<uint8_t> big = file;
-    const vqtex::Container c = vqtex::read_container(file.data(), file.size(), 1u << 30);
-    for (const auto& s : c.sections)
-        if (std::memcmp(s.tag.data(), "ATLS", 4) == 0) {
-            ASSERT_EQ(big[s.offset + 1], 0x01);
-            big[s.offset + 1] = 0x20;
-            big[s.offset + 3] = 0x20;
+    const std::vector<uint8_t> v4 = encode(load_corpus("cellular_128.png"), ep);
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(v4.data(), v4.size(), 1u << 30);
+    ASSERT_EQ(f.header.version, 4);
+    const std::vector<uint8_t> bits(v4.begin() + std::ptrdiff_t(f.bitstream_offset),
+                                    v4.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
+    const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(f.header, 128, 128, bits, f.params);
+    for (const std::vector<uint8_t>* file : {&v4, &v3}) {
+        SCOPED_TRACE(file == &v4 ? "format v4" : "format v3");
+        expect_limit_is_kept(*file);
+        // The atlas width and height, 128 each as two-byte varints (80 01),
+        // start the ATLS payload (v3) or follow the packed byte at offset 10
+        // (v4); 4096 is 80 20. A 4096x4096 atlas at a 32 MiB limit is
+        // refused before anything of its size is allocated.
+        std::vector<uint8_t> big = *file;
+        std::size_t at = 11;
+        if (file == &v3) {
+            const vqtex::Container c = vqtex::read_container(file->data(), file->size(), 1u << 30);
+            for (const auto& s : c.sections)
+                if (std::memcmp(s.tag.data(), "ATLS", 4) == 0) at = s.offset;
         }
-    const uint32_t crc = vqtex::crc32(big.data(), big.size() - 4);
-    for (int i = 0; i < 4; ++i) big[big.size() - 4 + i] = uint8_t(crc >> (8 * i));
-    const Outcome o = decode_with_limit(big, 32u << 20, 24, 20);
-    EXPECT_EQ(o.status, VQTEX_ERROR_LIMIT_EXCEEDED) << o.detail;
-    EXPECT_LT(o.peak, 64u << 10) << o.detail;
-    // With room for it, the frame dav1d decodes is not 4096x4096: corrupt.
-    EXPECT_EQ(decode_with_limit(big, 1u << 30, 24, 20).status, VQTEX_ERROR_CORRUPT);
+        ASSERT_EQ(big[at + 1], 0x01);
+        ASSERT_EQ(big[at + 3], 0x01);
+        big[at + 1] = 0x20;
+        big[at + 3] = 0x20;
+        const uint32_t crc = vqtex::crc32(big.data(), big.size() - 4);
+        for (int i = 0; i < 4; ++i) big[big.size() - 4 + i] = uint8_t(crc >> (8 * i));
+        const Outcome o = decode_with_limit(big, 32u << 20, 24, 20);
+        EXPECT_EQ(o.status, VQTEX_ERROR_LIMIT_EXCEEDED) << o.detail;
+        EXPECT_LT(o.peak, 64u << 10) << o.detail;
+        // With room for it, the frame dav1d decodes is not 4096x4096: corrupt.
+        EXPECT_EQ(decode_with_limit(big, 1u << 30, 24, 20).status, VQTEX_ERROR_CORRUPT);
+    }
 }

@@ -145,10 +145,12 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     r = info_tool(vqt);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("checksum OK"), std::string::npos) << r.output;
-    // A still texture is an atlas by default (format 3); --trees stores the
-    // paper's codebooks (format 1).
-    EXPECT_NE(r.output.find("format 3"), std::string::npos) << r.output;
+    // A still texture is an atlas by default (format 4, whose parts inspect
+    // names as format 3's sections); --trees stores the paper's codebooks
+    // (format 1).
+    EXPECT_NE(r.output.find("format 4"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("ATLS"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("atlas     128x128, coded as AV1"), std::string::npos) << r.output;
     const std::string trees = (dir / "t.vqt").string();
     ASSERT_EQ(encode_tool(corpus + "/cellular_128.png " + trees + " -q 10 --trees --quiet").status, 0);
     const ToolRun ti = info_tool(trees);

@@ -38,13 +38,16 @@ FileReport info_one(const std::string& input) {
     if (vqtex_inspect(bytes.data(), bytes.size(), 0, &info, &err) != VQTEX_OK)
         throw std::runtime_error(input + ": " + err.detail);
     // Bytes per kind of section, all levels together.
-    // Format v3 holds an atlas and the engine's parameters instead.
-    const bool atlas = info.format_version == 3;
+    // Formats 3 and 4 hold an atlas and the engine's parameters instead;
+    // format 4 has no sections, and inspect lists its two parts under the
+    // same tags (vqtex.h).
+    const bool atlas = info.format_version == 3 || info.format_version == 4;
+    const bool compact = info.format_version == 4;
     const char* tree_kinds[] = {"LEVL", "HIST", "TOPO", "CODE", "ENTR"};
     const char* tree_meaning[] = {"level parameters", "noise histograms", "tree topology + leaf weights",
                                   "leaf codewords", "leaf entries (pixels + keys)"};
     const char* atlas_kinds[] = {"ATLS", "SYNP"};
-    const char* atlas_meaning[] = {"atlas (AV1 image)", "synthesis parameters"};
+    const char* atlas_meaning[] = {compact ? "AV1 bitstream (the atlas)" : "atlas (AV1 image)", "synthesis parameters"};
     const char** kinds = atlas ? atlas_kinds : tree_kinds;
     const char** meaning = atlas ? atlas_meaning : tree_meaning;
     const int kind_count = atlas ? 2 : 5;
@@ -68,6 +71,11 @@ FileReport info_one(const std::string& input) {
     j["precision"] = info.precision;
     j["seed"] = info.seed;
     j["exemplar_frames"] = info.exemplar_frames;
+    if (atlas) {
+        j["atlas_width"] = info.atlas_width;
+        j["atlas_height"] = info.atlas_height;
+        j["coder"] = "AV1";  // the only atlas coder of formats 3 and 4
+    }
     j["codewords"] = nlohmann::ordered_json::array();
     for (uint32_t l = 0; l < info.levels; ++l) j["codewords"].push_back(info.codewords[l]);
     j["sections"] = nlohmann::ordered_json::array();
@@ -91,9 +99,11 @@ FileReport info_one(const std::string& input) {
                 info.shapes[l].levels);
         add(t, " (finest first)\n");
     }
-    if (atlas)
+    if (atlas) {
+        add(t, "atlas     %ux%u, coded as AV1%s\n", info.atlas_width, info.atlas_height,
+            compact ? "; compact header (format 4)" : "");
         add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels\n", info.levels, info.codewords[0]);
-    else
+    } else
         add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
             info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",
             info.precision, info.pixel_precision);
@@ -101,14 +111,14 @@ FileReport info_one(const std::string& input) {
         add(t, "  level %u  {%ux%u,%u}  %5u codewords  %6u entries  %5u closing codewords\n", l, info.shapes[l].rows,
             info.shapes[l].cols, info.shapes[l].levels, info.codewords[l], info.entries[l],
             info.closing_codewords[l]);
-    add(t, "bytes by section kind (stored, with section headers):\n");
+    add(t, compact ? "bytes by part:\n" : "bytes by section kind (stored, with section headers):\n");
     for (int k = 0; k < kind_count; ++k)
         add(t, "  %s  %-32s %8llu  %5.1f%%\n", kinds[k], meaning[k], (unsigned long long)per_kind[k],
             100.0 * double(per_kind[k]) / double(info.file_bytes));
     add(t, "  ----  %-32s %8llu  %5.1f%%\n", "file header and checksum", (unsigned long long)overhead,
         100.0 * double(overhead) / double(info.file_bytes));
-    add(t, "sections:\n");
-    for (uint32_t i = 0; i < info.section_count; ++i)
+    if (!compact) add(t, "sections:\n");
+    for (uint32_t i = 0; i < info.section_count && !compact; ++i)
         add(t, "  %s level %u %-8s raw %8llu  stored %8llu\n", info.sections[i].tag, info.sections[i].level,
             info.sections[i].kind == 2 ? "seam" : info.sections[i].kind ? "closing" : "",
             (unsigned long long)info.sections[i].raw_bytes, (unsigned long long)info.sections[i].stored_bytes);

@@ -45,7 +45,7 @@ std::pair<uint32_t, uint32_t> output_size(const vqtex_decode_params* p, uint32_t
     return {w, h};
 }
 
-// A format v3 file (docs/FORMAT.md section 8): the atlas decoded, then the
+// A format v3 or v4 file (docs/FORMAT.md section 8): the atlas decoded, then the
 // coherent engine synthesises from it exactly as vqtex_synthesize would
 // from that image. Returns the texture alone: the engine has no pyramid of
 // pixels, so a mip chain is downsampled from it.
@@ -54,10 +54,8 @@ std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint
     const AtlasFile f = decode_atlas_file(data, size, limit);
     const std::pair<uint32_t, uint32_t> size_out = output_size(p, f.header.exemplar_width, f.header.exemplar_height);
     const uint32_t w = size_out.first, h = size_out.second;
-    uint64_t sections = 0;
-    for (const Section& s : f.sections) sections += s.raw_size;
-    check_output_memory(sections + atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels, f.header.levels,
-                                                       f.params.coherence, w, h),
+    check_output_memory(f.input_bytes + atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels,
+                                                            f.header.levels, f.params.coherence, w, h),
                         limit, "a " + std::to_string(w) + "x" + std::to_string(h) + " output");
     CoherentOptions opt;
     opt.width = int(w);
@@ -173,6 +171,17 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
             describe_container(f.header, f.sections, size, 0, 0, info);
             // The atlas is the codebook: every pixel a codeword, at every level.
             for (int l = 0; l < f.header.levels; ++l) info->codewords[l] = uint32_t(f.atlas.pixel_count());
+            info->atlas_width = uint32_t(f.atlas.width);
+            info->atlas_height = uint32_t(f.atlas.height);
+            if (f.header.version == kCompactAtlasFormatVersion) {
+                // No sections: the two parts of the file that are not its
+                // header and checksum, under the tags version 3 gives them.
+                const vqtex_section_info parts[2] = {{"ATLS", 0, 0, f.atlas_bytes, f.atlas_bytes},
+                                                     {"SYNP", 0, 0, f.parameter_bytes, f.parameter_bytes}};
+                info->section_count = 2;
+                info->sections[0] = parts[0];
+                info->sections[1] = parts[1];
+            }
             return;
         }
         if (is_volume_file(data, size)) {

@@ -1,11 +1,15 @@
-// atlas_file.cpp - reading and writing format version 3 (docs/FORMAT.md
-// section 8): the container of sections 2.1-2.4 holding exactly two
-// sections, ATLS (the coded atlas) and SYNP (the engine's parameters).
+// atlas_file.cpp - reading and writing format versions 3 and 4
+// (docs/FORMAT.md section 8). Version 3: the container of sections 2.1-2.4
+// holding exactly two sections, ATLS (the coded atlas) and SYNP (the
+// engine's parameters). Version 4 (section 8.7): the same content behind a
+// compact header, signature and version, one packed byte, varints, the
+// parameters only when they are not the defaults, the bitstream, CRC-32.
 #include "format/atlas_file.hpp"
 
 #include <string>
 
 #include "common/bitstream.hpp"
+#include "common/checksum.hpp"
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "format/atlas_coder.hpp"
@@ -52,11 +56,107 @@ AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {
     return p;
 }
 
+// Version 4 (docs/FORMAT.md 8.7). The packed byte after the version:
+constexpr uint8_t kPackedChannels = 0x03;         // channels - 1
+constexpr int kPackedLevelsShift = 2;             // levels - 1, bits 2-4
+constexpr uint8_t kPackedExemplarSize = 1u << 5;  // the exemplar size is stored (it is not the atlas's)
+constexpr uint8_t kPackedParameters = 1u << 6;    // the parameters are stored (they are not the defaults)
+constexpr uint8_t kPackedTileable = 1u << 7;      // the atlas wraps
+// Signature, version, packed byte, one-byte atlas width, height and seed,
+// CRC-32: no version 4 file is shorter.
+constexpr std::size_t kCompactMinSize = sizeof kMagic + 2 + 1 + 3 + kTrailerSize;
+
+// The parameters a version 4 file leaves out. These are the values of the
+// format, fixed by docs/FORMAT.md 8.7, not whatever the engine's defaults
+// become: a file written with them decodes the same forever.
+bool are_v4_defaults(const AtlasSynthesisParams& p) {
+    return p.passes == 2 && p.coarse_passes == 4 && p.polish_passes == 1 && p.coherence_bias == 256 &&
+           p.coherence == 1 && p.roll && p.jitter == 0;
+}
+
+// The checks both versions make once the header's fields are read: the
+// stack depth against the atlas, then the memory the atlas and dav1d's
+// frame take beside the input, before dav1d runs.
+void check_atlas(int aw, int ah, int levels, int channels, std::size_t input_bytes, std::size_t memory_limit) {
+    if (levels > coherent_levels(aw, ah))
+        fail(VQTEX_ERROR_CORRUPT, "header declares " + std::to_string(levels) + " levels; a " + std::to_string(aw) +
+                                      "x" + std::to_string(ah) + " atlas allows at most " +
+                                      std::to_string(coherent_levels(aw, ah)));
+    const uint64_t atlas_memory = uint64_t(aw) * uint64_t(ah) * (uint64_t(channels) + 8) + kDav1dFixedBytes;
+    if (atlas_memory + input_bytes > memory_limit)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED,
+             "decoding the " + std::to_string(aw) + "x" + std::to_string(ah) + " atlas needs about " +
+                 std::to_string((atlas_memory + input_bytes) >> 20) + " MiB, above the memory limit of " +
+                 std::to_string(memory_limit >> 20) + " MiB: raise memory_limit (--memory-limit)");
+}
+
+// Version 4: the CRC first (the file has no sizes to walk), then the fields
+// in their order, each checked as it is read.
+AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
+    if (size < kCompactMinSize)
+        fail(VQTEX_ERROR_TRUNCATED, "file is " + std::to_string(size) +
+                                        " bytes; a format version 4 file has at least " +
+                                        std::to_string(kCompactMinSize));
+    const std::size_t end = size - kTrailerSize;
+    const uint32_t stored_crc = uint32_t(data[end]) | uint32_t(data[end + 1]) << 8 | uint32_t(data[end + 2]) << 16 |
+                                uint32_t(data[end + 3]) << 24;
+    const uint32_t actual_crc = crc32(data, end);
+    if (stored_crc != actual_crc)
+        fail(VQTEX_ERROR_CHECKSUM, "checksum mismatch (file says " + std::to_string(stored_crc) + ", bytes give " +
+                                       std::to_string(actual_crc) + "): the file is damaged or truncated");
+    ByteReader r(data, end, "format version 4 header");
+    r.bytes(sizeof kMagic + 2, "signature and version");
+    const uint8_t packed = r.u8("packed fields");
+    AtlasFile f;
+    FileHeader& h = f.header;
+    h.version = kCompactAtlasFormatVersion;
+    h.channels = uint8_t((packed & kPackedChannels) + 1);
+    h.levels = uint8_t(((packed >> kPackedLevelsShift) & 7) + 1);
+    h.init = 0;
+    h.backtrack = 1;
+    const int aw = int(r.varint_in("atlas width", kMinAtlasSide, kMaxAtlasSide));
+    const int ah = int(r.varint_in("atlas height", kMinAtlasSide, kMaxAtlasSide));
+    if (packed & kPackedExemplarSize) {
+        h.exemplar_width = uint32_t(r.varint_in("exemplar width", 1, 65536));
+        h.exemplar_height = uint32_t(r.varint_in("exemplar height", 1, 65536));
+        if (h.exemplar_width == uint32_t(aw) && h.exemplar_height == uint32_t(ah))
+            r.corrupt("the exemplar size is stored but is the atlas's (packed bit 5 must then be 0)");
+    } else {
+        h.exemplar_width = uint32_t(aw);
+        h.exemplar_height = uint32_t(ah);
+    }
+    h.seed = r.varint("seed");
+    AtlasSynthesisParams& p = f.params;
+    p.example_tileable = (packed & kPackedTileable) != 0;
+    if (packed & kPackedParameters) {
+        const std::size_t at = r.position();
+        p.passes = int(r.varint_in("passes", 1, 16));
+        p.coarse_passes = int(r.varint_in("coarse passes", 1, 16));
+        p.polish_passes = int(r.varint_in("polish passes", 0, 4));
+        p.coherence_bias = int(r.varint_in("coherence bias", 0, 1024));
+        p.coherence = int(r.varint_in("coherence", 1, 4));
+        p.roll = r.varint_in("roll flag", 0, 1) != 0;
+        p.jitter = int(r.varint_in("jitter", 0, 256));
+        if (are_v4_defaults(p))
+            r.corrupt("the parameters are stored but are the defaults (packed bit 6 must then be 0)");
+        f.parameter_bytes = r.position() - at;
+    }
+    if (r.remaining() == 0) r.corrupt("the file has no atlas bitstream");
+    f.input_bytes = size;
+    check_atlas(aw, ah, h.levels, h.channels, f.input_bytes, memory_limit);
+    f.bitstream_offset = r.position();
+    f.atlas_bytes = r.remaining();
+    const uint8_t* bits = r.bytes(r.remaining(), "atlas bitstream");
+    f.atlas = decode_atlas(bits, f.atlas_bytes, aw, ah, h.channels, "atlas bitstream");
+    return f;
+}
+
 }  // namespace
 
 bool is_atlas_file(const uint8_t* data, std::size_t size) {
     try {
-        return read_header(data, size).version == kAtlasFormatVersion;
+        const uint16_t version = read_format_version(data, size);
+        return version == kAtlasFormatVersion || version == kCompactAtlasFormatVersion;
     } catch (const Error&) {
         return false;
     }
@@ -70,6 +170,8 @@ uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, in
 }
 
 AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
+    if (read_format_version(data, size) == kCompactAtlasFormatVersion)
+        return decode_compact_atlas_file(data, size, memory_limit);
     const Container c = read_container(data, size, memory_limit);
     if (c.header.version != kAtlasFormatVersion)
         fail(VQTEX_ERROR_INTERNAL, "decode_atlas_file called on a version " + std::to_string(c.header.version) + " file");
@@ -104,17 +206,8 @@ AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t m
     const int ah = int(r.varint_in("atlas height", kMinAtlasSide, kMaxAtlasSide));
     const uint8_t coder = r.u8("coder");
     if (coder != uint8_t(AtlasCoder::Av1)) r.corrupt("unknown atlas coder " + std::to_string(coder));
-    if (h.levels > coherent_levels(aw, ah))
-        fail(VQTEX_ERROR_CORRUPT, "header declares " + std::to_string(h.levels) + " levels; a " + std::to_string(aw) +
-                                      "x" + std::to_string(ah) + " atlas allows at most " +
-                                      std::to_string(coherent_levels(aw, ah)));
-    // The atlas and dav1d's frame, beside the sections, before dav1d runs.
-    const uint64_t atlas_memory = uint64_t(aw) * uint64_t(ah) * (uint64_t(h.channels) + 8) + kDav1dFixedBytes;
-    if (atlas_memory + sections_raw > memory_limit)
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "decoding the " + std::to_string(aw) + "x" + std::to_string(ah) +
-                                             " atlas needs about " + std::to_string((atlas_memory + sections_raw) >> 20) +
-                                             " MiB, above the memory limit of " + std::to_string(memory_limit >> 20) +
-                                             " MiB: raise memory_limit (--memory-limit)");
+    f.input_bytes = sections_raw;
+    check_atlas(aw, ah, h.levels, h.channels, sections_raw, memory_limit);
     f.atlas_bytes = r.remaining();
     const uint8_t* bits = r.bytes(r.remaining(), "atlas bitstream");
     f.atlas = decode_atlas(bits, f.atlas_bytes, aw, ah, h.channels, "section ATLS");
@@ -123,6 +216,43 @@ AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t m
 
 std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
                                        const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params) {
+    if (header.channels < 1 || header.channels > 4 || header.levels < 1 || header.levels > 8 ||
+        atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide || atlas_width > kMaxAtlasSide ||
+        atlas_height > kMaxAtlasSide || atlas_bitstream.empty())
+        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 4 can hold");
+    const bool exemplar_size =
+        header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
+    const bool parameters = !are_v4_defaults(params);
+    ByteWriter w;
+    w.bytes(kMagic, sizeof kMagic);
+    w.u16(kCompactAtlasFormatVersion);
+    w.u8(uint8_t((header.channels - 1) | (header.levels - 1) << kPackedLevelsShift |
+                 (exemplar_size ? kPackedExemplarSize : 0) | (parameters ? kPackedParameters : 0) |
+                 (params.example_tileable ? kPackedTileable : 0)));
+    w.varint(uint64_t(atlas_width));
+    w.varint(uint64_t(atlas_height));
+    if (exemplar_size) {
+        w.varint(header.exemplar_width);
+        w.varint(header.exemplar_height);
+    }
+    w.varint(header.seed);
+    if (parameters) {
+        w.varint(uint64_t(params.passes));
+        w.varint(uint64_t(params.coarse_passes));
+        w.varint(uint64_t(params.polish_passes));
+        w.varint(uint64_t(params.coherence_bias));
+        w.varint(uint64_t(params.coherence));
+        w.varint(params.roll ? 1 : 0);
+        w.varint(uint64_t(params.jitter));
+    }
+    w.bytes(atlas_bitstream);
+    w.u32(crc32(w.data().data(), w.size()));
+    return std::move(w.data());
+}
+
+std::vector<uint8_t> encode_atlas_file_v3(const FileHeader& header, int atlas_width, int atlas_height,
+                                          const std::vector<uint8_t>& atlas_bitstream,
+                                          const AtlasSynthesisParams& params) {
     FileHeader h = header;
     h.version = kAtlasFormatVersion;
     h.flags = 0;

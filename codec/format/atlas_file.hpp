@@ -1,8 +1,10 @@
-// atlas_file.hpp - format version 3 (issue 17, docs/FORMAT.md section 8):
-// a still texture stored as an atlas, an image whose windows are the
+// atlas_file.hpp - format versions 3 and 4 (issue 17, docs/FORMAT.md
+// section 8): a still texture stored as an atlas, an image whose windows are the
 // coherent engine's codebook (in this first version the exemplar or a crop
 // of it), coded as AV1 (atlas_coder.hpp), plus the engine's parameters.
-// The decoder rebuilds the appearance space from the decoded atlas and
+// Version 3 holds them in the container's sections (ATLS, SYNP); version 4,
+// which the encoder writes, behind a compact header (section 8.7). The
+// decoder rebuilds the appearance space from the decoded atlas and
 // synthesises with codec/engine/coherent_synthesis.hpp.
 #pragma once
 
@@ -38,20 +40,29 @@ struct AtlasSynthesisParams {
 };
 
 struct AtlasFile {
-    FileHeader header;  // version 3; levels = the engine's stack depth
-    std::vector<Section> sections;
+    // Version 3 or 4; levels = the engine's stack depth. A version 4 file's
+    // fields are put here as version 3 would have them (init 0, backtrack 1,
+    // no flags, no sections).
+    FileHeader header;
+    std::vector<Section> sections;  // version 3 only
     AtlasSynthesisParams params;
-    Image atlas;                   // decoded
-    std::size_t atlas_bytes = 0;   // the coded atlas bitstream
+    Image atlas;                       // decoded
+    std::size_t atlas_bytes = 0;       // the coded atlas bitstream
+    std::size_t bitstream_offset = 0;  // version 4: where that bitstream starts in the file
+    std::size_t parameter_bytes = 0;   // version 4: the parameter varints (0 for the defaults)
+    // What the memory limit counts for the input beside the atlas and the
+    // engine: the sections' raw sizes (version 3) or the file (version 4).
+    std::size_t input_bytes = 0;
 };
 
-// True when the file's header reads and says version 3 (any damage is left
-// to decode_atlas_file to report).
+// True when the file's signature reads and its version is 3 or 4 (any
+// damage is left to decode_atlas_file to report).
 bool is_atlas_file(const uint8_t* data, std::size_t size);
 
-// Reads and checks a version 3 file and decodes its atlas. The memory limit
-// covers the sections, dav1d's frame and the decoded atlas; the engine's
-// own memory is checked by the caller with atlas_decode_memory.
+// Reads and checks a version 3 or 4 file and decodes its atlas. The memory
+// limit covers the input (AtlasFile::input_bytes), dav1d's frame and the
+// decoded atlas; the engine's own memory is checked by the caller with
+// atlas_decode_memory.
 AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit);
 
 // What decoding a file needs beside its sections, in bytes: the decoded
@@ -61,9 +72,18 @@ AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t m
 uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
                              uint64_t width, uint64_t height);
 
-// A version 3 file: the header fields of `header` other than version, flags
-// and section count, the coded atlas and the parameters.
+// A version 4 file (what the encoder writes): the exemplar size, channels,
+// levels and seed of `header` (its other fields are not stored), the coded
+// atlas and the parameters. The exemplar size is stored only when it is
+// not the atlas's, the parameters only when they are not the defaults.
 std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
                                        const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params);
+
+// The same content as a version 3 file (the header fields of `header`
+// other than version, flags and section count). Kept for the tests and the
+// fuzzers' seeds: version 3 must go on decoding.
+std::vector<uint8_t> encode_atlas_file_v3(const FileHeader& header, int atlas_width, int atlas_height,
+                                          const std::vector<uint8_t>& atlas_bitstream,
+                                          const AtlasSynthesisParams& params);
 
 }  // namespace vqtex

@@ -21,6 +21,12 @@ inline constexpr uint16_t kVolumeFormatVersion = 2;
 // Atlas files (issue 17, docs/FORMAT.md section 8): the example as an AV1
 // image plus the coherent engine's parameters, decoded by that engine.
 inline constexpr uint16_t kAtlasFormatVersion = 3;
+// Compact atlas files (docs/FORMAT.md section 8.6): the same content as
+// version 3 behind a header of about 20 bytes instead of the container's
+// 91. They keep the signature and the version field, so that readers of
+// versions 1-3 answer UNSUPPORTED_VERSION, but nothing else of the
+// container: atlas_file.cpp reads them, read_header refuses them.
+inline constexpr uint16_t kCompactAtlasFormatVersion = 4;
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;
 inline constexpr std::size_t kTrailerSize = 4;
@@ -83,9 +89,15 @@ struct Container {
     std::size_t file_size = 0;
 };
 
+// Checks 1-4 of docs/FORMAT.md 2.4, which every version shares (the
+// signature and the version field: TRUNCATED, BAD_MAGIC,
+// UNSUPPORTED_VERSION), and returns the version, 1 to 4.
+uint16_t read_format_version(const uint8_t* data, std::size_t size);
+
 // The header's fields as read, after the signature, the version and the
 // header's length are checked (TRUNCATED, BAD_MAGIC, UNSUPPORTED_VERSION);
-// read_container checks the rest.
+// read_container checks the rest. A version 4 file has no such header:
+// INVALID_ARGUMENT (vqtex_decode reads it, through atlas_file.hpp).
 FileHeader read_header(const uint8_t* data, std::size_t size);
 
 // Parses and verifies the header, section table, total length and CRC, in
