@@ -235,7 +235,7 @@ typedef struct vqtex_encode_params {
     uint32_t threads;           /* 0 = all cores [--threads] */
     vqtex_progress_fn progress;
     void* progress_user;
-    vqtex_codebook codebook;    /* what the file stores: an atlas (v3, default) or TSVQ trees (v1) [--trees] */
+    vqtex_codebook codebook;    /* what the file stores: an atlas (v4, default) or TSVQ trees (v1) [--trees] */
     uint32_t quality;           /* the preset last applied, 0..100: the atlas's quality when
                                    target_size is 0 */
 } vqtex_encode_params;
