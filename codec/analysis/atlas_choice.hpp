@@ -22,7 +22,7 @@ struct AtlasChoiceOptions {
 };
 
 struct AtlasChoice {
-    std::vector<uint8_t> file;  // a whole version 3 file
+    std::vector<uint8_t> file;  // a whole atlas file (format 4)
     int cq = 0;                 // libaom's level, 0..63
     int levels = 0;
     Image atlas;                // what was coded (before coding)
@@ -31,8 +31,8 @@ struct AtlasChoice {
 
 // The byte budget of a quality preset for an example of `pixels` pixels:
 // 1000 bytes per 128x128 at quality 0, doubling every 25 points (4 KB at
-// the default 50, 16 KB at 100), and never under 512 bytes, about the
-// smallest file of an 8x8 atlas.
+// the default 50, 16 KB at 100), and never under 512 bytes, so that a tiny
+// example still gets an atlas worth decoding.
 uint64_t atlas_budget_of_quality(int quality, uint64_t pixels);
 
 // The finest AV1 level of the whole example whose file fits the budget.
