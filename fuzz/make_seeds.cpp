@@ -83,6 +83,7 @@ int main(int argc, char** argv) {
             vqtex_encode_params p;
             vqtex_encode_params_init(&p);
             vqtex_encode_params_preset(&p, var.quality);
+            p.codebook = VQTEX_CODEBOOK_TREES;  // these are the v1 seeds (atlases: below, 16x16 and 12x12)
             p.threads = 1;
             p.model.no_entry_keys = var.keys ? 0 : 1;
             p.model.seam_closing = var.closing ? 1 : 0;
@@ -102,10 +103,12 @@ int main(int argc, char** argv) {
             const std::string name = stem + "_" + var.name + "_c" + std::to_string(channels);
             write(out / "decode" / (name + ".vqt"), data, size);
             vqtex_free(data);
-            // The same example and settings as a fuzz_encode input (16x16).
+            // The same example and settings as a fuzz_encode input (16x16);
+            // flag bit 7 asks for trees (every other variant, so that the
+            // atlas encoder starts with seeds too).
             std::vector<uint8_t> input = {15, 15, uint8_t(channels), uint8_t(var.quality), uint8_t(var.levels), 0,
                                           0, uint8_t(var.keys ? 4 : 8),
-                                          uint8_t((var.keys ? 0 : 1) | (var.closing ? 2 : 0) | (var.noise_init ? 16 : 0)),
+                                          uint8_t((var.keys ? 0 : 1) | (var.closing ? 2 : 0) | (var.noise_init ? 16 : 0) | (v % 2 ? 0 : 128)),
                                           uint8_t(var.closing_window), 0, 0, uint8_t(var.backtrack - 1), 3, 0, 0};
             const std::vector<uint8_t> small = crop(img, 16, channels);
             input.insert(input.end(), small.begin(), small.end());
