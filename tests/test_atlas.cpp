@@ -48,6 +48,19 @@ vqtex_encode_params atlas_params(uint64_t target_size = 0) {
     return p;
 }
 
+// The memory limit covers the atlas and dav1d before they are allocated,
+// and an atlas file is not an animation.
+void expect_over_limit_and_not_an_animation(const std::vector<uint8_t>& file, const vqtex_decode_params& p) {
+    vqtex_decode_params low = p;
+    low.memory_limit = 1u << 20;
+    vqtex_status st = VQTEX_OK;
+    decode(file, low, &st);
+    EXPECT_EQ(st, VQTEX_ERROR_LIMIT_EXCEEDED);
+    vqtex_volume v{};
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_decode_volume(&p, 4, file.data(), file.size(), &v, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+}
+
 // The OBU types of a bitstream of OBUs with size fields.
 std::vector<int> obu_types(const std::vector<uint8_t>& bits) {
     std::vector<int> types;
@@ -397,16 +410,7 @@ TEST(AtlasFile, HostileSectionsAreCorruptOrOverTheLimitNeverACrash) {
         ++total;
     }
     EXPECT_GT(rejected, 0);
-    // The memory limit covers the atlas and dav1d before they are allocated.
-    vqtex_decode_params low = p;
-    low.memory_limit = 1u << 20;
-    vqtex_status st = VQTEX_OK;
-    decode(file, low, &st);
-    EXPECT_EQ(st, VQTEX_ERROR_LIMIT_EXCEEDED);
-    // An atlas file is not an animation.
-    vqtex_volume v{};
-    vqtex_error err{};
-    EXPECT_EQ(vqtex_decode_volume(&p, 4, file.data(), file.size(), &v, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    expect_over_limit_and_not_an_animation(file, p);
 }
 
 // Format v4 holds what v3 holds behind a smaller header: from the same
@@ -575,18 +579,10 @@ TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
         rejected += st != VQTEX_OK;
     }
     EXPECT_GT(rejected, 0);
-    // The memory limit covers the atlas and dav1d before they are allocated.
-    vqtex_decode_params low = p;
-    low.memory_limit = 1u << 20;
-    vqtex_status st = VQTEX_OK;
-    decode(file, low, &st);
-    EXPECT_EQ(st, VQTEX_ERROR_LIMIT_EXCEEDED);
+    expect_over_limit_and_not_an_animation(file, p);
     vqtex_file_info info{};
     vqtex_error err{};
     EXPECT_EQ(vqtex_inspect(file.data(), file.size(), 1u << 20, &info, &err), VQTEX_ERROR_LIMIT_EXCEEDED);
-    // An atlas file is not an animation.
-    vqtex_volume v{};
-    EXPECT_EQ(vqtex_decode_volume(&p, 4, file.data(), file.size(), &v, &err), VQTEX_ERROR_INVALID_ARGUMENT);
 }
 
 // Pins format version 3 and its decoder (tests/golden/README.md):

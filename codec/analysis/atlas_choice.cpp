@@ -1,4 +1,4 @@
-// atlas_choice.cpp - the atlas of a format v3 file and its AV1 level for a
+// atlas_choice.cpp - the atlas of a format 4 file and its AV1 level for a
 // byte budget (issue 17; docs/ATLAS.md "Which atlas" has the measurements
 // behind the rules here).
 #include "analysis/atlas_choice.hpp"
@@ -28,16 +28,21 @@ uint64_t atlas_budget_of_quality(int quality, uint64_t pixels) {
 
 namespace {
 
-// The top-left crop of `scale`/16 of each side: a crop keeps the features
+// The `w` x `h` pixels of the example at (x, y). A crop keeps the features
 // at their scale, which downscaling would not.
+Image crop(const Image& example, int x, int y, int w, int h) {
+    if (x == 0 && y == 0 && w == example.width && h == example.height) return example;
+    Image out(w, h, example.channels);
+    for (int row = 0; row < h; ++row)
+        std::memcpy(out.at(0, row), example.at(x, y + row), std::size_t(w) * std::size_t(example.channels));
+    return out;
+}
+
+// The top-left crop of `scale`/16 of each side, within the atlas limits.
 Image top_left_crop(const Image& example, int scale) {
     const int w = std::min(kMaxAtlasSide, std::max(kMinAtlasSide, example.width * scale / 16));
     const int h = std::min(kMaxAtlasSide, std::max(kMinAtlasSide, example.height * scale / 16));
-    if (w == example.width && h == example.height) return example;
-    Image crop(std::min(w, example.width), std::min(h, example.height), example.channels);
-    for (int y = 0; y < crop.height; ++y)
-        std::memcpy(crop.at(0, y), example.at(0, y), std::size_t(crop.width) * std::size_t(crop.channels));
-    return crop;
+    return crop(example, 0, 0, std::min(w, example.width), std::min(h, example.height));
 }
 
 // The files of one atlas at the levels tried so far.
@@ -103,14 +108,6 @@ private:
     int levels_ = 0;
     std::map<int, std::vector<uint8_t>> files_;
 };
-
-// A crop of `side` x `side` pixels at (x, y).
-Image square_crop(const Image& example, int x, int y, int side) {
-    Image crop(side, side, example.channels);
-    for (int row = 0; row < side; ++row)
-        std::memcpy(crop.at(0, row), example.at(x, y + row), std::size_t(side) * std::size_t(example.channels));
-    return crop;
-}
 
 vqtex_metrics::Image as_metrics_image(const Image& img) { return {img.width, img.height, img.channels, img.pixels}; }
 
@@ -185,7 +182,7 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
                     continue;
                 }
                 const auto [x, y, s] = regions[i];
-                LevelSearch search(example, square_crop(example, x, y, s), options, &crop_attempts[i]);
+                LevelSearch search(example, crop(example, x, y, s, s), options, &crop_attempts[i]);
                 const int cq = search.finest_fitting();
                 if (cq < 0) continue;
                 crops[i] = search.choice(cq);

@@ -12,7 +12,6 @@
 #include "api/api_support.hpp"
 #include "api/validate.hpp"
 #include "common/error.hpp"
-#include "engine/coherent_synthesis.hpp"
 #include "format/model_codec.hpp"
 #include "common/parallel.hpp"
 #include "engine/synthesis.hpp"
