@@ -8,10 +8,11 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "common/rng.hpp"
 #include "engine/appearance.hpp"
 #include "engine/coherence_sets.hpp"
 #include "engine/coherent_synthesis.hpp"
-#include "common/rng.hpp"
+#include "engine/pyramid.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex;
@@ -96,8 +97,8 @@ Image textured(int w, int h, uint64_t seed) {
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c)
-                img.at(x, y)[c] = uint8_t(int(128 + 60 * std::sin((x + 2 * c) * 0.7) * std::cos(y * 0.45)) +
-                                          int(rng.below(40)));
+                img.at(x, y)[c] =
+                    uint8_t(int(128 + 60 * std::sin((x + 2 * c) * 0.7) * std::cos(y * 0.45)) + int(rng.below(40)));
     return img;
 }
 
@@ -114,15 +115,16 @@ TEST(Coherent, DefaultsSelectTheCoherentEngine) {
 TEST(Coherent, PrincipalAxesAreOrthonormalAndOrdered) {
     // Samples spread mostly along (1, 1, 0, 0), less along (0, 0, 1, -1),
     // least along (0, 0, 1, 1).
-    std::vector<int16_t> samples;
     Rng rng(3);
     const int count = 4000;
+    std::vector<int16_t> columns(4 * count);  // principal_axes takes the samples column by column
     for (int i = 0; i < count; ++i) {
         const int a = int(rng.below(201)) - 100, b = (int(rng.below(201)) - 100) / 3,
                   c = (int(rng.below(201)) - 100) / 10;
-        for (int v : {128 + a, 128 + a, 100 + b + c, 100 - b + c}) samples.push_back(int16_t(v));
+        int component = 0;
+        for (int v : {128 + a, 128 + a, 100 + b + c, 100 - b + c}) columns[component++ * count + i] = int16_t(v);
     }
-    const auto axes = principal_axes(samples, 4, count, 4);
+    const auto axes = principal_axes(columns, 4, count, 4);
     ASSERT_EQ(axes.size(), 4u);
     auto dot = [](const std::vector<int32_t>& u, const std::vector<int32_t>& v) {
         double s = 0;
@@ -142,6 +144,71 @@ TEST(Coherent, PrincipalAxesAreOrthonormalAndOrdered) {
     const double n3 = dot(axes[3], axes[3]);
     EXPECT_TRUE(std::abs(n3) < 1e-9 || std::abs(n3 - 1.0) < 1e-3) << n3;
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(dot(axes[3], axes[j]), 0.0, 1e-3) << j;
+}
+
+TEST(Coherent, AppearanceVectorsAreTheCentredWindowsProjectedOnTheAxes) {
+    // The definition, pixel by pixel, against the engine's row-wise
+    // projection: each level's 5x5 window (taps 2^level apart, read past
+    // the edges mirrored or wrapped, even where the taps span the example
+    // several times), less the mean window of the samples, projected on the
+    // principal axes of those samples, rounded and clamped.
+    for (int channels : {1, 3, 4})
+        for (bool wraps : {false, true}) {
+            Image ex = textured(13, 9, uint64_t(channels) + (wraps ? 10 : 0));
+            if (channels != 3) {
+                Image other(ex.width, ex.height, channels);
+                for (std::size_t i = 0; i < other.pixels.size(); ++i)
+                    other.pixels[i] = ex.pixels[(i * 7) % ex.pixels.size()];
+                ex = other;
+            }
+            const int levels = 4, dims = 25 * channels;
+            const AppearanceSpace space = build_appearance_space(ex, levels, wraps, 2);
+            ASSERT_EQ(space.levels.size(), std::size_t(levels));
+            const EdgeMode edges = wraps ? EdgeMode::Wrap : EdgeMode::Mirror;
+            for (int l = 0; l < levels; ++l) {
+                const Image& img = space.levels[std::size_t(l)].colours;
+                const int step = 1 << l;
+                auto window = [&](int x, int y) {
+                    std::vector<int32_t> v;
+                    for (int r = -2; r <= 2; ++r)
+                        for (int c = -2; c <= 2; ++c)
+                            for (int k = 0; k < channels; ++k)
+                                v.push_back(img.at(edge_index(x + c * step, ex.width, edges),
+                                                   edge_index(y + r * step, ex.height, edges))[k]);
+                    return v;
+                };
+                // 117 pixels: every one is a sample.
+                const int count = ex.width * ex.height;
+                std::vector<int16_t> columns(std::size_t(dims) * count);
+                std::vector<int64_t> mean(std::size_t(dims), 0);
+                for (int y = 0; y < ex.height; ++y)
+                    for (int x = 0; x < ex.width; ++x) {
+                        const std::vector<int32_t> v = window(x, y);
+                        for (int i = 0; i < dims; ++i) {
+                            columns[std::size_t(i) * count + std::size_t(y * ex.width + x)] =
+                                int16_t(v[std::size_t(i)]);
+                            mean[std::size_t(i)] += v[std::size_t(i)];
+                        }
+                    }
+                for (auto& m : mean) m = (m + count / 2) / count;
+                const auto axes = principal_axes(columns, dims, count, kAppearanceDims);
+                for (int y = 0; y < ex.height; ++y)
+                    for (int x = 0; x < ex.width; ++x) {
+                        const std::vector<int32_t> v = window(x, y);
+                        for (int a = 0; a < kAppearanceDims; ++a) {
+                            int64_t sum = 0;
+                            for (int i = 0; i < dims; ++i)
+                                sum += int64_t(axes[std::size_t(a)][std::size_t(i)]) *
+                                       (v[std::size_t(i)] - mean[std::size_t(i)]);
+                            const int64_t expected =
+                                std::clamp<int64_t>((sum + (1 << 14)) >> 15, -kAppearanceClamp, kAppearanceClamp);
+                            ASSERT_EQ(space.feature(l, x, y)[a], expected)
+                                << channels << " channels, wraps " << wraps << ", level " << l << " at " << x << ","
+                                << y;
+                        }
+                    }
+            }
+        }
 }
 
 TEST(Coherent, CoherenceSetsEqualBruteForce) {
@@ -167,7 +234,8 @@ TEST(Coherent, CoherenceSetsEqualBruteForce) {
             std::sort(all.begin(), all.end());
             const uint32_t* set = sets.of(l, uint32_t(u));
             ASSERT_EQ(set[0], uint32_t(u));
-            for (int i = 1; i < k; ++i) ASSERT_EQ(set[i], uint32_t(all[std::size_t(i - 1)].second)) << l << " " << u << " " << i;
+            for (int i = 1; i < k; ++i)
+                ASSERT_EQ(set[i], uint32_t(all[std::size_t(i - 1)].second)) << l << " " << u << " " << i;
         }
     }
 }
@@ -178,8 +246,7 @@ TEST(Coherent, UpsampledChildrenAreCoherentBlocksInsideTheExample) {
     for (int spacing : {1, 2, 4}) {
         PositionMap parent{7, 5, {}};
         Rng rng{uint64_t(spacing)};
-        for (int i = 0; i < 35; ++i)
-            parent.positions.push_back(pack_position(int(rng.below(40)), int(rng.below(33))));
+        for (int i = 0; i < 35; ++i) parent.positions.push_back(pack_position(int(rng.below(40)), int(rng.below(33))));
         const PositionMap child = upsample_positions(space, parent, 13, 10, spacing);
         ASSERT_EQ(child.positions.size(), 130u);
         for (int y = 0; y < 10; ++y)
@@ -246,7 +313,8 @@ TEST(Coherent, EveryOutputPixelIsAnExamplePixel) {
     for (int y = 0; y < out.height; ++y)
         for (int x = 0; x < out.width; ++x) {
             const uint8_t* p = out.at(x, y);
-            ASSERT_TRUE(std::binary_search(colours.begin(), colours.end(), uint32_t(p[0]) << 16 | uint32_t(p[1]) << 8 | p[2]));
+            ASSERT_TRUE(
+                std::binary_search(colours.begin(), colours.end(), uint32_t(p[0]) << 16 | uint32_t(p[1]) << 8 | p[2]));
         }
 }
 
@@ -255,9 +323,10 @@ TEST(Coherent, InvalidParametersRefused) {
     vqtex_image in{32, 32, 3, const_cast<uint8_t*>(ex.pixels.data())};
     vqtex_image out{};
     vqtex_error err{};
-    for (auto tweak : {+[](vqtex_synth_params& p) { p.coherence = 0; }, +[](vqtex_synth_params& p) { p.coherence = 17; },
-                       +[](vqtex_synth_params& p) { p.passes = 0; }, +[](vqtex_synth_params& p) { p.jitter = 1025; },
-                       +[](vqtex_synth_params& p) { p.engine = vqtex_engine(7); }}) {
+    for (auto tweak :
+         {+[](vqtex_synth_params& p) { p.coherence = 0; }, +[](vqtex_synth_params& p) { p.coherence = 17; },
+          +[](vqtex_synth_params& p) { p.passes = 0; }, +[](vqtex_synth_params& p) { p.jitter = 1025; },
+          +[](vqtex_synth_params& p) { p.engine = vqtex_engine(7); }}) {
         vqtex_synth_params p = coherent_params(32, 32, 1);
         tweak(p);
         EXPECT_EQ(vqtex_synthesize(&p, &in, &out, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
@@ -307,8 +376,7 @@ TEST(Coherent, TileableExampleKeepsItsPeriod) {
         const Image out = vqtex_test::synthesize(ex, p);
         std::size_t same = 0;
         for (int y = 0; y < out.height; ++y)
-            for (int x = 0; x < out.width; ++x)
-                same += (out.at(x, y)[0] >= 128) == (out.wrapped(x + 16, y)[0] >= 128);
+            for (int x = 0; x < out.width; ++x) same += (out.at(x, y)[0] >= 128) == (out.wrapped(x + 16, y)[0] >= 128);
         return double(same) / double(out.pixel_count());
     };
     const double wrapped = agreement(true), mirrored = agreement(false);
@@ -335,7 +403,8 @@ uint32_t reference_correction(const AppearanceSpace& space, int level, const Pos
             for (int dx = -2; dx <= 2; ++dx) {
                 const uint32_t q = source(dx, dy);
                 const int16_t* fq = space.feature(level, position_x(q), position_y(q));
-                const int16_t* fc = space.feature(level, space.fold_x(position_x(c) + dx * s), space.fold_y(position_y(c) + dy * s));
+                const int16_t* fc =
+                    space.feature(level, space.fold_x(position_x(c) + dx * s), space.fold_y(position_y(c) + dy * s));
                 for (int i = 0; i < kAppearanceDims; ++i) d += int64_t(fq[i] - fc[i]) * (fq[i] - fc[i]);
             }
         return d;
@@ -386,14 +455,16 @@ TEST(Coherent, CorrectionEqualsItsDefinition) {
     for (int level = 0; level < 3; ++level) {
         PositionMap map{13, 11, {}};
         Rng rng{uint64_t(level + 1)};
-        for (int i = 0; i < 13 * 11; ++i) map.positions.push_back(pack_position(int(rng.below(30)), int(rng.below(26))));
+        for (int i = 0; i < 13 * 11; ++i)
+            map.positions.push_back(pack_position(int(rng.below(30)), int(rng.below(26))));
         PositionMap expected = map;
         static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
         for (const auto& [sx, sy] : kOrder) {
             const PositionMap before = expected;
             for (int y = sy; y < map.height; y += 2)
                 for (int x = sx; x < map.width; x += 2)
-                    expected.positions[std::size_t(y) * map.width + x] = reference_correction(space, level, before, x, y);
+                    expected.positions[std::size_t(y) * map.width + x] =
+                        reference_correction(space, level, before, x, y);
         }
         CoherentOptions options;
         options.threads = 2;

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "dsp/dsp.hpp"
 #include "common/rng.hpp"
+#include "dsp/dsp.hpp"
 
 using namespace vqtex;
 
@@ -90,8 +90,7 @@ TEST(Dsp, NearestAgreesWithBruteForceIncludingTies) {
         }
         for (int k = 0; k < dsp::available_kernel_count(); ++k) {
             uint32_t dist = UINT32_MAX;
-            const uint32_t idx =
-                dsp::available_kernels(k).nearest(query.data(), rows.data(), stride, n, count, &dist);
+            const uint32_t idx = dsp::available_kernels(k).nearest(query.data(), rows.data(), stride, n, count, &dist);
             EXPECT_EQ(idx, best_index) << dsp::available_kernels(k).name;
             EXPECT_EQ(dist, best) << dsp::available_kernels(k).name;
         }
@@ -154,7 +153,8 @@ TEST(Dsp, RankCandidatesIsRankHashWithItsRecordsOnEveryKernelSet) {
         // Records: each rank below every earlier one (the first always).
         uint64_t records = 0, lowest = 0;
         for (uint32_t i = 0; i < count; ++i)
-            if (i == 0 || dsp::rank_hash(salt, i) < lowest) records |= uint64_t(1) << i, lowest = dsp::rank_hash(salt, i);
+            if (i == 0 || dsp::rank_hash(salt, i) < lowest)
+                records |= uint64_t(1) << i, lowest = dsp::rank_hash(salt, i);
         for (int k = 0; k < dsp::available_kernel_count(); ++k) {
             std::vector<uint64_t> ranks(dsp::kMaxRanked, 0);
             EXPECT_EQ(dsp::available_kernels(k).rank_candidates(salt, count, ranks.data()), records)
@@ -235,6 +235,43 @@ TEST(Dsp, DescentFollowsTheNearerChildAndQueuesTheOtherOnEveryKernelSet) {
                     expected_lowest = std::min(expected_lowest, expected_pending[i]);
                 }
                 EXPECT_EQ(lowest, expected_lowest) << kernels.name << " seed " << seed;
+            }
+        }
+    }
+}
+
+TEST(Dsp, LinearKernelsEqualTheirDefinitionsModuloTheirWidthOnEveryKernelSet) {
+    // Lengths around every vector width and its tail; full-range values, so
+    // the 16-bit dot wraps modulo 2^32 and the 32-bit one comes near 2^63.
+    for (std::size_t n : {1u, 7u, 8u, 15u, 16u, 31u, 33u, 75u, 100u, 128u, 4096u, 4099u}) {
+        for (uint64_t seed = 0; seed < 6; ++seed) {
+            Rng rng(seed * 31 + n);
+            std::vector<int16_t> a(n), b(n), x(n);
+            std::vector<int32_t> c(n), d(n), acc(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                a[i] = int16_t(int(rng.below(65536)) - 32768);
+                b[i] = int16_t(int(rng.below(65536)) - 32768);
+                x[i] = int16_t(int(rng.below(65536)) - 32768);
+                c[i] = int32_t(int64_t(rng.below(uint64_t(1) << 32)) - (int64_t(1) << 31));
+                d[i] = int32_t(int64_t(rng.below(uint64_t(1) << 32)) - (int64_t(1) << 31));
+                acc[i] = int32_t(int64_t(rng.below(uint64_t(1) << 32)) - (int64_t(1) << 31));
+            }
+            const int16_t weight = int16_t(int(rng.below(65536)) - 32768);
+            uint32_t dot16 = 0;
+            uint64_t dot32 = 0;
+            std::vector<int32_t> expected_acc(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                dot16 += uint32_t(int32_t(a[i]) * int32_t(b[i]));
+                dot32 += uint64_t(int64_t(c[i]) * int64_t(d[i]));
+                expected_acc[i] = int32_t(uint32_t(acc[i]) + uint32_t(int32_t(weight) * x[i]));
+            }
+            for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+                const dsp::Kernels& kernels = dsp::available_kernels(k);
+                EXPECT_EQ(kernels.dot_i16(a.data(), b.data(), n), dot16) << kernels.name << " n=" << n;
+                EXPECT_EQ(kernels.dot_i32(c.data(), d.data(), n), int64_t(dot32)) << kernels.name << " n=" << n;
+                std::vector<int32_t> out = acc;
+                kernels.axpy_i16(out.data(), x.data(), weight, n);
+                EXPECT_EQ(out, expected_acc) << kernels.name << " n=" << n;
             }
         }
     }

@@ -125,6 +125,14 @@ struct Kernels {
     // set). The coherent engine's one hot loop (coherent_synthesis.cpp).
     uint32_t (*window_ssd)(const int16_t* query, const int16_t* example, std::ptrdiff_t tap_step,
                            std::ptrdiff_t row_step, int side, uint32_t bound);
+    // The appearance space's linear algebra (engine/appearance.cpp,
+    // linear_kernels.hpp), every sum modulo a power of two:
+    // sum of a[i] * b[i] modulo 2^32 (the PCA's covariance);
+    uint32_t (*dot_i16)(const int16_t* a, const int16_t* b, std::size_t n);
+    // acc[i] += weight * x[i] modulo 2^32 (projections on the axes);
+    void (*axpy_i16)(int32_t* acc, const int16_t* x, int16_t weight, std::size_t n);
+    // sum of the 64-bit products a[i] * b[i] modulo 2^64 (power iteration).
+    int64_t (*dot_i32)(const int32_t* a, const int32_t* b, std::size_t n);
 };
 
 // The kernels chosen for this CPU, once. The environment variable

@@ -3,6 +3,7 @@
 // kernels.
 #include "dsp/descent.hpp"
 #include "dsp/dsp.hpp"
+#include "dsp/linear_kernels.hpp"
 
 #if defined(__AVX2__) && !defined(VQTEX_SCALAR_ONLY)
 #include "dsp/window_ssd.hpp"
@@ -161,6 +162,9 @@ const Kernels kAvx2 = {
     rank_candidates_avx2,
     lowest_ranked_avx2,
     detail::window_ssd_sse2,
+    detail::dot_i16_portable,
+    detail::axpy_i16_portable,
+    detail::dot_i32_portable,
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 // scalar kernels.
 #include "dsp/descent.hpp"
 #include "dsp/dsp.hpp"
+#include "dsp/linear_kernels.hpp"
 
 #if defined(__AVX512BW__) && defined(__AVX512DQ__) && !defined(VQTEX_SCALAR_ONLY)
 #include "dsp/window_ssd.hpp"
@@ -173,6 +174,9 @@ const Kernels kAvx512 = {
     rank_candidates_avx512,
     lowest_ranked_avx512,
     detail::window_ssd_sse2,
+    detail::dot_i16_portable,
+    detail::axpy_i16_portable,
+    detail::dot_i32_portable,
 };
 
 }  // namespace

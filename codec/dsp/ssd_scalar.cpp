@@ -2,6 +2,7 @@
 // of what every SIMD version must reproduce bit for bit.
 #include "dsp/descent.hpp"
 #include "dsp/dsp.hpp"
+#include "dsp/linear_kernels.hpp"
 
 namespace vqtex::dsp {
 namespace {
@@ -83,6 +84,9 @@ const Kernels kScalar = {
     detail::rank_candidates_portable,
     detail::lowest_ranked_portable,
     window_ssd_scalar,
+    detail::dot_i16_portable,
+    detail::axpy_i16_portable,
+    detail::dot_i32_portable,
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 // Bit-identical to ssd_scalar.cpp: exact 32-bit integer sums.
 #include "dsp/descent.hpp"
 #include "dsp/dsp.hpp"
+#include "dsp/linear_kernels.hpp"
 
 #if defined(__SSE2__) && !defined(VQTEX_SCALAR_ONLY)
 #include "dsp/window_ssd.hpp"
@@ -101,6 +102,9 @@ const Kernels kSse2 = {
     detail::rank_candidates_portable,
     detail::lowest_ranked_portable,
     detail::window_ssd_sse2,
+    detail::dot_i16_portable,
+    detail::axpy_i16_portable,
+    detail::dot_i32_portable,
 };
 
 }  // namespace

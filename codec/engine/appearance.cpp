@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "common/parallel.hpp"
+#include "dsp/dsp.hpp"
 #include "engine/pyramid.hpp"
 
 namespace vqtex {
@@ -37,20 +38,59 @@ uint64_t isqrt(uint128 n) {
 
 int fold(int i, int size, bool wraps) { return edge_index(i, size, wraps ? EdgeMode::Wrap : EdgeMode::Mirror); }
 
-// The 5x5 window of `img` around (x, y) with taps `step` apart, channel by
-// channel, into out (kWindowTaps * channels values).
-void gather_window(const Image& img, int x, int y, int step, bool wraps, int16_t* out) {
-    int xs[kWindow], ys[kWindow];
-    for (int i = 0; i < kWindow; ++i) {
-        const int dx = x + (i - kWindow / 2) * step, dy = y + (i - kWindow / 2) * step;
-        xs[i] = dx >= 0 && dx < img.width ? dx : fold(dx, img.width, wraps);
-        ys[i] = dy >= 0 && dy < img.height ? dy : fold(dy, img.height, wraps);
-    }
-    for (int r = 0; r < kWindow; ++r)
-        for (int c = 0; c < kWindow; ++c) {
-            const uint8_t* p = img.at(xs[c], ys[r]);
-            for (int ch = 0; ch < img.channels; ++ch) *out++ = p[ch];
+// The appearance vectors of one stack level: every pixel's 5x5 window at
+// `spacing` projected on `axes` (Q15), less `offset` (the axes times the
+// mean window), rounded and clamped. Rather than gathering each pixel's
+// window, each (tap, channel) adds its weight times a whole row of the
+// level (a vector kernel), read from planes padded by two taps on each side
+// as the window reads past the edges.
+void project_level(const Image& img, int spacing, bool wraps, const std::vector<std::vector<int32_t>>& axes,
+                   const std::vector<int32_t>& offset, int threads, int16_t* features) {
+    const int w = img.width, h = img.height, ch = img.channels;
+    const int pad = 2 * spacing;
+    const std::size_t pw = std::size_t(w + 2 * pad), ph = std::size_t(h + 2 * pad);
+    std::vector<int16_t> planes(pw * ph * std::size_t(ch));
+    std::vector<std::size_t> source_x(pw);
+    for (std::size_t x = 0; x < pw; ++x) source_x[x] = std::size_t(fold(int(x) - pad, w, wraps)) * ch;
+    for (int c = 0; c < ch; ++c)
+        for (std::size_t y = 0; y < ph; ++y) {
+            const uint8_t* source = img.at(0, fold(int(y) - pad, h, wraps)) + c;
+            int16_t* plane_row = planes.data() + (std::size_t(c) * ph + y) * pw;
+            for (std::size_t x = 0; x < pw; ++x) plane_row[x] = source[source_x[x]];
         }
+    const dsp::Kernels& kernels = dsp::kernels();
+    parallel_for(threads, std::size_t(h), 8, [&](std::size_t y0, std::size_t y1) {
+        std::vector<int32_t> acc(std::size_t(kAppearanceDims) * w);
+        for (std::size_t y = y0; y < y1; ++y) {
+            std::fill(acc.begin(), acc.end(), 0);
+            for (int r = 0; r < kWindow; ++r)
+                for (int c = 0; c < kWindow; ++c)
+                    for (int k = 0; k < ch; ++k) {
+                        const int16_t* row = planes.data() + (std::size_t(k) * ph + y + std::size_t(r * spacing)) * pw +
+                                             std::size_t(c * spacing);
+                        const std::size_t tap = std::size_t((r * kWindow + c) * ch + k);
+                        for (int a = 0; a < kAppearanceDims; ++a) {
+                            // Weights fit 16 bits but for a unit axis along one
+                            // value (2^15 exactly): added as two halves.
+                            int32_t weight = axes[std::size_t(a)][tap];
+                            int32_t* out = acc.data() + std::size_t(a) * w;
+                            if (weight == 32768 || weight == -32768) {
+                                const int16_t half = int16_t(weight / 2);
+                                kernels.axpy_i16(out, row, half, std::size_t(w));
+                                weight -= half;
+                            }
+                            kernels.axpy_i16(out, row, int16_t(weight), std::size_t(w));
+                        }
+                    }
+            int16_t* fv = features + y * std::size_t(w) * kAppearanceDims;
+            for (int x = 0; x < w; ++x)
+                for (int a = 0; a < kAppearanceDims; ++a) {
+                    const int64_t v = (int64_t(acc[std::size_t(a) * w + x]) - offset[std::size_t(a)] + (1 << 14)) >> 15;
+                    fv[std::size_t(x) * kAppearanceDims + a] =
+                        int16_t(std::clamp<int64_t>(v, -kAppearanceClamp, kAppearanceClamp));
+                }
+        }
+    });
 }
 
 }  // namespace
@@ -59,60 +99,58 @@ int AppearanceSpace::fold_x(int x) const { return fold(x, width, wraps); }
 int AppearanceSpace::fold_y(int y) const { return fold(y, height, wraps); }
 
 Image stack_filter(const Image& in, int step, bool wraps) {
+    // Rows are read through a copy padded by two taps on each side, so that
+    // the inner loops run over contiguous values with no edge test and
+    // vectorise; the sums are the same integers in any order.
     const int w = in.width, h = in.height, ch = in.channels;
-    std::vector<int32_t> rows(std::size_t(w) * h * ch);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < ch; ++c) {
-                int32_t sum = 0;
-                for (int t = 0; t < 5; ++t) sum += kPyramidTaps[t] * in.at(fold(x + (t - 2) * step, w, wraps), y)[c];
-                rows[(std::size_t(y) * w + x) * ch + c] = sum;
-            }
+    const std::size_t row_values = std::size_t(w) * ch;
+    const std::size_t tap_stride = std::size_t(step) * ch;
+    std::vector<uint16_t> rows(row_values * h);  // horizontal sums, at most 16 * 255
+    std::vector<uint16_t> padded(std::size_t(w + 4 * step) * ch);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w + 4 * step; ++x) {
+            const uint8_t* p = in.at(fold(x - 2 * step, w, wraps), y);
+            for (int c = 0; c < ch; ++c) padded[std::size_t(x) * ch + c] = p[c];
+        }
+        uint16_t* out = rows.data() + std::size_t(y) * row_values;
+        for (std::size_t i = 0; i < row_values; ++i) {
+            uint16_t sum = 0;
+            for (int t = 0; t < 5; ++t) sum = uint16_t(sum + kPyramidTaps[t] * padded[i + std::size_t(t) * tap_stride]);
+            out[i] = sum;
+        }
+    }
     Image out(w, h, ch);
     for (int y = 0; y < h; ++y) {
-        int ys[5];
-        for (int t = 0; t < 5; ++t) ys[t] = fold(y + (t - 2) * step, h, wraps);
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < ch; ++c) {
-                int32_t sum = 0;
-                for (int t = 0; t < 5; ++t) sum += kPyramidTaps[t] * rows[(std::size_t(ys[t]) * w + x) * ch + c];
-                out.at(x, y)[c] = uint8_t((sum + 128) >> 8);
-            }
+        const uint16_t* r[5];
+        for (int t = 0; t < 5; ++t) r[t] = rows.data() + std::size_t(fold(y + (t - 2) * step, h, wraps)) * row_values;
+        uint8_t* o = out.at(0, y);
+        for (std::size_t i = 0; i < row_values; ++i) {
+            uint32_t sum = 0;
+            for (int t = 0; t < 5; ++t) sum += uint32_t(kPyramidTaps[t]) * r[t][i];
+            o[i] = uint8_t((sum + 128) >> 8);
+        }
     }
     return out;
 }
 
-std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& samples, int dims, int count,
-                                                 int axes, int threads) {
-    const std::size_t d = std::size_t(dims);
-    // Sums of products over chunks of samples on the threads, then added:
-    // integer sums, so the same whatever the split.
-    constexpr std::size_t kChunk = 512;
-    const std::size_t chunks = (std::size_t(count) + kChunk - 1) / kChunk;
-    std::vector<std::vector<int64_t>> chunk_sum(chunks, std::vector<int64_t>(d, 0));
-    std::vector<std::vector<uint32_t>> chunk_products(chunks, std::vector<uint32_t>(d * d, 0));
-    parallel_for(threads, chunks, 1, [&](std::size_t c0, std::size_t c1) {
-        for (std::size_t c = c0; c < c1; ++c) {
-            int64_t* sum = chunk_sum[c].data();
-            uint32_t* products = chunk_products[c].data();
-            for (std::size_t s = c * kChunk; s < std::min(std::size_t(count), (c + 1) * kChunk); ++s) {
-                const int16_t* x = samples.data() + s * d;
-                for (std::size_t i = 0; i < d; ++i) {
-                    sum[i] += x[i];
-                    const uint32_t xi = uint32_t(x[i]);
-                    uint32_t* row = products + i * d;
-                    for (std::size_t j = i; j < d; ++j) row[j] += xi * uint32_t(x[j]);
-                }
-            }
-        }
-    });
+std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& columns, int dims, int count, int axes,
+                                                 int threads) {
+    const std::size_t d = std::size_t(dims), n = std::size_t(count);
+    // Sums of products of every pair of components, as dot products of the
+    // columns (contiguous 16-bit values, a vector kernel). Integer sums
+    // modulo 2^32, so the same in any order or split.
     std::vector<int64_t> sum(d, 0);
     std::vector<uint32_t> products(d * d, 0);
-    for (std::size_t c = 0; c < chunks; ++c)
-        for (std::size_t i = 0; i < d * d; ++i) {
-            products[i] += chunk_products[c][i];
-            if (i < d) sum[i] += chunk_sum[c][i];
+    const dsp::Kernels& kernels = dsp::kernels();
+    parallel_for(threads, d, 1, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i) {
+            const int16_t* a = columns.data() + i * n;
+            int64_t total = 0;
+            for (std::size_t s = 0; s < n; ++s) total += a[s];
+            sum[i] = total;
+            for (std::size_t j = i; j < d; ++j) products[i * d + j] = kernels.dot_i16(a, columns.data() + j * n, n);
         }
+    });
     // count^2 times the covariance, exact, then scaled so that every entry
     // is below 2^24: a row times a Q30 vector then fits 64 bits.
     std::vector<int128> cov(d * d);
@@ -125,23 +163,22 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& sam
         }
     int shift = 0;
     while ((largest >> shift) >= (int128(1) << 24)) ++shift;
-    std::vector<int64_t> k(d * d);
-    for (std::size_t i = 0; i < d * d; ++i) k[i] = int64_t(cov[i] >> shift);
+    // Entries below 2^24 and unit vectors in Q30 both fit 32 bits: the
+    // matrix-vector products are 32x32->64-bit multiplies (a vector kernel).
+    std::vector<int32_t> k(d * d);
+    for (std::size_t i = 0; i < d * d; ++i) k[i] = int32_t(cov[i] >> shift);
 
     std::vector<std::vector<int64_t>> found;  // Q30
     std::vector<std::vector<int32_t>> result(std::size_t(axes), std::vector<int32_t>(d, 0));
     std::vector<int64_t> v(d), w(d);
+    std::vector<int32_t> v32(d);
     uint64_t strongest = 0;  // |K v| of the first axis, once converged
     for (int a = 0; a < axes; ++a) {
         for (std::size_t i = 0; i < d; ++i) v[i] = int64_t(1 + (i * 7 + std::size_t(a) * 13) % 5) << 24;
         bool zero = false;
         for (int it = 0; it < kPowerIterations && !zero; ++it) {
-            for (std::size_t i = 0; i < d; ++i) {
-                int64_t acc = 0;
-                const int64_t* row = k.data() + i * d;
-                for (std::size_t j = 0; j < d; ++j) acc += row[j] * v[j];
-                w[i] = acc >> 24;
-            }
+            for (std::size_t i = 0; i < d; ++i) v32[i] = int32_t(v[i]);  // |v| <= 2^30
+            for (std::size_t i = 0; i < d; ++i) w[i] = kernels.dot_i32(k.data() + i * d, v32.data(), d) >> 24;
             for (const auto& e : found) {
                 int128 dot = 0;
                 for (std::size_t i = 0; i < d; ++i) dot += int128(e[i]) * w[i];
@@ -206,57 +243,70 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& e
             level.colours = l == 0 ? examples[f] : stack_filter(spaces[f].levels.back().colours, 1 << (l - 1), wraps);
             spaces[f].levels.push_back(std::move(level));
         }
-        // One set of axes for all the frames, so that appearance vectors of
-        // different frames compare.
-        std::vector<int16_t> samples;
-        int count = 0;
-        std::vector<int16_t> window(static_cast<std::size_t>(dims));
-        for (std::size_t f = 0; f < frames; f += frame_step)
-            for (int y = 0; y < h; y += stride)
-                for (int x = 0; x < w; x += stride) {
-                    gather_window(spaces[f].levels.back().colours, x, y, spacing, wraps, window.data());
-                    samples.insert(samples.end(), window.begin(), window.end());
-                    ++count;
-                }
-        const std::vector<std::vector<int32_t>> axes = principal_axes(samples, dims, count, kAppearanceDims, threads);
-        std::vector<int64_t> mean(std::size_t(dims), 0);
-        for (int s = 0; s < count; ++s)
-            for (int i = 0; i < dims; ++i) mean[std::size_t(i)] += samples[std::size_t(s) * dims + i];
-        for (auto& m : mean) m = (m + count / 2) / count;
-        // Projections in the example's own units (a unit axis keeps a
-        // window's length), so distances compare with colour differences.
-        std::vector<int32_t> flat(std::size_t(kAppearanceDims) * dims);
-        for (int a = 0; a < kAppearanceDims; ++a)
-            for (int i = 0; i < dims; ++i) flat[std::size_t(a) * dims + i] = axes[std::size_t(a)][std::size_t(i)];
-
-        for (std::size_t f = 0; f < frames; ++f) {
-            AppearanceLevel& level = spaces[f].levels.back();
-            const Image& img = level.colours;
-            level.features.assign(n * kAppearanceDims, 0);
-            parallel_for(threads, std::size_t(h), 8, [&](std::size_t y0, std::size_t y1) {
-                std::vector<int16_t> win(static_cast<std::size_t>(dims));
-                std::vector<int32_t> centred(static_cast<std::size_t>(dims));
-                for (std::size_t y = y0; y < y1; ++y)
-                    for (int x = 0; x < w; ++x) {
-                        gather_window(img, x, int(y), spacing, wraps, win.data());
-                        for (int i = 0; i < dims; ++i)
-                            centred[std::size_t(i)] = win[std::size_t(i)] - int32_t(mean[std::size_t(i)]);
-                        int16_t* fv = level.features.data() + (y * std::size_t(w) + std::size_t(x)) * kAppearanceDims;
-                        for (int a = 0; a < kAppearanceDims; ++a) {
-                            const int32_t* axis = flat.data() + std::size_t(a) * dims;
-                            // 32 bits hold the sum exactly: a unit axis (Q15)
-                            // against at most 100 values below 256 in size
-                            // sums to under 2^15 * 255 * sqrt(100) < 2^27
-                            // (Cauchy-Schwarz); and 32-bit lanes vectorise.
-                            int32_t acc = 0;
-                            for (int i = 0; i < dims; ++i) acc += axis[i] * centred[std::size_t(i)];
-                            const int64_t v = (int64_t(acc) + (1 << 14)) >> 15;
-                            fv[a] = int16_t(std::clamp<int64_t>(v, -kAppearanceClamp, kAppearanceClamp));
+    }
+    // Each level's axes and vectors depend on that level's colours alone:
+    // the levels share the threads (the power iteration is serial), and
+    // what is left of them goes to each level's loops. Exact integers, so
+    // the same for any split.
+    const int level_threads = std::max(1, threads / std::max(levels, 1));
+    parallel_for(threads, std::size_t(std::max(levels, 0)), 1, [&](std::size_t l0, std::size_t l1) {
+        for (int l = int(l0); l < int(l1); ++l) {
+            const int spacing = 1 << l;
+            // One set of axes for all the frames, so that appearance vectors of
+            // different frames compare.
+            // The samples' windows go straight into columns, one per window
+            // value (tap and channel), as principal_axes takes them; filled a
+            // column at a time, so that the writes are in order.
+            const int grid_w = (w + stride - 1) / stride, grid_h = (h + stride - 1) / stride;
+            const int count = int(sampled_frames) * grid_w * grid_h;
+            std::vector<int> tap_x(std::size_t(kWindow) * grid_w), tap_y(std::size_t(kWindow) * grid_h);
+            for (int t = 0; t < kWindow; ++t) {
+                for (int g = 0; g < grid_w; ++g)
+                    tap_x[std::size_t(t * grid_w + g)] = fold(g * stride + (t - 2) * spacing, w, wraps);
+                for (int g = 0; g < grid_h; ++g)
+                    tap_y[std::size_t(t * grid_h + g)] = fold(g * stride + (t - 2) * spacing, h, wraps);
+            }
+            std::vector<int16_t> columns(std::size_t(dims) * std::size_t(count));
+            for (int r = 0; r < kWindow; ++r)
+                for (int c = 0; c < kWindow; ++c)
+                    for (int k = 0; k < ch; ++k) {
+                        int16_t* column = columns.data() + std::size_t((r * kWindow + c) * ch + k) * std::size_t(count);
+                        for (std::size_t f = 0; f < frames; f += frame_step) {
+                            const Image& img = spaces[f].levels[std::size_t(l)].colours;
+                            for (int gy = 0; gy < grid_h; ++gy) {
+                                const uint8_t* row = img.at(0, tap_y[std::size_t(r * grid_h + gy)]);
+                                const int* xs = tap_x.data() + std::size_t(c * grid_w);
+                                for (int gx = 0; gx < grid_w; ++gx) *column++ = row[std::size_t(xs[gx]) * ch + k];
+                            }
                         }
                     }
-            });
+            const std::vector<std::vector<int32_t>> axes =
+                principal_axes(columns, dims, count, kAppearanceDims, level_threads);
+            std::vector<int64_t> mean(std::size_t(dims), 0);
+            for (int i = 0; i < dims; ++i) {
+                const int16_t* column = columns.data() + std::size_t(i) * std::size_t(count);
+                for (int s = 0; s < count; ++s) mean[std::size_t(i)] += column[s];
+            }
+            for (auto& m : mean) m = (m + count / 2) / count;
+            // Projections in the example's own units (a unit axis keeps a
+            // window's length), so distances compare with colour differences:
+            // sum over the window of axis * (value - mean), computed as the
+            // sum of axis * value less the constant sum of axis * mean. Both are
+            // exact 32-bit integers (a unit axis in Q15 against at most 100
+            // values below 256 sums to under 2^15 * 255 * sqrt(100) < 2^27 by
+            // Cauchy-Schwarz, and the mean is a window too), so the difference
+            // is the centred sum itself.
+            std::vector<int32_t> offset(kAppearanceDims, 0);
+            for (int a = 0; a < kAppearanceDims; ++a)
+                for (int i = 0; i < dims; ++i)
+                    offset[std::size_t(a)] += axes[std::size_t(a)][std::size_t(i)] * int32_t(mean[std::size_t(i)]);
+            for (std::size_t f = 0; f < frames; ++f) {
+                AppearanceLevel& level = spaces[f].levels[std::size_t(l)];
+                level.features.assign(n * kAppearanceDims, 0);
+                project_level(level.colours, spacing, wraps, axes, offset, level_threads, level.features.data());
+            }
         }
-    }
+    });
     return spaces;
 }
 

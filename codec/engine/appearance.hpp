@@ -65,10 +65,11 @@ AppearanceSpace build_appearance_space(const Image& example, int levels, bool wr
 std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& frames, int levels, bool wraps,
                                                      int threads);
 
-// The principal axes of `count` sample vectors of `dims` integers
-// (row-major), strongest first, as unit vectors in fixed point (2^15 = 1).
-// Exact integer arithmetic throughout; axes of a zero variance are zero.
-std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& samples, int dims,
+// The principal axes of `count` sample vectors of `dims` integers, given
+// as `dims` columns of `count` values (column i at i * count), strongest
+// first, as unit vectors in fixed point (2^15 = 1). Exact integer
+// arithmetic throughout; axes of a zero variance are zero.
+std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& columns, int dims,
                                                  int count, int axes, int threads = 1);
 
 }  // namespace vqtex
