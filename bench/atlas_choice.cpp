@@ -2,7 +2,7 @@
 // 17, docs/ATLAS.md "Which atlas"): for each photograph (exemplar = its
 // top-left quarter, held-out = its bottom-right quarter, as vqtex-bench
 // cuts them) and each byte target, every candidate region of the exemplar
-// is coded as a format v3 file at the finest AV1 level that fits, decoded
+// is coded as a format 4 file at the finest AV1 level that fits, decoded
 // at 2x2 the exemplar with the public API, and scored twice:
 //  * against the held-out crop (what the benchmark measures; the encoder
 //    never sees it);
@@ -11,6 +11,10 @@
 // and the proxy's choice can be compared offline.
 //
 //   atlas-choice [--targets 1000,2000,4000] [--sides 128,96,64] IMAGE...
+// The held-out scores are vqtex-bench's (score_all, seed 1), so
+// bench/choice_rules.py can put them beside a bench run's peer rows.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -54,6 +58,33 @@ vqtex_metrics::Image to_metrics(const Image& img) {
 
 std::vector<std::pair<int, int>> g_controls;
 
+// An unsharp mask of `amount` percent over a [1 2 1]^2/16 blur (edges
+// clamped), alpha untouched; a negative amount blends towards the blur.
+// Does a sharper (or smoother) atlas come through AV1 with a lower SWD?
+// (--sharpen, docs/ATLAS.md "Session 8": no.)
+Image sharpen(const Image& src, int amount) {
+    if (amount == 0) return src;
+    Image out = src;
+    const int c = src.channels, colour = (c == 2 || c == 4) ? c - 1 : c;
+    for (int y = 0; y < src.height; ++y)
+        for (int x = 0; x < src.width; ++x)
+            for (int k = 0; k < colour; ++k) {
+                int sum = 0;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const int sx = std::clamp(x + dx, 0, src.width - 1), sy = std::clamp(y + dy, 0, src.height - 1);
+                        sum += (2 - std::abs(dx)) * (2 - std::abs(dy)) * src.at(sx, sy)[k];
+                    }
+                const int v = src.at(x, y)[k];
+                const int s = v + int(std::lround(double((v * 16 - sum) * amount) / 1600.0));
+                out.at(x, y)[k] = uint8_t(std::clamp(s, 0, 255));
+            }
+    return out;
+}
+int g_sharpen = 0;          // --sharpen: percent of unsharp mask (negative: blur) before coding
+int g_fewer_levels = 0;     // --fewer-levels: the header's stack depth below the deepest
+uint64_t g_proxy_seed = 2;  // the encoder's proxy seed (atlas_choice.cpp); --proxy-seed measures its noise
+
 bool g_tileable = false;  // the atlas being coded wraps (an epitome)
 vqtex::AtlasSynthesisParams g_params;  // the engine's, from --passes etc.
 bool g_chroma444 = true;
@@ -64,12 +95,12 @@ std::vector<uint8_t> atlas_file(const Image& example, const Image& atlas, int cq
     o.chroma444 = g_chroma444;
     o.cq_level = cq;
     o.speed = speed;
-    const std::vector<uint8_t> bits = vqtex::encode_atlas(atlas, o);
+    const std::vector<uint8_t> bits = vqtex::encode_atlas(sharpen(atlas, g_sharpen), o);
     vqtex::FileHeader h;
     h.exemplar_width = uint32_t(example.width);
     h.exemplar_height = uint32_t(example.height);
     h.channels = uint8_t(example.channels);
-    h.levels = uint8_t(vqtex::coherent_levels(atlas.width, atlas.height));
+    h.levels = uint8_t(std::max(1, vqtex::coherent_levels(atlas.width, atlas.height) - g_fewer_levels));
     h.seed = 1;
     vqtex::AtlasSynthesisParams sp = g_params;
     sp.example_tileable = g_tileable;
@@ -138,6 +169,9 @@ int main(int argc, char** argv) {
         if (a == "--targets" && i + 1 < argc) targets = parse_list(argv[++i]);
         else if (a == "--sides" && i + 1 < argc) sides = parse_list(argv[++i]);
         else if (a == "--speed" && i + 1 < argc) speed = std::atoi(argv[++i]);
+        else if (a == "--sharpen" && i + 1 < argc) g_sharpen = std::atoi(argv[++i]);
+        else if (a == "--proxy-seed" && i + 1 < argc) g_proxy_seed = std::strtoull(argv[++i], nullptr, 10);
+        else if (a == "--fewer-levels" && i + 1 < argc) g_fewer_levels = std::atoi(argv[++i]);
         else if (a == "--epitomes" && i + 1 < argc) epitomes = parse_list(argv[++i]);
         else if (a == "--patch" && i + 1 < argc) eo.patch = std::atoi(argv[++i]);
         else if (a == "--stride" && i + 1 < argc) eo.stride = std::atoi(argv[++i]);
@@ -195,14 +229,18 @@ int main(int argc, char** argv) {
                 if (file.empty()) continue;
                 const Image out = decode(file, 2 * w, 2 * h, 1);
                 const auto om = to_metrics(out), hm = to_metrics(held);
-                const double hc = vqtex_metrics::completeness(hm, om);
-                const double hs = vqtex_metrics::sliced_wasserstein(om, hm).mean;
-                const Image proxy = decode(file, 2 * w, 2 * h, 2);
+                // The held-out scores as vqtex-bench computes them (score_all,
+                // seed 1: its metric seeds differ from the defaults, and one
+                // SWD sample moves by several hundredths with them).
+                const vqtex_metrics::Scores bench = vqtex_metrics::score_all(om, hm, to_metrics(exemplar), 1);
+                const double hc = bench.completeness;
+                const double hs = bench.swd.mean;
+                const Image proxy = decode(file, 2 * w, 2 * h, g_proxy_seed);
                 const auto pm = to_metrics(proxy), em = to_metrics(exemplar);
                 const double pc = vqtex_metrics::completeness(em, pm);
                 const double ps = vqtex_metrics::sliced_wasserstein(pm, em).mean;
                 const double ph = vqtex_metrics::coherence(pm, em);
-                const double hh = vqtex_metrics::coherence(om, em);
+                const double hh = bench.coherence;
                 std::printf("%s,%d,%d,%d,%d,%d,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", name.c_str(), target, cand.side,
                             cand.x, cand.y, cq, file.size(), hc, hs, hh, pc, ps, ph);
                 std::fflush(stdout);
