@@ -95,9 +95,15 @@ struct Revisit {
 // finest level of a large output, coherent_synthesis.cpp): the map's row r
 // is row (first + r) mod torus_height of the torus, which decides the
 // subset it belongs to. Windows do not wrap inside a band: those that reach
-// past its first or last row read that row instead, so each subset leaves
-// wrong states up to 2 rows further in from the band's edges than the one
-// before, and the caller keeps only rows that many subsets could not reach.
+// past its first or last row read that row instead, so states near its
+// edges go wrong, and the caller keeps only rows they cannot reach (the
+// margin). A state goes wrong only when its window (2 rows either way)
+// holds a wrong one, or its revisit flag is wrong, which takes a wrong
+// state within the same 2 rows. The first subset spoils at most 2 rows from
+// an edge; each later one changes the rows of the other parity than the one
+// before, so the nearest of them past the wrong rows is 1 row further in,
+// or 2 once where an odd torus wraps inside the band (two rows of one
+// parity side by side): after n subsets, at most n + 2 rows from an edge.
 struct Band {
     int first = 0;
     int torus_height = 0;

@@ -230,9 +230,9 @@ struct LevelPasses {
         return l == top ? options.coarse_passes : l == 0 ? std::max(1, options.passes - 1) : options.passes;
     }
 
-    // Rows from a band's edges that the finest level's passes leave wrong:
-    // 2 per subset (coherent::Band), four subsets a pass.
-    int band_margin() const { return 2 * 4 * (passes_at(0) + std::max(0, options.polish_passes)); }
+    // Rows from a band's edges that the finest level's passes may leave
+    // wrong: 2 more than its subsets, four a pass (coherent::Band).
+    int band_margin() const { return 4 * (passes_at(0) + std::max(0, options.polish_passes)) + 2; }
 
     // Level l's passes on `map` (the whole level, or with `band` some of its
     // rows, of which `own_rows` count for progress), then at the finest
@@ -310,27 +310,30 @@ int band_rows(const CoherentOptions& options, int channels, int margin) {
 }
 
 // Cuts the w x h torus of `image` open at (ox, oy) in place: pixel (x, y)
-// becomes the one at (x + ox, y + oy). Rows turn by three reversals of
-// whole rows, so no second image is allocated.
-void roll_in_place(Image& image, int ox, int oy, int threads) {
-    const std::size_t row_bytes = std::size_t(image.width) * std::size_t(image.channels);
-    if (ox != 0)
-        parallel_for(threads, std::size_t(image.height), 16, [&](std::size_t y0, std::size_t y1) {
-            for (std::size_t y = y0; y < y1; ++y) {
-                uint8_t* row = image.pixels.data() + y * row_bytes;
-                std::rotate(row, row + std::size_t(ox) * std::size_t(image.channels), row + row_bytes);
-            }
-        });
-    if (oy == 0) return;
-    const auto reverse_rows = [&](int a, int b) {  // rows [a, b)
-        for (int i = a, j = b - 1; i < j; ++i, --j)
-            std::swap_ranges(image.pixels.data() + std::size_t(i) * row_bytes,
-                             image.pixels.data() + std::size_t(i + 1) * row_bytes,
-                             image.pixels.data() + std::size_t(j) * row_bytes);
-    };
-    reverse_rows(0, oy);
-    reverse_rows(oy, image.height);
-    reverse_rows(0, image.height);
+// becomes the one at (x + ox, y + oy). Rows move along the cycles of the
+// turn by oy, each copied once, turned by ox on the way, with one row held
+// aside per cycle: no second image.
+void roll_in_place(Image& image, int ox, int oy) {
+    const std::size_t pixel = std::size_t(image.channels), row_bytes = std::size_t(image.width) * pixel;
+    const std::size_t head = std::size_t(ox) * pixel, tail = row_bytes - head;
+    const int h = image.height;
+    if (ox == 0 && oy == 0) return;
+    const auto row = [&](int y) { return image.pixels.data() + std::size_t(y) * row_bytes; };
+    std::vector<uint8_t> held(row_bytes);
+    int moved = 0;
+    for (int start = 0; moved < h; ++start) {
+        std::memcpy(held.data(), row(start), row_bytes);
+        int y = start;
+        for (;;) {
+            const int from = (y + oy) % h;
+            const uint8_t* src = from == start ? held.data() : row(from);
+            std::memcpy(row(y), src + head, tail);
+            std::memcpy(row(y) + tail, src, head);
+            ++moved;
+            if (from == start) break;
+            y = from;
+        }
+    }
 }
 
 // The output of a large texture: the finest level synthesised in bands of
@@ -390,7 +393,7 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
             return d;
         };
         const std::pair<int, int> origin = coherent::torus_origin(w, h, step);
-        roll_in_place(out, origin.first, origin.second, options.threads);
+        roll_in_place(out, origin.first, origin.second);
     }
     return out;
 }
