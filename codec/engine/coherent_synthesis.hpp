@@ -12,7 +12,9 @@
 // (Lefebvre & Hoppe 2006) matches best. Passes run on interleaved pixel
 // subsets, each reading only the state before it, so a pixel's result never
 // depends on the thread count; the output is a torus, so it tiles with no
-// scan seam. Pixels are read through the finest positions at the end.
+// scan seam. Pixels are read through the finest positions at the end; a
+// large output's finest level runs in bands of rows, read as they are done,
+// so that neither its positions nor a second image are ever whole.
 #pragma once
 
 #include <cstdint>
