@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# decode_memory.sh - peak memory of decoding a format v3 (atlas) file
-# against issue 17's budget: at most twice the output (W x H x channels
-# bytes) plus 16 MB.
+# decode_memory.sh - peak memory of decoding atlas files (format v4, what
+# `vqtex-encode --atlas` writes; v3 decodes the same way) against issue 17's
+# budget: at most twice the output (W x H x channels bytes) plus 16 MB.
 #
 #   bash bench/decode_memory.sh [BUILD_DIR] [SIDES] [THREADS]
 #
-# Defaults: build/, sides "512 2048 4096", threads "1 2". The file is made
-# from corpus/cellular_128.png (3 channels) with
-# `vqtex-encode --atlas --target-size 4000`. Two figures per size:
+# Defaults: build/, sides "512 2048 4096", threads "1 2". Three files, made
+# with `vqtex-encode --atlas`: corpus/cellular_128.png (3 channels,
+# --target-size 4000), corpus/grey_noise_64.png (1 channel) and
+# corpus/leaves_rgba_64.png (4 channels). Two figures per size:
 #   library  - what one vqtex_decode call adds to the resident set, in a
 #              fresh process (bench_scaling --memory-child: its high-water
 #              mark, getrusage ru_maxrss, less the resident set just before
@@ -15,7 +16,8 @@
 #   command  - the whole peak of `vqtex-decode FILE OUT.png --size WxH`
 #              (/usr/bin/time %M), libraries, file reading and the PNG
 #              writer included, for reference.
-# Prints a Markdown table (MiB; 1 MiB = 1024 KiB).
+# Prints a Markdown table (MiB; 1 MiB = 1024 KiB); exits 1 if any library
+# figure is over its budget.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$root/build}"
@@ -27,30 +29,38 @@ done
 [[ -x /usr/bin/time ]] || { echo "decode_memory: /usr/bin/time is missing (apt-get install time)" >&2; exit 1; }
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-file="$tmp/cellular_atlas.vqt"
-"$build/vqtex-encode" "$root/corpus/cellular_128.png" "$file" --atlas --target-size 4000 --quiet
-channels=3
 mib() { awk -v k="$1" 'BEGIN {printf "%.1f", k / 1024}'; }
 
-echo "File: corpus/cellular_128.png --atlas --target-size 4000 ($(stat -c %s "$file") bytes, $channels channels)."
+# example, channels, encoder options
+examples=("cellular_128.png 3 --target-size 4000" "grey_noise_64.png 1" "leaves_rgba_64.png 4")
+for example in "${examples[@]}"; do
+    read -r name channels options <<<"$example"
+    # shellcheck disable=SC2086 # options are words
+    "$build/vqtex-encode" "$root/corpus/$name" "$tmp/${name%.png}.vqt" --atlas $options --quiet
+    echo "- corpus/$name: --atlas ${options:-(defaults)}, $(stat -c %s "$tmp/${name%.png}.vqt") bytes, channels: $channels."
+done
 echo
-echo "| output | threads | output MiB | budget MiB (2x + 16) | library peak MiB | within | command peak MiB |"
-echo "|---|---|---|---|---|---|---|"
+echo "| file | output | threads | output MiB | budget MiB (2x + 16) | library peak MiB | within | command peak MiB |"
+echo "|---|---|---|---|---|---|---|---|"
 status=0
-for side in $sides; do
-    for threads in $threads_list; do
-        output_kib=$((side * side * channels / 1024))
-        budget_kib=$((2 * output_kib + 16 * 1024))
-        library_kib="$("$build/bench/bench_scaling" --memory-child "$file" --sizes "$side" -j "$threads")"
-        command_kib="$(/usr/bin/time -f '%M' "$build/vqtex-decode" "$file" "$tmp/out.png" --size "${side}x${side}" \
-            -j "$threads" --quiet 2>&1 >/dev/null | tail -1)"
-        within=yes
-        if ((library_kib > budget_kib)); then
-            within=NO
-            status=1
-        fi
-        echo "| ${side}x${side} | $threads | $(mib "$output_kib") | $(mib "$budget_kib") | $(mib "$library_kib") | $within |" \
-             "$(mib "$command_kib") |"
+for example in "${examples[@]}"; do
+    read -r name channels _ <<<"$example"
+    file="$tmp/${name%.png}.vqt"
+    for side in $sides; do
+        for threads in $threads_list; do
+            output_kib=$((side * side * channels / 1024))
+            budget_kib=$((2 * output_kib + 16 * 1024))
+            library_kib="$("$build/bench/bench_scaling" --memory-child "$file" --sizes "$side" -j "$threads")"
+            command_kib="$(/usr/bin/time -f '%M' "$build/vqtex-decode" "$file" "$tmp/out.png" --size "${side}x${side}" \
+                -j "$threads" --quiet 2>&1 >/dev/null | tail -1)"
+            within=yes
+            if ((library_kib > budget_kib)); then
+                within=NO
+                status=1
+            fi
+            echo "| ${name%.png} | ${side}x${side} | $threads | $(mib "$output_kib") | $(mib "$budget_kib") |" \
+                 "$(mib "$library_kib") | $within | $(mib "$command_kib") |"
+        done
     done
 done
 exit "$status"

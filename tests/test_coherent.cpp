@@ -356,6 +356,42 @@ TEST(Coherent, GoldenHash) {
     EXPECT_EQ(h, 0x217a760a4b8cbd8dull) << std::hex << h;
 }
 
+TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
+    // A large output's finest level runs in bands of rows with margins
+    // (issue 17's memory budget); any band height, odd heights among them
+    // (the subsets' parity across the torus's wrap), 1 to 3 channels, jitter,
+    // more passes, no polish, no roll, k > 1, a tileable example, and any
+    // thread count must give the bytes of the whole level.
+    struct Case {
+        int w, h, channels, passes, polish, jitter, coherence;
+        bool roll, tileable;
+    };
+    const Case cases[] = {{61, 97, 1, 2, 1, 0, 1, true, false},  {40, 121, 2, 2, 1, 0, 1, true, false},
+                          {33, 80, 3, 2, 1, 64, 1, true, false}, {50, 99, 1, 3, 2, 0, 3, false, false},
+                          {47, 60, 3, 1, 0, 0, 1, true, true}};
+    for (const Case& c : cases) {
+        const Image rgb = textured(40, 36, 3);
+        Image ex(rgb.width, rgb.height, c.channels);
+        for (std::size_t i = 0; i < ex.pixel_count(); ++i)
+            for (int k = 0; k < c.channels; ++k) ex.pixels[i * std::size_t(c.channels) + std::size_t(k)] = rgb.pixels[i * 3 + std::size_t(k)];
+        CoherentOptions options;
+        options.width = c.w;
+        options.height = c.h;
+        options.seed = 4;
+        options.passes = c.passes;
+        options.polish_passes = c.polish;
+        options.jitter = c.jitter;
+        options.roll = c.roll;
+        const std::string what = std::to_string(c.w) + "x" + std::to_string(c.h) + "x" + std::to_string(c.channels);
+        const Image whole = synthesize_coherent(ex, 4, c.tileable, c.coherence, options).image;
+        for (int band : {1, 2, 7, 16}) {
+            options.band_rows = band;
+            options.threads = 1 + band % 3;
+            EXPECT_EQ(synthesize_coherent(ex, 4, c.tileable, c.coherence, options).image, whole) << what << " band " << band;
+        }
+    }
+}
+
 TEST(Coherent, TileableExampleKeepsItsPeriod) {
     // A tileable checkerboard of period 16 (with noise, so that positions
     // are told apart). Read as tileable, copies wrap around the example's

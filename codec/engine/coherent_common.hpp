@@ -91,6 +91,24 @@ struct Revisit {
     explicit Revisit(std::size_t pixels) : due(pixels, 1) {}
 };
 
+// A band of rows of a taller torus, passed through on its own (the
+// finest level of a large output, coherent_synthesis.cpp): the map's row r
+// is row (first + r) mod torus_height of the torus, which decides the
+// subset it belongs to. Windows do not wrap inside a band: those that reach
+// past its first or last row read that row instead, so states near its
+// edges go wrong, and the caller keeps only rows they cannot reach (the
+// margin). A state goes wrong only when its window (2 rows either way)
+// holds a wrong one, or its revisit flag is wrong, which takes a wrong
+// state within the same 2 rows. The first subset spoils at most 2 rows from
+// an edge; each later one changes the rows of the other parity than the one
+// before, so the nearest of them past the wrong rows is 1 row further in,
+// or 2 once where an odd torus wraps inside the band (two rows of one
+// parity side by side): after n subsets, at most n + 2 rows from an edge.
+struct Band {
+    int first = 0;
+    int torus_height = 0;
+};
+
 // One correction pass over a w x h torus of states `map` (any element
 // type), in four interleaved subsets; each subset reads only the states as
 // they were before it, so no pixel's result depends on the thread count or
@@ -99,15 +117,23 @@ struct Revisit {
 // of its 5x5 window. A subset's results go to a buffer of its own size
 // first, since its rows read one another's windows, and are put in place
 // once it is done. With `revisit`, pixels whose window has not changed
-// since their last evaluation keep their state without one.
+// since their last evaluation keep their state without one. With `band`,
+// `map` holds h rows of a taller torus (Band).
 template <typename T, typename Correct>
-void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& correct, Revisit* revisit = nullptr) {
+void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& correct, Revisit* revisit = nullptr,
+                      const Band* band = nullptr) {
     static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
-    std::vector<T> chosen(std::size_t((w + 1) / 2) * std::size_t((h + 1) / 2));
+    // The map's rows by the parity of their row on the torus: every other
+    // row, except across the wrap of an odd torus inside a band.
+    std::vector<int> parity_rows[2];
+    for (int y = 0; y < h; ++y) parity_rows[(band ? (band->first + y) % band->torus_height : y) & 1].push_back(y);
+    const auto window_row = [&](int y) { return band ? std::clamp(y, 0, h - 1) : Image::wrap(y, h); };
+    std::vector<T> chosen(std::size_t((w + 1) / 2) * std::max(parity_rows[0].size(), parity_rows[1].size()));
     for (const auto& subset : kOrder) {
         // Plain ints: clang 14 cannot capture structured bindings in a lambda.
-        const int sx = subset[0], sy = subset[1];
-        const int rows = (h - sy + 1) / 2, cols = (w - sx + 1) / 2;
+        const int sx = subset[0];
+        const std::vector<int>& subset_rows = parity_rows[subset[1]];
+        const int rows = int(subset_rows.size()), cols = (w - sx + 1) / 2;
         if (rows <= 0 || cols <= 0) continue;
         // Chunks of at least ~4096 pixels: at the coarse levels waking a
         // thread costs more than the rows it would take.
@@ -115,9 +141,9 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
         parallel_for(threads, std::size_t(rows), grain, [&](std::size_t r0, std::size_t r1) {
             int xs[kSide], ys[kSide];
             for (std::size_t r = r0; r < r1; ++r) {
-                const int y = sy + 2 * int(r);
+                const int y = subset_rows[r];
                 T* out = chosen.data() + r * std::size_t(cols);
-                for (int i = 0; i < kSide; ++i) ys[i] = Image::wrap(y + i - kRadius, h);
+                for (int i = 0; i < kSide; ++i) ys[i] = window_row(y + i - kRadius);
                 for (int i = 0; i < kSide; ++i) xs[i] = Image::wrap(sx + i - kRadius, w);
                 for (int x = sx, i = 0; x < w; x += 2, ++i) {
                     const std::size_t at = std::size_t(y) * w + x;
@@ -142,16 +168,17 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
         // Putting the choices in place is a copy: one thread is as fast. With
         // `revisit`, every pixel whose window holds a changed one is due
         // again, marked here, after the subset, so no flag is written twice
-        // at once.
+        // at once (in a band, only the rows it holds).
         for (int r = 0; r < rows; ++r) {
-            const int y = sy + 2 * r;
+            const int y = subset_rows[std::size_t(r)];
             T* row = map.data() + std::size_t(y) * std::size_t(w);
             const T* in = chosen.data() + std::size_t(r) * std::size_t(cols);
             for (int i = 0; i < cols; ++i) {
                 const int x = sx + 2 * i;
                 if (revisit && !(row[x] == in[i]))
                     for (int dy = -kRadius; dy <= kRadius; ++dy) {
-                        uint8_t* due = revisit->due.data() + std::size_t(Image::wrap(y + dy, h)) * w;
+                        if (band && (y + dy < 0 || y + dy >= h)) continue;
+                        uint8_t* due = revisit->due.data() + std::size_t(band ? y + dy : Image::wrap(y + dy, h)) * w;
                         for (int dx = -kRadius; dx <= kRadius; ++dx) due[Image::wrap(x + dx, w)] = 1;
                     }
                 row[x] = in[i];

@@ -25,6 +25,8 @@ using coherent::kTaps;
 using coherent::pixel_hash;
 static_assert(kTaps < 32, "a window's taps are bits of one uint32_t");
 constexpr int kMaxCandidates = kTaps * 16;
+// A band's buffers when the finest level is synthesised in bands (band_rows).
+constexpr uint64_t kBandBytes = uint64_t(8) << 20;
 
 // Position (x, y) of the example, folded inside if it is not.
 uint32_t folded(const AppearanceSpace& space, int x, int y) {
@@ -161,16 +163,250 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     return best;
 }
 
-// One correction pass over the whole level (coherent::interleaved_pass).
+// One correction pass over the whole level, or over a band of its rows
+// (coherent::interleaved_pass).
 void correction_pass(const LevelView& view, PositionMap& map, const CoherentOptions& options,
-                     coherent::Revisit* revisit = nullptr) {
+                     coherent::Revisit* revisit = nullptr, const coherent::Band* band = nullptr) {
     const int w = map.width;
     coherent::interleaved_pass(
         options.threads, map.width, map.height, map.positions,
         [&](int, int, const int* xs, const int* ys) {
             return correct_pixel(view, map.positions.data(), w, xs, ys, options.coherence_bias, options.link_bias);
         },
-        revisit);
+        revisit, band);
+}
+
+// Rows [first, first + count) of a width x height level, wrapped on its
+// height, before correction: each child takes its parent's position
+// (`parent_at(i)` for entry i of the parent map, `parent_width` wide) plus
+// its offset times `spacing`, then with `jitter` the level's seeded
+// displacement. Each pixel's start depends on nothing else, so a band of
+// rows starts as the same rows of the whole level.
+template <typename ParentAt>
+void start_rows(const AppearanceSpace& space, ParentAt&& parent_at, int parent_width, int width, int height,
+                int level, int spacing, const CoherentOptions& options, bool jitter, int first, int count,
+                uint32_t* out) {
+    // Jitter of up to jitter/256 of the spacing in x and y.
+    const int64_t reach = jitter ? int64_t(spacing) * options.jitter : 0;
+    parallel_for(options.threads, std::size_t(count), 16, [&](std::size_t r0, std::size_t r1) {
+        for (int r = int(r0); r < int(r1); ++r) {
+            const int y = (first + r) % height;
+            uint32_t* row = out + std::size_t(r) * std::size_t(width);
+            for (int x = 0; x < width; ++x) {
+                const uint32_t p = parent_at(std::size_t(y >> 1) * std::size_t(parent_width) + std::size_t(x >> 1));
+                row[x] = pack_position(coherent::child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing),
+                                       coherent::child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing));
+                if (reach > 0) {
+                    const uint64_t hash = pixel_hash(options.seed, level, 1, x, y);
+                    const int64_t jx = ((int64_t(hash & 0xFFFF) - 32768) * reach) / (32768 * 256);
+                    const int64_t jy = ((int64_t((hash >> 16) & 0xFFFF) - 32768) * reach) / (32768 * 256);
+                    row[x] = folded(space, position_x(row[x]) + int(jx), position_y(row[x]) + int(jy));
+                }
+            }
+        }
+    });
+}
+
+// Correction passes at each level, counted for the progress callback.
+struct LevelPasses {
+    const AppearanceSpace& space;
+    const CoherenceSets& sets;
+    const CoherentOptions& options;
+    int top;
+    uint64_t done = 0, total = 0;
+
+    LevelPasses(const AppearanceSpace& s, const CoherenceSets& c, const CoherentOptions& o)
+        : space(s), sets(c), options(o), top(int(s.levels.size()) - 1) {
+        for (int l = top; l >= 0; --l) {
+            const uint64_t area = uint64_t(pyramid_level_size(options.width, l)) * pyramid_level_size(options.height, l);
+            total += area * uint64_t(passes_at(l));
+        }
+    }
+
+    // The finest level runs one pass fewer: the colour polish follows it,
+    // and with the link bias its second pass changed the corpus scores by
+    // under 0.5% for a tenth of the synthesis time (SYNTHESIS.md).
+    int passes_at(int l) const {
+        return l == top ? options.coarse_passes : l == 0 ? std::max(1, options.passes - 1) : options.passes;
+    }
+
+    // Rows from a band's edges that the finest level's passes may leave
+    // wrong: 2 more than its subsets, four a pass (coherent::Band).
+    int band_margin() const { return 4 * (passes_at(0) + std::max(0, options.polish_passes)) + 2; }
+
+    // Level l's passes on `map` (the whole level, or with `band` some of its
+    // rows, of which `own_rows` count for progress), then at the finest
+    // level the colour polish.
+    void run(int l, PositionMap& map, const coherent::Band* band = nullptr, int own_rows = 0) {
+        const int spacing = space.levels[std::size_t(l)].spacing;
+        const LevelView view{space, sets, l, spacing, space.levels[std::size_t(l)].features.data(), sets.k,
+                             dsp::kernels()};
+        coherent::Revisit revisit(map.positions.size());
+        for (int pass = 0; pass < passes_at(l); ++pass) {
+            correction_pass(view, map, options, &revisit, band);
+            done += uint64_t(map.width) * uint64_t(band ? own_rows : map.height);
+            if (options.progress && !options.progress(done, total))
+                fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+        }
+        if (l == 0 && options.polish_passes > 0) {
+            // Seams between coherent copies are placed by colours at last:
+            // the coherence of the output's own pixels is what a viewer sees.
+            // Every pixel is due again (other features); the flags of the
+            // level's passes are reused rather than a second set allocated
+            // beside them (a byte per output pixel).
+            const LevelView polish{space, sets, 0, 1, space.pixels.data(), 1, dsp::kernels()};
+            std::fill(revisit.due.begin(), revisit.due.end(), uint8_t(1));
+            for (int pass = 0; pass < options.polish_passes; ++pass)
+                correction_pass(polish, map, options, &revisit, band);
+        }
+    }
+
+    // Levels from the coarsest down to `last`, whole.
+    PositionMap levels_down_to(int last) {
+        PositionMap map;
+        for (int l = top; l >= last; --l) {
+            const int w = pyramid_level_size(options.width, l), h = pyramid_level_size(options.height, l);
+            if (l == top) {
+                // The coarsest level starts anywhere: positions drawn at random.
+                map = PositionMap{w, h, std::vector<uint32_t>(std::size_t(w) * h)};
+                for (int y = 0; y < h; ++y)
+                    for (int x = 0; x < w; ++x) {
+                        const uint64_t r = pixel_hash(options.seed, l, 0, x, y);
+                        map.positions[std::size_t(y) * w + x] = pack_position(
+                            int((r & 0xFFFFFFFF) % uint64_t(space.width)), int((r >> 32) % uint64_t(space.height)));
+                    }
+            } else {
+                PositionMap child{w, h, std::vector<uint32_t>(std::size_t(w) * h)};
+                start_rows(space, [&](std::size_t i) { return map.positions[i]; }, map.width, w, h, l,
+                           space.levels[std::size_t(l)].spacing, options, true, 0, h, child.positions.data());
+                map = std::move(child);
+            }
+            run(l, map);
+        }
+        return map;
+    }
+};
+
+// Output rows per band of the finest level, or 0 to synthesise it whole.
+// Whole, the level's buffers take 6 bytes a pixel (positions, revisit
+// flags, a subset's choices): within twice the output plus 8 MiB from 3
+// channels up, so those outputs and small ones keep the single pass over
+// the level. Otherwise bands of about 8 MiB of buffers: a band, the output
+// and the coarser level (half a byte a pixel, narrowed, or 1) stay within
+// twice the output plus 16 MiB (issue 17's budget), and so does the output
+// with the caller's copy of it beside a band's worth of freed memory that
+// the allocator may keep. Each band's `margin` rows on either side are
+// synthesised twice.
+int band_rows(const CoherentOptions& options, int channels, int margin) {
+    const uint64_t pixels = uint64_t(options.width) * uint64_t(options.height);
+    int rows = options.band_rows;
+    if (rows <= 0) {
+        if (6 * pixels <= 2 * pixels * uint64_t(channels) + kBandBytes) return 0;
+        const uint64_t with_margins = kBandBytes / (6 * uint64_t(options.width));
+        rows = int(std::min<uint64_t>(std::max<uint64_t>(with_margins, 4 * uint64_t(margin)) - 2 * uint64_t(margin),
+                                      uint64_t(options.height)));
+    }
+    return uint64_t(rows) + 2 * uint64_t(margin) < uint64_t(options.height) ? rows : 0;
+}
+
+// Cuts the w x h torus of `image` open at (ox, oy) in place: pixel (x, y)
+// becomes the one at (x + ox, y + oy). Rows move along the cycles of the
+// turn by oy, each copied once, turned by ox on the way, with one row held
+// aside per cycle: no second image.
+void roll_in_place(Image& image, int ox, int oy) {
+    const std::size_t pixel = std::size_t(image.channels), row_bytes = std::size_t(image.width) * pixel;
+    const std::size_t head = std::size_t(ox) * pixel, tail = row_bytes - head;
+    const int h = image.height;
+    if (ox == 0 && oy == 0) return;
+    const auto row = [&](int y) { return image.pixels.data() + std::size_t(y) * row_bytes; };
+    std::vector<uint8_t> held(row_bytes);
+    int moved = 0;
+    for (int start = 0; moved < h; ++start) {
+        std::memcpy(held.data(), row(start), row_bytes);
+        int y = start;
+        for (;;) {
+            const int from = (y + oy) % h;
+            const uint8_t* src = from == start ? held.data() : row(from);
+            std::memcpy(row(y), src + head, tail);
+            std::memcpy(row(y) + tail, src, head);
+            ++moved;
+            if (from == start) break;
+            y = from;
+        }
+    }
+}
+
+// The output of a large texture: the finest level synthesised in bands of
+// `band` rows, each with `margin` rows more on either side (the rows the
+// band's passes leave wrong), from the coarser level's positions; each
+// band's own rows are read into the output at once, so neither the finest
+// level's positions nor a second image are ever whole. The same bytes as
+// read_positions on the whole level: a band's rows are exact, and the torus
+// cut is found on the pixels, the same sums as through the positions.
+Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, int margin) {
+    const CoherentOptions& options = passes.options;
+    const AppearanceSpace& space = passes.space;
+    const int w = options.width, h = options.height;
+    PositionMap coarse = passes.levels_down_to(1);
+    // The coarser level, narrowed to 16-bit example pixel indices when the
+    // example has at most 65536 pixels (an atlas of up to 256x256), as
+    // read_positions narrows the finest.
+    std::vector<uint16_t> narrow;
+    if (example.pixel_count() <= 65536) {
+        narrow.resize(coarse.positions.size());
+        for (std::size_t i = 0; i < narrow.size(); ++i)
+            narrow[i] = uint16_t(uint32_t(position_y(coarse.positions[i])) * uint32_t(example.width) +
+                                 uint32_t(position_x(coarse.positions[i])));
+        std::vector<uint32_t>().swap(coarse.positions);
+    }
+    const auto parent_at = [&](std::size_t i) {
+        if (narrow.empty()) return coarse.positions[i];
+        return pack_position(int(narrow[i] % uint32_t(example.width)), int(narrow[i] / uint32_t(example.width)));
+    };
+    Image out(w, h, example.channels);
+    PositionMap part{w, 0, {}};
+    for (int y0 = 0; y0 < h; y0 += band) {
+        const int rows = std::min(band, h - y0);
+        const coherent::Band rows_of{Image::wrap(y0 - margin, h), h};
+        part.height = rows + 2 * margin;
+        part.positions.resize(std::size_t(w) * std::size_t(part.height));
+        start_rows(space, parent_at, coarse.width, w, h, 0, space.levels[0].spacing, options, true, rows_of.first,
+                   part.height, part.positions.data());
+        passes.run(0, part, &rows_of, rows);
+        parallel_for(options.threads, std::size_t(rows), 16, [&](std::size_t r0, std::size_t r1) {
+            for (std::size_t r = r0; r < r1; ++r) {
+                const uint32_t* p = part.positions.data() + (r + std::size_t(margin)) * std::size_t(w);
+                for (int x = 0; x < w; ++x)
+                    copy_pixel(out.at(x, y0 + int(r)), example.at(position_x(p[x]), position_y(p[x])), example.channels);
+            }
+        });
+    }
+    std::vector<uint32_t>().swap(part.positions);
+    std::vector<uint32_t>().swap(coarse.positions);
+    std::vector<uint16_t>().swap(narrow);
+    if (options.roll) {
+        const auto step = [&](int x0, int y0, int x1, int y1) {
+            const uint8_t* a = out.at(x0, y0);
+            const uint8_t* b = out.at(x1, y1);
+            int d = 0;
+            for (int c = 0; c < out.channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
+            return d;
+        };
+        const std::pair<int, int> origin = coherent::torus_origin(w, h, step);
+        roll_in_place(out, origin.first, origin.second);
+    }
+    return out;
+}
+
+// The output: the finest level whole and read through its positions, or
+// for a large output in bands.
+Image synthesize_pixels(const Image& example, const AppearanceSpace& space, const CoherenceSets& sets,
+                        const CoherentOptions& options) {
+    LevelPasses passes(space, sets, options);
+    const int margin = passes.band_margin();
+    const int band = band_rows(options, example.channels, margin);
+    if (band == 0) return read_positions(example, passes.levels_down_to(0), options.roll, options.threads);
+    return synthesize_in_bands(example, passes, band, margin);
 }
 
 }  // namespace
@@ -186,80 +422,24 @@ void correct_positions(const AppearanceSpace& space, const CoherenceSets& sets, 
 PositionMap upsample_positions(const AppearanceSpace& space, const PositionMap& parent, int width, int height,
                                int spacing, int threads) {
     PositionMap out{width, height, std::vector<uint32_t>(std::size_t(width) * height)};
-    parallel_for(threads, std::size_t(height), 16, [&](std::size_t y0, std::size_t y1) {
-        for (int y = int(y0); y < int(y1); ++y)
-            for (int x = 0; x < width; ++x) {
-                const uint32_t p = parent.positions[std::size_t(y >> 1) * parent.width + (x >> 1)];
-                out.positions[std::size_t(y) * width + x] =
-                    pack_position(coherent::child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing),
-                                  coherent::child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing));
-            }
-    });
+    CoherentOptions options;
+    options.threads = threads;
+    start_rows(space, [&](std::size_t i) { return parent.positions[i]; }, parent.width, width, height, 0, spacing,
+               options, false, 0, height, out.positions.data());
     return out;
 }
 
 PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSets& sets,
                                  const CoherentOptions& options) {
-    const int top = int(space.levels.size()) - 1;
-    // The finest level runs one pass fewer: the colour polish follows it,
-    // and with the link bias its second pass changed the corpus scores by
-    // under 0.5% for a tenth of the synthesis time (SYNTHESIS.md).
-    const auto passes_at = [&](int l) {
-        return l == top ? options.coarse_passes : l == 0 ? std::max(1, options.passes - 1) : options.passes;
-    };
-    uint64_t total = 0, done = 0;
-    for (int l = top; l >= 0; --l) {
-        const uint64_t area = uint64_t(pyramid_level_size(options.width, l)) * pyramid_level_size(options.height, l);
-        total += area * uint64_t(passes_at(l));
-    }
-    PositionMap map;
-    for (int l = top; l >= 0; --l) {
-        const int w = pyramid_level_size(options.width, l), h = pyramid_level_size(options.height, l);
-        const int spacing = space.levels[std::size_t(l)].spacing;
-        if (l == top) {
-            // The coarsest level starts anywhere: positions drawn at random.
-            map = PositionMap{w, h, std::vector<uint32_t>(std::size_t(w) * h)};
-            for (int y = 0; y < h; ++y)
-                for (int x = 0; x < w; ++x) {
-                    const uint64_t r = pixel_hash(options.seed, l, 0, x, y);
-                    map.positions[std::size_t(y) * w + x] =
-                        pack_position(int((r & 0xFFFFFFFF) % uint64_t(space.width)), int((r >> 32) % uint64_t(space.height)));
-                }
-        } else {
-            map = upsample_positions(space, map, w, h, spacing, options.threads);
-            // Jitter of up to jitter/256 of the spacing in x and y.
-            const int64_t reach = int64_t(spacing) * options.jitter;
-            if (reach > 0)
-                for (int y = 0; y < h; ++y)
-                    for (int x = 0; x < w; ++x) {
-                        const uint64_t r = pixel_hash(options.seed, l, 1, x, y);
-                        const int64_t jx = ((int64_t(r & 0xFFFF) - 32768) * reach) / (32768 * 256);
-                        const int64_t jy = ((int64_t((r >> 16) & 0xFFFF) - 32768) * reach) / (32768 * 256);
-                        uint32_t& p = map.positions[std::size_t(y) * w + x];
-                        p = folded(space, position_x(p) + int(jx), position_y(p) + int(jy));
-                    }
-        }
-        const LevelView view{space, sets, l, spacing, space.levels[std::size_t(l)].features.data(), sets.k, dsp::kernels()};
-        const int passes = passes_at(l);
-        coherent::Revisit revisit(map.positions.size());
-        for (int pass = 0; pass < passes; ++pass) {
-            correction_pass(view, map, options, &revisit);
-            done += uint64_t(w) * h;
-            if (options.progress && !options.progress(done, total))
-                fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
-        }
-        if (l == 0 && options.polish_passes > 0) {
-            // Seams between coherent copies are placed by colours at last:
-            // the coherence of the output's own pixels is what a viewer sees.
-            // Every pixel is due again (other features); the flags of the
-            // level's passes are reused rather than a second set allocated
-            // beside them (a byte per output pixel).
-            const LevelView polish{space, sets, 0, 1, space.pixels.data(), 1, dsp::kernels()};
-            std::fill(revisit.due.begin(), revisit.due.end(), uint8_t(1));
-            for (int pass = 0; pass < options.polish_passes; ++pass) correction_pass(polish, map, options, &revisit);
-        }
-    }
-    return map;
+    LevelPasses passes(space, sets, options);
+    return passes.levels_down_to(0);
+}
+
+uint64_t coherent_output_memory(uint64_t width, uint64_t height, int channels) {
+    // Whole: max(6, 4 + channels, 2 x channels) bytes a pixel. In bands
+    // (from 6 > 2 x channels bytes a pixel only): at most 1 + channels + 6
+    // with the band, or 2 x channels + 6 at the end, plus kBandBytes.
+    return width * height * (6 + 2 * uint64_t(channels)) + kBandBytes;
 }
 
 int coherent_levels(int width, int height) {
@@ -283,7 +463,7 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     const auto t1 = Clock::now();
     CoherentResult r;
-    r.image = read_positions(example, synthesize_positions(space, sets, options), options.roll, options.threads);
+    r.image = synthesize_pixels(example, space, sets, options);
     for (const auto& l : space.levels) r.model_bytes += l.colours.byte_count() + l.features.size() * sizeof(int16_t);
     for (const auto& l : sets.levels) r.model_bytes += l.size() * sizeof(uint32_t);
     r.analyse_seconds = std::chrono::duration<double>(t1 - t0).count();

@@ -12,7 +12,9 @@
 // (Lefebvre & Hoppe 2006) matches best. Passes run on interleaved pixel
 // subsets, each reading only the state before it, so a pixel's result never
 // depends on the thread count; the output is a torus, so it tiles with no
-// scan seam. Pixels are read through the finest positions at the end.
+// scan seam. Pixels are read through the finest positions at the end; a
+// large output's finest level runs in bands of rows, read as they are done,
+// so that neither its positions nor a second image are ever whole.
 #pragma once
 
 #include <cstdint>
@@ -43,6 +45,10 @@ struct CoherentOptions {
     // correct_pixel): 256 makes a candidate with no such link weigh 5 times
     // its distance, one inside its neighbours' copy 1 time.
     int link_bias = 256;
+    // The finest level of an output taller than a band and its margins is
+    // synthesised in bands of this many rows (0: sized by the output), with
+    // the same bytes as whole and less memory; set by tests.
+    int band_rows = 0;
     std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
 };
 
@@ -87,6 +93,15 @@ struct CoherentResult {
 CoherentResult synthesize_coherent(const Image& example, int levels, bool example_tileable, int coherence,
                                    const CoherentOptions& options,
                                    const std::function<bool(uint64_t, uint64_t)>& analyse_progress = {});
+
+// The most synthesize_coherent allocates for a width x height output with
+// `channels` channels beside its analysis, the caller's copy of the output
+// included: the finest level whole (positions, revisit flags and a subset's
+// choices, 6 bytes a pixel; then the output and its copy), or in bands
+// (the coarser level, the output and a band of about 8 MiB, which on a wide
+// output with many passes may reach 6 bytes a pixel of it; then the output,
+// its copy and the band's freed memory). The decoder's memory check uses it.
+uint64_t coherent_output_memory(uint64_t width, uint64_t height, int channels);
 
 // The next finer level's positions before jitter and correction: each
 // child takes its parent's position plus its offset times `spacing` (the

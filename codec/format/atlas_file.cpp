@@ -166,7 +166,8 @@ uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, in
                              uint64_t width, uint64_t height) {
     const uint64_t a = uint64_t(atlas_width) * uint64_t(atlas_height), ch = uint64_t(channels);
     const uint64_t per_level = ch + 16 + 4 * uint64_t(coherence);
-    return a * (ch + 8 + 16 + uint64_t(levels) * per_level) + kDav1dFixedBytes + width * height * (16 + 2 * ch);
+    return a * (ch + 8 + 16 + uint64_t(levels) * per_level) + kDav1dFixedBytes +
+           coherent_output_memory(width, height, channels);
 }
 
 AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
