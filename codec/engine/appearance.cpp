@@ -145,8 +145,13 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& col
     parallel_for(threads, d, 1, [&](std::size_t i0, std::size_t i1) {
         for (std::size_t i = i0; i < i1; ++i) {
             const int16_t* a = columns.data() + i * n;
+            // 32-bit partial sums (65536 values of 16 bits fit) vectorise.
             int64_t total = 0;
-            for (std::size_t s = 0; s < n; ++s) total += a[s];
+            for (std::size_t s0 = 0; s0 < n; s0 += 65536) {
+                int32_t part = 0;
+                for (std::size_t s = s0; s < std::min(n, s0 + 65536); ++s) part += a[s];
+                total += part;
+            }
             sum[i] = total;
             for (std::size_t j = i; j < d; ++j) products[i * d + j] = kernels.dot_i16(a, columns.data() + j * n, n);
         }
@@ -259,10 +264,11 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& e
             // column at a time, so that the writes are in order.
             const int grid_w = (w + stride - 1) / stride, grid_h = (h + stride - 1) / stride;
             const int count = int(sampled_frames) * grid_w * grid_h;
+            // tap_x holds byte offsets in a row (the column times the channels).
             std::vector<int> tap_x(std::size_t(kWindow) * grid_w), tap_y(std::size_t(kWindow) * grid_h);
             for (int t = 0; t < kWindow; ++t) {
                 for (int g = 0; g < grid_w; ++g)
-                    tap_x[std::size_t(t * grid_w + g)] = fold(g * stride + (t - 2) * spacing, w, wraps);
+                    tap_x[std::size_t(t * grid_w + g)] = fold(g * stride + (t - 2) * spacing, w, wraps) * ch;
                 for (int g = 0; g < grid_h; ++g)
                     tap_y[std::size_t(t * grid_h + g)] = fold(g * stride + (t - 2) * spacing, h, wraps);
             }
@@ -276,7 +282,8 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& e
                             for (int gy = 0; gy < grid_h; ++gy) {
                                 const uint8_t* row = img.at(0, tap_y[std::size_t(r * grid_h + gy)]);
                                 const int* xs = tap_x.data() + std::size_t(c * grid_w);
-                                for (int gx = 0; gx < grid_w; ++gx) *column++ = row[std::size_t(xs[gx]) * ch + k];
+                                const uint8_t* values = row + k;
+                                for (int gx = 0; gx < grid_w; ++gx) *column++ = values[xs[gx]];
                             }
                         }
                     }
@@ -284,8 +291,11 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& e
                 principal_axes(columns, dims, count, kAppearanceDims, level_threads);
             std::vector<int64_t> mean(std::size_t(dims), 0);
             for (int i = 0; i < dims; ++i) {
+                // 32 bits hold the sum: at most kMaxPcaSamples values below 256.
                 const int16_t* column = columns.data() + std::size_t(i) * std::size_t(count);
-                for (int s = 0; s < count; ++s) mean[std::size_t(i)] += column[s];
+                int32_t sum = 0;
+                for (int s = 0; s < count; ++s) sum += column[s];
+                mean[std::size_t(i)] = sum;
             }
             for (auto& m : mean) m = (m + count / 2) / count;
             // Projections in the example's own units (a unit axis keeps a
