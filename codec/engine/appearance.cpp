@@ -134,7 +134,7 @@ Image stack_filter(const Image& in, int step, bool wraps) {
 }
 
 std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& columns, int dims, int count, int axes,
-                                                 int threads) {
+                                                 int threads, std::vector<int64_t>* sums) {
     const std::size_t d = std::size_t(dims), n = std::size_t(count);
     // Sums of products of every pair of components, as dot products of the
     // columns (contiguous 16-bit values, a vector kernel). Integer sums
@@ -156,6 +156,7 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& col
             for (std::size_t j = i; j < d; ++j) products[i * d + j] = kernels.dot_i16(a, columns.data() + j * n, n);
         }
     });
+    if (sums) *sums = sum;
     // count^2 times the covariance, exact, then scaled so that every entry
     // is below 2^24: a row times a Q30 vector then fits 64 bits.
     std::vector<int128> cov(d * d);
@@ -287,16 +288,9 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& e
                             }
                         }
                     }
+            std::vector<int64_t> mean;  // the columns' sums, then their rounded means
             const std::vector<std::vector<int32_t>> axes =
-                principal_axes(columns, dims, count, kAppearanceDims, level_threads);
-            std::vector<int64_t> mean(std::size_t(dims), 0);
-            for (int i = 0; i < dims; ++i) {
-                // 32 bits hold the sum: at most kMaxPcaSamples values below 256.
-                const int16_t* column = columns.data() + std::size_t(i) * std::size_t(count);
-                int32_t sum = 0;
-                for (int s = 0; s < count; ++s) sum += column[s];
-                mean[std::size_t(i)] = sum;
-            }
+                principal_axes(columns, dims, count, kAppearanceDims, level_threads, &mean);
             for (auto& m : mean) m = (m + count / 2) / count;
             // Projections in the example's own units (a unit axis keeps a
             // window's length), so distances compare with colour differences:

@@ -68,8 +68,10 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& f
 // The principal axes of `count` sample vectors of `dims` integers, given
 // as `dims` columns of `count` values (column i at i * count), strongest
 // first, as unit vectors in fixed point (2^15 = 1). Exact integer
-// arithmetic throughout; axes of a zero variance are zero.
+// arithmetic throughout; axes of a zero variance are zero. With `sums`, the
+// columns' sums (which the covariance needs) are left there too.
 std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& columns, int dims,
-                                                 int count, int axes, int threads = 1);
+                                                 int count, int axes, int threads = 1,
+                                                 std::vector<int64_t>* sums = nullptr);
 
 }  // namespace vqtex

@@ -28,6 +28,19 @@ constexpr int kMaxCandidates = kTaps * 16;
 // A band's buffers when the finest level is synthesised in bands (band_rows).
 constexpr uint64_t kBandBytes = uint64_t(8) << 20;
 
+// The example pixel's index (y * width + x) at position p.
+uint32_t pixel_index(const Image& example, uint32_t p) {
+    return uint32_t(position_y(p)) * uint32_t(example.width) + uint32_t(position_x(p));
+}
+
+// The change between two pixels that the torus cut minimises
+// (coherent::torus_origin): the sum of their channels' differences.
+int pixel_step(const uint8_t* a, const uint8_t* b, int channels) {
+    int d = 0;
+    for (int c = 0; c < channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
+    return d;
+}
+
 // Position (x, y) of the example, folded inside if it is not.
 uint32_t folded(const AppearanceSpace& space, int x, int y) {
     return pack_position(space.fold_x(x), space.fold_y(y));
@@ -354,9 +367,7 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
     std::vector<uint16_t> narrow;
     if (example.pixel_count() <= 65536) {
         narrow.resize(coarse.positions.size());
-        for (std::size_t i = 0; i < narrow.size(); ++i)
-            narrow[i] = uint16_t(uint32_t(position_y(coarse.positions[i])) * uint32_t(example.width) +
-                                 uint32_t(position_x(coarse.positions[i])));
+        for (std::size_t i = 0; i < narrow.size(); ++i) narrow[i] = uint16_t(pixel_index(example, coarse.positions[i]));
         std::vector<uint32_t>().swap(coarse.positions);
     }
     const auto parent_at = [&](std::size_t i) {
@@ -386,11 +397,7 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
     std::vector<uint16_t>().swap(narrow);
     if (options.roll) {
         const auto step = [&](int x0, int y0, int x1, int y1) {
-            const uint8_t* a = out.at(x0, y0);
-            const uint8_t* b = out.at(x1, y1);
-            int d = 0;
-            for (int c = 0; c < out.channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
-            return d;
+            return pixel_step(out.at(x0, y0), out.at(x1, y1), out.channels);
         };
         const std::pair<int, int> origin = coherent::torus_origin(w, h, step);
         roll_in_place(out, origin.first, origin.second);
@@ -480,11 +487,8 @@ Image read_positions(const Image& example, PositionMap&& map, bool roll, int thr
     if (roll) {
         const auto step = [&](int x0, int y0, int x1, int y1) {
             const uint32_t p0 = map.positions[std::size_t(y0) * w + x0], p1 = map.positions[std::size_t(y1) * w + x1];
-            const uint8_t* a = example.at(position_x(p0), position_y(p0));
-            const uint8_t* b = example.at(position_x(p1), position_y(p1));
-            int d = 0;
-            for (int c = 0; c < example.channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
-            return d;
+            return pixel_step(example.at(position_x(p0), position_y(p0)), example.at(position_x(p1), position_y(p1)),
+                              example.channels);
         };
         origin = coherent::torus_origin(w, h, step);
     }
@@ -505,11 +509,8 @@ Image read_positions(const Image& example, PositionMap&& map, bool roll, int thr
         });
         return out;
     };
-    const auto pixel_of = [&](uint32_t p) {
-        return uint32_t(position_y(p)) * uint32_t(example.width) + uint32_t(position_x(p));
-    };
     if (example.pixel_count() > 65536)
-        return read([&](std::size_t i) { return pixel_of(map.positions[i]); });
+        return read([&](std::size_t i) { return pixel_index(example, map.positions[i]); });
     // A small example (an atlas of up to 256x256, the common case): its
     // pixel indices take 16 bits, so the positions are narrowed first and
     // let go before the output is allocated. Peak: the positions and the
@@ -519,7 +520,7 @@ Image read_positions(const Image& example, PositionMap&& map, bool roll, int thr
     std::vector<uint16_t> narrow(map.positions.size());
     parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
         for (std::size_t i = y0 * std::size_t(w); i < y1 * std::size_t(w); ++i)
-            narrow[i] = uint16_t(pixel_of(map.positions[i]));
+            narrow[i] = uint16_t(pixel_index(example, map.positions[i]));
     });
     std::vector<uint32_t>().swap(map.positions);
     return read([&](std::size_t i) { return narrow[i]; });
