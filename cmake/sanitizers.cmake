@@ -16,6 +16,9 @@ if(VQTEX_FUZZ)
   # Numeric loops that give the fuzzer no feedback go uninstrumented for
   # coverage (the list says which and why): they were most of its time.
   add_compile_options(-fsanitize-coverage-ignorelist=${CMAKE_CURRENT_SOURCE_DIR}/fuzz/coverage_ignore.txt)
+  # The appearance space's vector kernels go unchecked by the sanitizers in
+  # this build only (the list says why).
+  add_compile_options(-fsanitize-ignorelist=${CMAKE_CURRENT_SOURCE_DIR}/fuzz/sanitizer_ignore.txt)
 endif()
 if(VQTEX_SANITIZE)
   message(STATUS "vqtex: building with -fsanitize=${VQTEX_SANITIZE}")
