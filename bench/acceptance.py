@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""Issue 17's acceptance test read over several vqtex-bench runs that differ
+only in --seed (docs/ATLAS.md "Several seeds").
+
+vqtex-bench's summary compares vqtex with the best PEER+synth row on one
+decode per texture. A decode is one random sample of the texture: changing
+the seed alone flips verdicts (session 8). The files do not depend on the
+seed (the encoder and the peers' coders are deterministic), only the
+synthesis does, so each texture's expected score is better estimated by
+the mean over several seeds. This script takes one bench CSV per seed,
+averages every (rate, row, texture)'s completeness, SWD and coherence over
+the runs that scored it, and applies the bench's own rules
+(print_large_summary in bench/vqtex_bench.cpp): per metric, the best peer
+is the lowest mean among the PEER+synth rows that scored the most of
+vqtex's textures; the verdict needs vqtex's mean at or below it and vqtex
+at or below it on two thirds of the textures (rounded up). Given one CSV,
+it prints the bench's own verdicts (a check of this script).
+
+Usage: bench/acceptance.py RUN.csv [RUN.csv ...] [--kind +synth|+gmic]
+"""
+import argparse
+import collections
+import csv
+
+METRICS = (("compl", "completeness"), ("SWD", "swd"), ("coher", "coherence"))
+
+
+def read_runs(paths):
+    """rate -> codec -> texture -> [(completeness, swd, coherence) per run]."""
+    rows = collections.defaultdict(lambda: collections.defaultdict(lambda: collections.defaultdict(list)))
+    ceilings = collections.defaultdict(lambda: collections.defaultdict(list))
+    for path in paths:
+        for r in csv.DictReader(open(path)):
+            if r["protocol"] != "large" or r["status"] != "ok":
+                continue
+            scores = tuple(float(r[column]) for _, column in METRICS)
+            if r["codec"].startswith("ceiling:"):
+                ceilings[r["codec"]][r["texture"]].append(scores)
+            elif r["codec"].startswith("vqtex") or r["codec"].endswith(("+synth", "+gmic")):
+                rows[int(r["quality"])][r["codec"]][r["texture"]].append(scores)
+    return rows, ceilings
+
+
+def averaged(textures):
+    """texture -> mean scores over the runs that scored it."""
+    return {t: tuple(sum(s[m] for s in runs) / len(runs) for m in range(len(METRICS)))
+            for t, runs in textures.items()}
+
+
+def pair_up(vqtex, peer, m):
+    n = below = 0
+    mine_sum = theirs_sum = 0.0
+    for texture, scores in vqtex.items():
+        if texture not in peer:
+            continue
+        mine, theirs = scores[m], peer[texture][m]
+        mine_sum += mine
+        theirs_sum += theirs
+        n += 1
+        below += mine <= theirs
+    return n, below, (mine_sum / n if n else 0.0), (theirs_sum / n if n else 0.0)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("runs", nargs="+", help="vqtex-bench --csv files, one per seed")
+    ap.add_argument("--kind", default="+synth", help="peer rows to compare with (+synth: the acceptance)")
+    args = ap.parse_args()
+    rows, ceilings = read_runs(args.runs)
+    runs_per_row = collections.Counter()
+    print(f"{len(args.runs)} run(s); per texture, the mean over the runs that scored it; lower is better")
+    print(f"{'rate':>6} {'metric':<6} {'vqtex':>7} {'best peer':>15} {'peer':>7} {'n':>3} "
+          f"{'at/below':>8} {'needs':>5}  verdict")
+    for rate in sorted(rows):
+        codecs = {c: averaged(t) for c, t in rows[rate].items()}
+        vqtex_codec = next((c for c in codecs if c.startswith("vqtex")), None)
+        if vqtex_codec is None:
+            continue
+        for texture_runs in rows[rate][vqtex_codec].values():
+            runs_per_row[len(texture_runs)] += 1
+        vqtex = codecs[vqtex_codec]
+        verdicts = []
+        for m, (label, _) in enumerate(METRICS):
+            peers = [c for c in codecs if c.endswith(args.kind)]
+            widest = max((pair_up(vqtex, codecs[c], m)[0] for c in peers), default=0)
+            best = None
+            for c in peers:
+                n, below, mine, theirs = pair_up(vqtex, codecs[c], m)
+                if n and n == widest and (best is None or theirs < best[4]):
+                    best = (c, n, below, mine, theirs)
+            if best is None:
+                print(f"{rate:>6} {label:<6} no peer{args.kind} row")
+                continue
+            c, n, below, mine, theirs = best
+            needed = (2 * n + 2) // 3
+            ok = mine <= theirs and below >= needed
+            verdicts.append(ok)
+            print(f"{rate:>6} {label:<6} {mine:7.2f} {c:>15} {theirs:7.2f} {n:3d} {below:8d} {needed:5d}  "
+                  f"{'PASS' if ok else 'FAIL'}{'' if mine <= theirs else ' (mean above)'}")
+        for name, textures in sorted(ceilings.items()):
+            means = averaged(textures)
+            line = " ".join(f"{sum(s[m] for s in means.values()) / len(means):.2f}" for m in range(len(METRICS)))
+            print(f"{'':>6} {name} (over its {len(means)} textures): {line}")
+    print("runs per vqtex texture row:", dict(sorted(runs_per_row.items())))
+
+
+if __name__ == "__main__":
+    main()
