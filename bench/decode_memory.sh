@@ -5,10 +5,12 @@
 #
 #   bash bench/decode_memory.sh [BUILD_DIR] [SIDES] [THREADS]
 #
-# Defaults: build/, sides "512 2048 4096", threads "1 2". Three files, made
+# Defaults: build/, sides "512 2048 4096", threads "1 2". Four files, made
 # with `vqtex-encode --atlas`: corpus/cellular_128.png (3 channels,
-# --target-size 4000), corpus/grey_noise_64.png (1 channel) and
-# corpus/leaves_rgba_64.png (4 channels). Two figures per size:
+# --target-size 4000), corpus/grey_noise_64.png (1 channel),
+# corpus/leaves_rgba_64.png (4 channels) and corpus/sand_256.png at -q 100
+# (a 256x256 atlas, whose analysis is made level by level). Two figures
+# per size:
 #   library  - what one vqtex_decode call adds to the resident set, in a
 #              fresh process (bench_scaling --memory-child: its high-water
 #              mark, getrusage ru_maxrss, less the resident set just before
@@ -32,7 +34,7 @@ trap 'rm -rf "$tmp"' EXIT
 mib() { awk -v k="$1" 'BEGIN {printf "%.1f", k / 1024}'; }
 
 # example, channels, encoder options
-examples=("cellular_128.png 3 --target-size 4000" "grey_noise_64.png 1" "leaves_rgba_64.png 4")
+examples=("cellular_128.png 3 --target-size 4000" "grey_noise_64.png 1" "leaves_rgba_64.png 4" "sand_256.png 3 -q 100")
 for example in "${examples[@]}"; do
     read -r name channels options <<<"$example"
     # shellcheck disable=SC2086 # options are words

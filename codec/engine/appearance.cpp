@@ -209,18 +209,16 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& col
     return result;
 }
 
-AppearanceSpace build_appearance_space(const Image& example, int levels, bool wraps, int threads) {
-    std::vector<AppearanceSpace> frames = build_appearance_frames({example}, levels, wraps, threads);
-    return std::move(frames[0]);
-}
+namespace {
 
-std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& examples, int levels, bool wraps,
-                                                     int threads) {
-    const std::size_t frames = examples.size();
-    std::vector<AppearanceSpace> spaces(frames);
-    const int w = examples[0].width, h = examples[0].height, ch = examples[0].channels;
+// Level l's principal axes (one set for all the frames, so that appearance
+// vectors of different frames compare) and every frame's appearance vectors
+// at that level, from the level's colours.
+void level_features(AppearanceSpace* spaces, std::size_t frames, int l, int threads) {
+    const int w = spaces[0].width, h = spaces[0].height, ch = spaces[0].levels[0].colours.channels;
+    const bool wraps = spaces[0].wraps;
     const int dims = kWindowTaps * ch;
-    const std::size_t n = examples[0].pixel_count();
+    const std::size_t n = std::size_t(w) * std::size_t(h);
     // PCA samples on a regular grid in x and y (and every frame_step-th
     // frame), at most kMaxPcaSamples of them in all.
     const std::size_t frame_step = (frames + kMaxPcaSamples - 1) / kMaxPcaSamples;
@@ -229,6 +227,76 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& e
     while ((std::size_t((w + stride - 1) / stride) * std::size_t((h + stride - 1) / stride)) * sampled_frames >
            std::size_t(kMaxPcaSamples))
         ++stride;
+    const int spacing = 1 << l;
+    // The samples' windows go straight into columns, one per window
+    // value (tap and channel), as principal_axes takes them; filled a
+    // column at a time, so that the writes are in order.
+    const int grid_w = (w + stride - 1) / stride, grid_h = (h + stride - 1) / stride;
+    const int count = int(sampled_frames) * grid_w * grid_h;
+    // tap_x holds byte offsets in a row (the column times the channels).
+    std::vector<int> tap_x(std::size_t(kWindow) * grid_w), tap_y(std::size_t(kWindow) * grid_h);
+    for (int t = 0; t < kWindow; ++t) {
+        for (int g = 0; g < grid_w; ++g)
+            tap_x[std::size_t(t * grid_w + g)] = fold(g * stride + (t - 2) * spacing, w, wraps) * ch;
+        for (int g = 0; g < grid_h; ++g)
+            tap_y[std::size_t(t * grid_h + g)] = fold(g * stride + (t - 2) * spacing, h, wraps);
+    }
+    std::vector<int16_t> columns(std::size_t(dims) * std::size_t(count));
+    for (int r = 0; r < kWindow; ++r)
+        for (int c = 0; c < kWindow; ++c)
+            for (int k = 0; k < ch; ++k) {
+                int16_t* column = columns.data() + std::size_t((r * kWindow + c) * ch + k) * std::size_t(count);
+                for (std::size_t f = 0; f < frames; f += frame_step) {
+                    const Image& img = spaces[f].levels[std::size_t(l)].colours;
+                    for (int gy = 0; gy < grid_h; ++gy) {
+                        const uint8_t* row = img.at(0, tap_y[std::size_t(r * grid_h + gy)]);
+                        const int* xs = tap_x.data() + std::size_t(c * grid_w);
+                        const uint8_t* values = row + k;
+                        for (int gx = 0; gx < grid_w; ++gx) *column++ = values[xs[gx]];
+                    }
+                }
+            }
+    std::vector<int64_t> mean;  // the columns' sums, then their rounded means
+    const std::vector<std::vector<int32_t>> axes =
+        principal_axes(columns, dims, count, kAppearanceDims, threads, &mean);
+    for (auto& m : mean) m = (m + count / 2) / count;
+    // Projections in the example's own units (a unit axis keeps a
+    // window's length), so distances compare with colour differences:
+    // sum over the window of axis * (value - mean), computed as the
+    // sum of axis * value less the constant sum of axis * mean. Both are
+    // exact 32-bit integers (a unit axis in Q15 against at most 100
+    // values below 256 sums to under 2^15 * 255 * sqrt(100) < 2^27 by
+    // Cauchy-Schwarz, and the mean is a window too), so the difference
+    // is the centred sum itself.
+    std::vector<int32_t> offset(kAppearanceDims, 0);
+    for (int a = 0; a < kAppearanceDims; ++a)
+        for (int i = 0; i < dims; ++i)
+            offset[std::size_t(a)] += axes[std::size_t(a)][std::size_t(i)] * int32_t(mean[std::size_t(i)]);
+    for (std::size_t f = 0; f < frames; ++f) {
+        AppearanceLevel& level = spaces[f].levels[std::size_t(l)];
+        level.features.assign(n * kAppearanceDims, 0);
+        project_level(level.colours, spacing, wraps, axes, offset, threads, level.features.data());
+    }
+}
+
+}  // namespace
+
+AppearanceSpace build_appearance_space(const Image& example, int levels, bool wraps, int threads,
+                                       bool with_features) {
+    std::vector<AppearanceSpace> frames = build_appearance_frames({example}, levels, wraps, threads, with_features);
+    return std::move(frames[0]);
+}
+
+void build_level_features(AppearanceSpace& space, int level, int threads) {
+    level_features(&space, 1, level, threads);
+}
+
+std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& examples, int levels, bool wraps,
+                                                     int threads, bool with_features) {
+    const std::size_t frames = examples.size();
+    std::vector<AppearanceSpace> spaces(frames);
+    const int w = examples[0].width, h = examples[0].height, ch = examples[0].channels;
+    const std::size_t n = examples[0].pixel_count();
     for (std::size_t f = 0; f < frames; ++f) {
         AppearanceSpace& space = spaces[f];
         space.width = w;
@@ -250,66 +318,14 @@ std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& e
             spaces[f].levels.push_back(std::move(level));
         }
     }
+    if (!with_features) return spaces;
     // Each level's axes and vectors depend on that level's colours alone:
     // the levels share the threads (the power iteration is serial), and
     // what is left of them goes to each level's loops. Exact integers, so
     // the same for any split.
     const int level_threads = std::max(1, threads / std::max(levels, 1));
     parallel_for(threads, std::size_t(std::max(levels, 0)), 1, [&](std::size_t l0, std::size_t l1) {
-        for (int l = int(l0); l < int(l1); ++l) {
-            const int spacing = 1 << l;
-            // One set of axes for all the frames, so that appearance vectors of
-            // different frames compare.
-            // The samples' windows go straight into columns, one per window
-            // value (tap and channel), as principal_axes takes them; filled a
-            // column at a time, so that the writes are in order.
-            const int grid_w = (w + stride - 1) / stride, grid_h = (h + stride - 1) / stride;
-            const int count = int(sampled_frames) * grid_w * grid_h;
-            // tap_x holds byte offsets in a row (the column times the channels).
-            std::vector<int> tap_x(std::size_t(kWindow) * grid_w), tap_y(std::size_t(kWindow) * grid_h);
-            for (int t = 0; t < kWindow; ++t) {
-                for (int g = 0; g < grid_w; ++g)
-                    tap_x[std::size_t(t * grid_w + g)] = fold(g * stride + (t - 2) * spacing, w, wraps) * ch;
-                for (int g = 0; g < grid_h; ++g)
-                    tap_y[std::size_t(t * grid_h + g)] = fold(g * stride + (t - 2) * spacing, h, wraps);
-            }
-            std::vector<int16_t> columns(std::size_t(dims) * std::size_t(count));
-            for (int r = 0; r < kWindow; ++r)
-                for (int c = 0; c < kWindow; ++c)
-                    for (int k = 0; k < ch; ++k) {
-                        int16_t* column = columns.data() + std::size_t((r * kWindow + c) * ch + k) * std::size_t(count);
-                        for (std::size_t f = 0; f < frames; f += frame_step) {
-                            const Image& img = spaces[f].levels[std::size_t(l)].colours;
-                            for (int gy = 0; gy < grid_h; ++gy) {
-                                const uint8_t* row = img.at(0, tap_y[std::size_t(r * grid_h + gy)]);
-                                const int* xs = tap_x.data() + std::size_t(c * grid_w);
-                                const uint8_t* values = row + k;
-                                for (int gx = 0; gx < grid_w; ++gx) *column++ = values[xs[gx]];
-                            }
-                        }
-                    }
-            std::vector<int64_t> mean;  // the columns' sums, then their rounded means
-            const std::vector<std::vector<int32_t>> axes =
-                principal_axes(columns, dims, count, kAppearanceDims, level_threads, &mean);
-            for (auto& m : mean) m = (m + count / 2) / count;
-            // Projections in the example's own units (a unit axis keeps a
-            // window's length), so distances compare with colour differences:
-            // sum over the window of axis * (value - mean), computed as the
-            // sum of axis * value less the constant sum of axis * mean. Both are
-            // exact 32-bit integers (a unit axis in Q15 against at most 100
-            // values below 256 sums to under 2^15 * 255 * sqrt(100) < 2^27 by
-            // Cauchy-Schwarz, and the mean is a window too), so the difference
-            // is the centred sum itself.
-            std::vector<int32_t> offset(kAppearanceDims, 0);
-            for (int a = 0; a < kAppearanceDims; ++a)
-                for (int i = 0; i < dims; ++i)
-                    offset[std::size_t(a)] += axes[std::size_t(a)][std::size_t(i)] * int32_t(mean[std::size_t(i)]);
-            for (std::size_t f = 0; f < frames; ++f) {
-                AppearanceLevel& level = spaces[f].levels[std::size_t(l)];
-                level.features.assign(n * kAppearanceDims, 0);
-                project_level(level.colours, spacing, wraps, axes, offset, level_threads, level.features.data());
-            }
-        }
+        for (int l = int(l0); l < int(l1); ++l) level_features(spaces.data(), frames, l, level_threads);
     });
     return spaces;
 }

@@ -54,8 +54,16 @@ struct AppearanceSpace {
 // [1 4 6 4 1]/16 whose taps are `step` pixels apart, in both directions.
 Image stack_filter(const Image& in, int step, bool wraps);
 
-// The stack and appearance vectors of `example` for `levels` levels.
-AppearanceSpace build_appearance_space(const Image& example, int levels, bool wraps, int threads);
+// The stack and appearance vectors of `example` for `levels` levels. Without
+// `with_features`, the stack alone: each level's vectors are then made by
+// build_level_features when they are needed (a large example, whose
+// vectors at every level at once would take 16 bytes a pixel a level).
+AppearanceSpace build_appearance_space(const Image& example, int levels, bool wraps, int threads,
+                                       bool with_features = true);
+
+// Level `level`'s appearance vectors of a one-frame space, the same as
+// build_appearance_space makes them.
+void build_level_features(AppearanceSpace& space, int level, int threads);
 
 // The same for the frames of an animation (all of one size and channel
 // count, at least one): each frame's stack is filtered in space only, and
@@ -63,7 +71,7 @@ AppearanceSpace build_appearance_space(const Image& example, int levels, bool wr
 // appearance vectors of different frames compare (a still example is the
 // one-frame case, byte for byte).
 std::vector<AppearanceSpace> build_appearance_frames(const std::vector<Image>& frames, int levels, bool wraps,
-                                                     int threads);
+                                                     int threads, bool with_features = true);
 
 // The principal axes of `count` sample vectors of `dims` integers, given
 // as `dims` columns of `count` values (column i at i * count), strongest

@@ -17,7 +17,9 @@ namespace vqtex {
 
 struct CoherenceSets {
     int k = 0;  // entries per position, the position itself included
-    // Per level, k positions (y * width + x) per example position.
+    // Per level, k positions (y * width + x) per example position; empty
+    // for k = 1 (a set of the position alone, which the engine never reads)
+    // and for a level whose sets are not made yet or no longer needed.
     std::vector<std::vector<uint32_t>> levels;
 
     const uint32_t* of(int level, uint32_t position) const {
@@ -30,5 +32,9 @@ struct CoherenceSets {
 // itself in x and y, so that a set does not fill with the same feature
 // shifted by a pixel. Sets with fewer candidates repeat the position itself.
 CoherenceSets build_coherence_sets(const AppearanceSpace& space, int k, int exclusion, int threads);
+
+// One level's sets (`space` must hold that level's appearance vectors).
+std::vector<uint32_t> build_level_coherence_sets(const AppearanceSpace& space, int level, int k, int exclusion,
+                                                int threads);
 
 }  // namespace vqtex

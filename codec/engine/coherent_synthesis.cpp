@@ -27,6 +27,8 @@ static_assert(kTaps < 32, "a window's taps are bits of one uint32_t");
 constexpr int kMaxCandidates = kTaps * 16;
 // A band's buffers when the finest level is synthesised in bands (band_rows).
 constexpr uint64_t kBandBytes = uint64_t(8) << 20;
+// Coherence sets leave out positions within this many of a level's spacings.
+constexpr int kCoherenceExclusion = 2;
 
 // The example pixel's index (y * width + x) at position p.
 uint32_t pixel_index(const Image& example, uint32_t p) {
@@ -227,6 +229,10 @@ struct LevelPasses {
     const CoherentOptions& options;
     int top;
     uint64_t done = 0, total = 0;
+    // When the analysis is made level by level: the space and sets above,
+    // whose levels enter() fills and empties (otherwise null).
+    AppearanceSpace* by_level_space = nullptr;
+    CoherenceSets* by_level_sets = nullptr;
 
     LevelPasses(const AppearanceSpace& s, const CoherenceSets& c, const CoherentOptions& o)
         : space(s), sets(c), options(o), top(int(s.levels.size()) - 1) {
@@ -241,6 +247,20 @@ struct LevelPasses {
     // under 0.5% for a tenth of the synthesis time (SYNTHESIS.md).
     int passes_at(int l) const {
         return l == top ? options.coarse_passes : l == 0 ? std::max(1, options.passes - 1) : options.passes;
+    }
+
+    // Before level l's passes when the analysis is made level by level:
+    // the coarser level's vectors and sets are let go, then l's are made
+    // (one level's at a time).
+    void enter(int l) {
+        if (!by_level_space) return;
+        if (l < top) {
+            std::vector<int16_t>().swap(by_level_space->levels[std::size_t(l + 1)].features);
+            std::vector<uint32_t>().swap(by_level_sets->levels[std::size_t(l + 1)]);
+        }
+        build_level_features(*by_level_space, l, options.threads);
+        by_level_sets->levels[std::size_t(l)] =
+            build_level_coherence_sets(*by_level_space, l, by_level_sets->k, kCoherenceExclusion, options.threads);
     }
 
     // Rows from a band's edges that the finest level's passes may leave
@@ -278,6 +298,7 @@ struct LevelPasses {
     PositionMap levels_down_to(int last) {
         PositionMap map;
         for (int l = top; l >= last; --l) {
+            enter(l);
             const int w = pyramid_level_size(options.width, l), h = pyramid_level_size(options.height, l);
             if (l == top) {
                 // The coarsest level starts anywhere: positions drawn at random.
@@ -376,6 +397,7 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
     };
     Image out(w, h, example.channels);
     PositionMap part{w, 0, {}};
+    passes.enter(0);
     for (int y0 = 0; y0 < h; y0 += band) {
         const int rows = std::min(band, h - y0);
         const coherent::Band rows_of{Image::wrap(y0 - margin, h), h};
@@ -408,8 +430,11 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
 // The output: the finest level whole and read through its positions, or
 // for a large output in bands.
 Image synthesize_pixels(const Image& example, const AppearanceSpace& space, const CoherenceSets& sets,
-                        const CoherentOptions& options) {
+                        const CoherentOptions& options, AppearanceSpace* by_level_space = nullptr,
+                        CoherenceSets* by_level_sets = nullptr) {
     LevelPasses passes(space, sets, options);
+    passes.by_level_space = by_level_space;
+    passes.by_level_sets = by_level_sets;
     const int margin = passes.band_margin();
     const int band = band_rows(options, example.channels, margin);
     if (band == 0) return read_positions(example, passes.levels_down_to(0), options.roll, options.threads);
@@ -449,6 +474,21 @@ uint64_t coherent_output_memory(uint64_t width, uint64_t height, int channels) {
     return width * height * (6 + 2 * uint64_t(channels)) + kBandBytes;
 }
 
+bool analysis_by_level(int width, int height, int levels) {
+    return uint64_t(width) * uint64_t(height) * uint64_t(std::max(levels, 0)) * kAppearanceDims * sizeof(int16_t) >
+           kAnalysisAtOnceBytes;
+}
+
+uint64_t coherent_analysis_memory(int width, int height, int channels, int levels, int coherence) {
+    const uint64_t n = uint64_t(width) * uint64_t(height), l = uint64_t(std::max(levels, 0));
+    // A level's appearance vectors, and its coherence sets for k > 1.
+    const uint64_t level = n * (kAppearanceDims * sizeof(int16_t) + (coherence > 1 ? 4 * uint64_t(coherence) : 0));
+    // The stack's colours (its finest level is a copy of the example) and
+    // the raw-colour vectors, then the levels held at once.
+    return n * (l * uint64_t(channels) + kAppearanceDims * sizeof(int16_t)) +
+           (analysis_by_level(width, height, levels) ? level : l * level);
+}
+
 int coherent_levels(int width, int height) {
     int levels = 1;
     while (levels < VQTEX_MAX_LEVELS && (4 << levels) <= std::min(width, height)) ++levels;
@@ -464,15 +504,25 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
     const auto t0 = Clock::now();
     if (analyse_progress && !analyse_progress(0, 1))
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
-    const AppearanceSpace space = build_appearance_space(example, levels, example_tileable, options.threads);
-    const CoherenceSets sets = build_coherence_sets(space, coherence, 2, options.threads);
+    const bool by_level = options.analysis_by_level < 0 ? analysis_by_level(example.width, example.height, levels)
+                                                        : options.analysis_by_level > 0;
+    AppearanceSpace space = build_appearance_space(example, levels, example_tileable, options.threads, !by_level);
+    CoherenceSets sets;
+    if (by_level) {
+        sets.k = std::max(coherence, 1);
+        sets.levels.resize(space.levels.size());
+    } else {
+        sets = build_coherence_sets(space, coherence, kCoherenceExclusion, options.threads);
+    }
     if (analyse_progress && !analyse_progress(1, 1))
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     const auto t1 = Clock::now();
     CoherentResult r;
-    r.image = synthesize_pixels(example, space, sets, options);
-    for (const auto& l : space.levels) r.model_bytes += l.colours.byte_count() + l.features.size() * sizeof(int16_t);
-    for (const auto& l : sets.levels) r.model_bytes += l.size() * sizeof(uint32_t);
+    r.image = synthesize_pixels(example, space, sets, options, by_level ? &space : nullptr, by_level ? &sets : nullptr);
+    // What the analysis makes, whether it is held at once or level by level.
+    const uint64_t n = example.pixel_count();
+    for (const auto& l : space.levels) r.model_bytes += l.colours.byte_count() + n * kAppearanceDims * sizeof(int16_t);
+    if (sets.k > 1) r.model_bytes += space.levels.size() * n * uint64_t(sets.k) * sizeof(uint32_t);
     r.analyse_seconds = std::chrono::duration<double>(t1 - t0).count();
     r.synthesise_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
     return r;

@@ -49,6 +49,12 @@ struct CoherentOptions {
     // synthesised in bands of this many rows (0: sized by the output), with
     // the same bytes as whole and less memory; set by tests.
     int band_rows = 0;
+    // An example whose appearance vectors at every level would take more
+    // than kAnalysisAtOnceBytes has each level's vectors (and coherence
+    // sets) made when the synthesis reaches that level and let go when it
+    // leaves: the same bytes, a level's memory instead of the stack's.
+    // -1 decides by that size, 0 and 1 force either way (tests).
+    int analysis_by_level = -1;
     std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
 };
 
@@ -102,6 +108,22 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
 // output with many passes may reach 6 bytes a pixel of it; then the output,
 // its copy and the band's freed memory). The decoder's memory check uses it.
 uint64_t coherent_output_memory(uint64_t width, uint64_t height, int channels);
+
+// Above this, the appearance vectors of every level are not held at once
+// (CoherentOptions::analysis_by_level): about a 256x256 example.
+inline constexpr uint64_t kAnalysisAtOnceBytes = uint64_t(4) << 20;
+
+// Whether synthesize_coherent makes an example's analysis level by level
+// when its options leave it to the size.
+bool analysis_by_level(int width, int height, int levels);
+
+// An upper bound of the memory of the analysis of a width x height example
+// with `channels` channels, `levels` levels and `coherence` candidates per
+// neighbour, held beside the example itself while it synthesises: the
+// stack's colours and the raw-colour vectors, and every level's appearance
+// vectors and coherence sets, or one level's when the analysis is made
+// level by level. The decoder's memory check uses it.
+uint64_t coherent_analysis_memory(int width, int height, int channels, int levels, int coherence);
 
 // The next finer level's positions before jitter and correction: each
 // child takes its parent's position plus its offset times `spacing` (the

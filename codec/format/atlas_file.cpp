@@ -165,8 +165,8 @@ bool is_atlas_file(const uint8_t* data, std::size_t size) {
 uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
                              uint64_t width, uint64_t height) {
     const uint64_t a = uint64_t(atlas_width) * uint64_t(atlas_height), ch = uint64_t(channels);
-    const uint64_t per_level = ch + 16 + 4 * uint64_t(coherence);
-    return a * (ch + 8 + 16 + uint64_t(levels) * per_level) + kDav1dFixedBytes +
+    return a * (ch + 8) + kDav1dFixedBytes +
+           coherent_analysis_memory(atlas_width, atlas_height, channels, levels, coherence) +
            coherent_output_memory(width, height, channels);
 }
 
