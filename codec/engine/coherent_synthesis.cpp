@@ -176,6 +176,46 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     return best;
 }
 
+// The byte loops of skip_coherent, apart, so that they vectorise: their
+// pointers are __restrict (bytes may alias anything, and the compiler
+// would otherwise reload every captured value after each store).
+//
+// run[x] = 1 when columns x - 2 .. x + 2 of `row` (w wide, a torus) each
+// continue the one to their left by `step`. `links` has w + 3 bytes.
+void continued_runs(const uint32_t* __restrict row, int w, uint32_t step, uint8_t* __restrict links,
+                    uint8_t* __restrict run) {
+    // links[x + 2]: column x + 1 continues column x; padded by the wrap.
+    for (int x = 0; x + 1 < w; ++x) links[x + 2] = uint8_t(row[x + 1] - row[x] == step);
+    links[w + 1] = uint8_t(row[0] - row[w - 1] == step);
+    links[0] = links[w];
+    links[1] = links[w + 1];
+    links[w + 2] = links[2];
+    for (int x = 0; x < w; ++x) run[x] = links[x] & links[x + 1] & links[x + 2] & links[x + 3];
+}
+
+// down[x] = 1 when `next` continues `row` at column x by `step`.
+void continued_rows(const uint32_t* __restrict row, const uint32_t* __restrict next, int w, uint32_t step,
+                    uint8_t* __restrict down) {
+    for (int x = 0; x < w; ++x) down[x] = uint8_t(next[x] - row[x] == step);
+}
+
+// Clears due[x] where the pixel's source `row[x]` lies inside (its
+// coordinates less `reach` below inside_x and inside_y) and the five rows'
+// runs (w apart, the pixel's in the middle) and the four down links at its
+// column all hold.
+void clear_continued(const uint32_t* __restrict row, const uint8_t* __restrict run, const uint8_t* __restrict down,
+                     int w, uint32_t reach, uint32_t inside_x, uint32_t inside_y, uint8_t* __restrict due) {
+    const std::size_t w1 = std::size_t(w), w2 = 2 * w1, w3 = 3 * w1, w4 = 4 * w1;
+    for (int x = 0; x < w; ++x) {
+        const uint32_t own = row[x];
+        const uint8_t inside =
+            uint8_t(((own & 0xFFFF) - reach < inside_x) & ((own >> 16) - reach < inside_y));
+        const uint8_t whole = inside & run[x] & run[x + w1] & run[x + w2] & run[x + w3] & run[x + w4] & down[x] &
+                              down[x + w1] & down[x + w2] & down[x + w3];
+        due[x] &= uint8_t(whole ^ 1);
+    }
+}
+
 // Clears the revisit flag of every pixel whose correction would keep its
 // position at once: with k = 1, a pixel whose source lies at least the
 // window's reach inside the example and whose whole window continues it
@@ -207,42 +247,19 @@ void skip_coherent(const LevelView& v, const PositionMap& map, coherent::Revisit
     parallel_for(threads, std::size_t(last - first), 32, [&](std::size_t r0, std::size_t r1) {
         const int y0 = first + int(r0), y1 = first + int(r1);
         const int rows = y1 - y0 + 2 * kRadius;  // rows y0 - kRadius .. y1 + kRadius - 1
-        // Per local row i (torus row y0 - kRadius + i): runs[x] = 1 when
-        // its columns x - 2 .. x + 2 (wrapped) continue one another; down[x]
-        // = 1 when row i + 1 continues row i at column x. `links` holds one
-        // row's left-neighbour links, padded by the wrap on both sides.
+        // Per local row i (row y0 - kRadius + i): its runs, and the down
+        // links from it to row i + 1.
         std::vector<uint8_t> runs(std::size_t(rows) * w), down(std::size_t(rows - 1) * w), links(std::size_t(w) + 3);
         for (int i = 0; i < rows; ++i) {
             const uint32_t* row = row_at(y0 - kRadius + i);
-            // links[x + 2]: column x + 1 continues column x (x + 1 wrapped).
-            for (int x = 0; x + 1 < w; ++x) links[std::size_t(x) + 2] = uint8_t(row[x + 1] - row[x] == step_x);
-            links[std::size_t(w) + 1] = uint8_t(row[0] - row[w - 1] == step_x);
-            links[0] = links[std::size_t(w)];
-            links[1] = links[std::size_t(w) + 1];
-            links[std::size_t(w) + 2] = links[2];
-            uint8_t* run = runs.data() + std::size_t(i) * w;
-            for (int x = 0; x < w; ++x) run[x] = links[x] & links[x + 1] & links[x + 2] & links[x + 3];
-            if (i + 1 < rows) {
-                const uint32_t* next = row_at(y0 - kRadius + i + 1);
-                uint8_t* d = down.data() + std::size_t(i) * w;
-                for (int x = 0; x < w; ++x) d[x] = uint8_t(next[x] - row[x] == step_y);
-            }
+            continued_runs(row, w, step_x, links.data(), runs.data() + std::size_t(i) * w);
+            if (i + 1 < rows)
+                continued_rows(row, row_at(y0 - kRadius + i + 1), w, step_y, down.data() + std::size_t(i) * w);
         }
-        for (int y = y0; y < y1; ++y) {
-            const int i = y - y0;
-            const uint32_t* row = pos + std::size_t(y) * w;
-            const uint8_t* run = runs.data() + std::size_t(i) * w;
-            const uint8_t* d = down.data() + std::size_t(i) * w;
-            uint8_t* due = revisit.due.data() + std::size_t(y) * w;
-            for (int x = 0; x < w; ++x) {
-                const uint32_t own = row[x];
-                const uint8_t inside = uint8_t(((own & 0xFFFF) - uint32_t(reach) < inside_x) &
-                                               ((own >> 16) - uint32_t(reach) < inside_y));
-                const uint8_t coherent = inside & run[x] & run[x + w] & run[x + 2 * w] & run[x + 3 * w] &
-                                         run[x + 4 * w] & d[x] & d[x + w] & d[x + 2 * w] & d[x + 3 * w];
-                due[x] &= uint8_t(coherent ^ 1);
-            }
-        }
+        for (int y = y0; y < y1; ++y)
+            clear_continued(pos + std::size_t(y) * w, runs.data() + std::size_t(y - y0) * w,
+                            down.data() + std::size_t(y - y0) * w, w, uint32_t(reach), inside_x, inside_y,
+                            revisit.due.data() + std::size_t(y) * w);
     });
 }
 
