@@ -489,7 +489,7 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
         const auto step = [&](int x0, int y0, int x1, int y1) {
             return pixel_step(out.at(x0, y0), out.at(x1, y1), out.channels);
         };
-        const std::pair<int, int> origin = coherent::torus_origin(w, h, step);
+        const std::pair<int, int> origin = coherent::torus_origin(w, h, step, options.threads);
         roll_in_place(out, origin.first, origin.second);
     }
     return out;
@@ -570,30 +570,32 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
 
 Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads) {
     const int w = map.width, h = map.height;
-    // Where to cut the torus open is free (coherent::torus_origin); the
-    // change between two output pixels is read through their positions, the
-    // same sums as on the pixels themselves.
-    std::pair<int, int> origin{0, 0};
-    if (roll) {
-        const auto step = [&](int x0, int y0, int x1, int y1) {
-            const uint32_t p0 = map.positions[std::size_t(y0) * w + x0], p1 = map.positions[std::size_t(y1) * w + x1];
-            return pixel_step(example.at(position_x(p0), position_y(p0)), example.at(position_x(p1), position_y(p1)),
-                              example.channels);
-        };
-        origin = coherent::torus_origin(w, h, step);
-    }
-    const int ox = origin.first, oy = origin.second;
-    // Output pixel (x, y) is the example's pixel at the position of (x + ox,
-    // y + oy) on the torus, read through `index(i)` for map entry i.
+    const std::size_t channels = std::size_t(example.channels);
+    // The output through `index(i)`, the example pixel of map entry i.
     const auto read = [&](auto&& index) {
+        // Where to cut the torus open is free (coherent::torus_origin); the
+        // change between two output pixels is read through their positions,
+        // the same sums as on the pixels themselves.
+        std::pair<int, int> origin{0, 0};
+        if (roll) {
+            const auto step = [&](int x0, int y0, int x1, int y1) {
+                return pixel_step(example.pixels.data() + std::size_t(index(std::size_t(y0) * w + x0)) * channels,
+                                  example.pixels.data() + std::size_t(index(std::size_t(y1) * w + x1)) * channels,
+                                  example.channels);
+            };
+            origin = coherent::torus_origin(w, h, step, threads);
+        }
+        const int ox = origin.first, oy = origin.second;
+        // Output pixel (x, y) is the example's pixel at the position of (x +
+        // ox, y + oy) on the torus.
         Image out(w, h, example.channels);
         parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
             for (int y = int(y0); y < int(y1); ++y) {
                 const std::size_t row = std::size_t(Image::wrap(y + oy, h)) * std::size_t(w);
                 for (int x = 0; x < w; ++x)
-                    copy_pixel(out.at(x, y), example.pixels.data() +
-                                                 std::size_t(index(row + std::size_t(Image::wrap(x + ox, w)))) *
-                                                     std::size_t(example.channels),
+                    copy_pixel(out.at(x, y),
+                               example.pixels.data() +
+                                   std::size_t(index(row + std::size_t(Image::wrap(x + ox, w)))) * channels,
                                example.channels);
             }
         });
