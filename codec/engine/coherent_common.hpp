@@ -143,28 +143,35 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
         const std::size_t grain = std::max<std::size_t>(4, std::size_t(512 / cols));
         parallel_for(threads, std::size_t(rows), grain, [&](std::size_t r0, std::size_t r1) {
             int xs[kSide], ys[kSide];
+            uint8_t* const due = revisit ? revisit->due.data() : nullptr;
             for (std::size_t r = r0; r < r1; ++r) {
                 const int y = subset_rows[r];
                 T* out = chosen.data() + r * std::size_t(cols);
+                const T* in = map.data() + std::size_t(y) * w;
                 for (int i = 0; i < kSide; ++i) ys[i] = window_row(y + i - kRadius);
-                for (int i = 0; i < kSide; ++i) xs[i] = Image::wrap(sx + i - kRadius, w);
                 for (int x = sx, i = 0; x < w; x += 2, ++i) {
                     const std::size_t at = std::size_t(y) * w + x;
-                    if (!revisit) {
-                        out[i] = correct(x, y, xs, ys);
-                    } else if (revisit->due[at]) {
-                        out[i] = correct(x, y, xs, ys);
-                        revisit->due[at] = 0;
-                    } else {
-                        out[i] = map[at];
+                    if (due) {
+                        // Pixels not due (most of them in a level's later
+                        // passes, and where the still engine's
+                        // skip_coherent found them) go by with a copy;
+                        // only due ones have their window's columns made.
+                        if (!due[at]) {
+                            out[i] = in[x];
+                            continue;
+                        }
+                        due[at] = 0;
                     }
-                    // Slide the window two columns: wrap by comparison
-                    // except on outputs narrower than the window.
+                    // Wrap by comparison except on outputs narrower than
+                    // the window.
                     for (int j = 0; j < kSide; ++j) {
-                        int c = xs[j] + 2;
-                        if (c >= w) c = w >= kSide ? c - w : Image::wrap(x + 2 + j - kRadius, w);
+                        int c = x + j - kRadius;
+                        if (w < kSide) c = Image::wrap(c, w);
+                        else if (c < 0) c += w;
+                        else if (c >= w) c -= w;
                         xs[j] = c;
                     }
+                    out[i] = correct(x, y, xs, ys);
                 }
             }
         });
