@@ -185,12 +185,23 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
             const T* in = chosen.data() + std::size_t(r) * std::size_t(cols);
             for (int i = 0; i < cols; ++i) {
                 const int x = sx + 2 * i;
-                if (revisit && !(row[x] == in[i]))
+                if (revisit && !(row[x] == in[i])) {
+                    // Rows and columns wrap by division only near the
+                    // torus's edges (this loop is serial).
+                    const bool inner = x >= kRadius && x + kRadius < w;
                     for (int dy = -kRadius; dy <= kRadius; ++dy) {
-                        if (band && (y + dy < 0 || y + dy >= h)) continue;
-                        uint8_t* due = revisit->due.data() + std::size_t(band ? y + dy : Image::wrap(y + dy, h)) * w;
-                        for (int dx = -kRadius; dx <= kRadius; ++dx) due[Image::wrap(x + dx, w)] = 1;
+                        int yy = y + dy;
+                        if (yy < 0 || yy >= h) {
+                            if (band) continue;
+                            yy = Image::wrap(yy, h);
+                        }
+                        uint8_t* due = revisit->due.data() + std::size_t(yy) * w;
+                        if (inner)
+                            for (int dx = -kRadius; dx <= kRadius; ++dx) due[x + dx] = 1;
+                        else
+                            for (int dx = -kRadius; dx <= kRadius; ++dx) due[Image::wrap(x + dx, w)] = 1;
                     }
+                }
                 row[x] = in[i];
             }
         }
