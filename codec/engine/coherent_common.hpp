@@ -129,6 +129,9 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
     for (int y = 0; y < h; ++y) parity_rows[(band ? (band->first + y) % band->torus_height : y) & 1].push_back(y);
     const auto window_row = [&](int y) { return band ? std::clamp(y, 0, h - 1) : Image::wrap(y, h); };
     std::vector<T> chosen(std::size_t((w + 1) / 2) * std::max(parity_rows[0].size(), parity_rows[1].size()));
+    // moved[i] = 1 when chosen[i] differs from the pixel's state: only those
+    // are put in place (a quarter of a byte per pixel more).
+    std::vector<uint8_t> moved(chosen.size());
     for (const auto& subset : kOrder) {
         // Plain ints: clang 14 cannot capture structured bindings in a lambda.
         const int sx = subset[0];
@@ -147,6 +150,7 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
             for (std::size_t r = r0; r < r1; ++r) {
                 const int y = subset_rows[r];
                 T* out = chosen.data() + r * std::size_t(cols);
+                uint8_t* changed = moved.data() + r * std::size_t(cols);
                 const T* in = map.data() + std::size_t(y) * w;
                 for (int i = 0; i < kSide; ++i) ys[i] = window_row(y + i - kRadius);
                 for (int x = sx, i = 0; x < w; x += 2, ++i) {
@@ -154,10 +158,10 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
                     if (due) {
                         // Pixels not due (most of them in a level's later
                         // passes, and where the still engine's
-                        // skip_coherent found them) go by with a copy;
-                        // only due ones have their window's columns made.
+                        // skip_coherent found them) go by unchanged; only
+                        // due ones have their window's columns made.
                         if (!due[at]) {
-                            out[i] = in[x];
+                            changed[i] = 0;
                             continue;
                         }
                         due[at] = 0;
@@ -172,22 +176,33 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
                         xs[j] = c;
                     }
                     out[i] = correct(x, y, xs, ys);
+                    changed[i] = uint8_t(!(out[i] == in[x]));
                 }
             }
         });
-        // Putting the choices in place is a copy: one thread is as fast. With
-        // `revisit`, every pixel whose window holds a changed one is due
-        // again, marked here, after the subset, so no flag is written twice
-        // at once (in a band, only the rows it holds).
+        // Putting the changed choices in place, serially: a pixel's state
+        // and the flags of the windows that hold it (with `revisit`, every
+        // pixel whose window holds a changed one is due again, marked here,
+        // after the subset, so no flag is written twice at once; in a band,
+        // only the rows it holds). Few change, so the flags are scanned
+        // eight at a time.
         for (int r = 0; r < rows; ++r) {
             const int y = subset_rows[std::size_t(r)];
             T* row = map.data() + std::size_t(y) * std::size_t(w);
             const T* in = chosen.data() + std::size_t(r) * std::size_t(cols);
-            for (int i = 0; i < cols; ++i) {
-                const int x = sx + 2 * i;
-                if (revisit && !(row[x] == in[i])) {
+            const uint8_t* changed = moved.data() + std::size_t(r) * std::size_t(cols);
+            for (int i0 = 0; i0 < cols; i0 += 8) {
+                const int n = std::min(8, cols - i0);
+                uint64_t word = 0;
+                std::memcpy(&word, changed + i0, std::size_t(n));
+                if (word == 0) continue;
+                for (int i = i0; i < i0 + n; ++i) {
+                    if (!changed[i]) continue;
+                    const int x = sx + 2 * i;
+                    row[x] = in[i];
+                    if (!revisit) continue;
                     // Rows and columns wrap by division only near the
-                    // torus's edges (this loop is serial).
+                    // torus's edges.
                     const bool inner = x >= kRadius && x + kRadius < w;
                     for (int dy = -kRadius; dy <= kRadius; ++dy) {
                         int yy = y + dy;
@@ -202,7 +217,6 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
                             for (int dx = -kRadius; dx <= kRadius; ++dx) due[Image::wrap(x + dx, w)] = 1;
                     }
                 }
-                row[x] = in[i];
             }
         }
     }
