@@ -384,7 +384,8 @@ struct LevelPasses {
 
 // Output rows per band of the finest level, or 0 to synthesise it whole.
 // Whole, the level's buffers take 6 bytes a pixel (positions, revisit
-// flags, a subset's choices): within twice the output plus 8 MiB from 3
+// flags, a subset's choices; and a quarter of a byte for which of those
+// changed, left out of the sums here): within twice the output plus 8 MiB from 3
 // channels up, so those outputs and small ones keep the single pass over
 // the level. Otherwise bands of about 8 MiB of buffers: a band, the output
 // and the coarser level (half a byte a pixel, narrowed, or 1) stay within
@@ -573,9 +574,11 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
 }
 
 uint64_t coherent_output_memory(uint64_t width, uint64_t height, int channels) {
-    // Whole: max(6, 4 + channels, 2 x channels) bytes a pixel. In bands
+    // Whole: max(6.25, 4 + channels, 2 x channels) bytes a pixel. In bands
     // (from 6 > 2 x channels bytes a pixel only): at most 1 + channels + 6
-    // with the band, or 2 x channels + 6 at the end, plus kBandBytes.
+    // with the band (whose change flags add a 24th to kBandBytes), or 2 x
+    // channels + 6 at the end, plus kBandBytes: within the 6 + 2 x channels
+    // bytes a pixel counted.
     return width * height * (6 + 2 * uint64_t(channels)) + kBandBytes;
 }
 
