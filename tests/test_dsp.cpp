@@ -256,14 +256,22 @@ TEST(Dsp, LinearKernelsEqualTheirDefinitionsModuloTheirWidthOnEveryKernelSet) {
                 d[i] = int32_t(int64_t(rng.below(uint64_t(1) << 32)) - (int64_t(1) << 31));
                 acc[i] = int32_t(int64_t(rng.below(uint64_t(1) << 32)) - (int64_t(1) << 31));
             }
-            const int16_t weight = int16_t(int(rng.below(65536)) - 32768);
+            int16_t weight = int16_t(int(rng.below(65536)) - 32768);
+            // A second row and weight for axpy2_i16. With seed 0 both weights
+            // and both first values are -32768: that pair's sum, 2^31, wraps.
+            std::vector<int16_t> y(n);
+            for (std::size_t i = 0; i < n; ++i) y[i] = int16_t(int(rng.below(65536)) - 32768);
+            int16_t weight2 = int16_t(int(rng.below(65536)) - 32768);
+            if (seed == 0) weight = weight2 = x[0] = y[0] = int16_t(-32768);
             uint32_t dot16 = 0;
             uint64_t dot32 = 0;
-            std::vector<int32_t> expected_acc(n);
+            std::vector<int32_t> expected_acc(n), expected_acc2(n);
             for (std::size_t i = 0; i < n; ++i) {
                 dot16 += uint32_t(int32_t(a[i]) * int32_t(b[i]));
                 dot32 += uint64_t(int64_t(c[i]) * int64_t(d[i]));
                 expected_acc[i] = int32_t(uint32_t(acc[i]) + uint32_t(int32_t(weight) * x[i]));
+                expected_acc2[i] = int32_t(uint32_t(acc[i]) + uint32_t(int32_t(weight) * x[i]) +
+                                           uint32_t(int32_t(weight2) * y[i]));
             }
             for (int k = 0; k < dsp::available_kernel_count(); ++k) {
                 const dsp::Kernels& kernels = dsp::available_kernels(k);
@@ -272,6 +280,9 @@ TEST(Dsp, LinearKernelsEqualTheirDefinitionsModuloTheirWidthOnEveryKernelSet) {
                 std::vector<int32_t> out = acc;
                 kernels.axpy_i16(out.data(), x.data(), weight, n);
                 EXPECT_EQ(out, expected_acc) << kernels.name << " n=" << n;
+                out = acc;
+                kernels.axpy2_i16(out.data(), x.data(), y.data(), weight, weight2, n);
+                EXPECT_EQ(out, expected_acc2) << kernels.name << " n=" << n;
             }
         }
     }

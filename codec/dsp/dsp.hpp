@@ -131,6 +131,9 @@ struct Kernels {
     uint32_t (*dot_i16)(const int16_t* a, const int16_t* b, std::size_t n);
     // acc[i] += weight * x[i] modulo 2^32 (projections on the axes);
     void (*axpy_i16)(int32_t* acc, const int16_t* x, int16_t weight, std::size_t n);
+    // acc[i] += w0 * x0[i] + w1 * x1[i] modulo 2^32 (two rows in one pass
+    // over the sums);
+    void (*axpy2_i16)(int32_t* acc, const int16_t* x0, const int16_t* x1, int16_t w0, int16_t w1, std::size_t n);
     // sum of the 64-bit products a[i] * b[i] modulo 2^64 (power iteration).
     int64_t (*dot_i32)(const int32_t* a, const int32_t* b, std::size_t n);
 };

@@ -24,6 +24,11 @@ void axpy_i16_portable(int32_t* acc, const int16_t* x, int16_t weight, std::size
     for (std::size_t i = 0; i < n; ++i) acc[i] = int32_t(uint32_t(acc[i]) + uint32_t(int32_t(weight) * int32_t(x[i])));
 }
 
+void axpy2_i16_portable(int32_t* acc, const int16_t* x0, const int16_t* x1, int16_t w0, int16_t w1, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+        acc[i] = int32_t(uint32_t(acc[i]) + uint32_t(int32_t(w0) * int32_t(x0[i])) + uint32_t(int32_t(w1) * int32_t(x1[i])));
+}
+
 int64_t dot_i32_portable(const int32_t* a, const int32_t* b, std::size_t n) {
     uint64_t sum = 0;
     for (std::size_t i = 0; i < n; ++i) sum += uint64_t(int64_t(a[i]) * int64_t(b[i]));

@@ -164,6 +164,7 @@ const Kernels kAvx2 = {
     detail::window_ssd_sse2,
     detail::dot_i16_portable,
     detail::axpy_i16_portable,
+    detail::axpy2_i16_portable,
     detail::dot_i32_portable,
 };
 

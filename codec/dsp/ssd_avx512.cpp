@@ -176,6 +176,7 @@ const Kernels kAvx512 = {
     detail::window_ssd_sse2,
     detail::dot_i16_portable,
     detail::axpy_i16_portable,
+    detail::axpy2_i16_portable,
     detail::dot_i32_portable,
 };
 

@@ -86,6 +86,7 @@ const Kernels kScalar = {
     window_ssd_scalar,
     detail::dot_i16_portable,
     detail::axpy_i16_portable,
+    detail::axpy2_i16_portable,
     detail::dot_i32_portable,
 };
 

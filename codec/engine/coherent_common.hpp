@@ -129,59 +129,94 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
     for (int y = 0; y < h; ++y) parity_rows[(band ? (band->first + y) % band->torus_height : y) & 1].push_back(y);
     const auto window_row = [&](int y) { return band ? std::clamp(y, 0, h - 1) : Image::wrap(y, h); };
     std::vector<T> chosen(std::size_t((w + 1) / 2) * std::max(parity_rows[0].size(), parity_rows[1].size()));
+    // moved[i] = 1 when chosen[i] differs from the pixel's state: only those
+    // are put in place (a quarter of a byte per pixel more).
+    std::vector<uint8_t> moved(chosen.size());
     for (const auto& subset : kOrder) {
         // Plain ints: clang 14 cannot capture structured bindings in a lambda.
         const int sx = subset[0];
         const std::vector<int>& subset_rows = parity_rows[subset[1]];
         const int rows = int(subset_rows.size()), cols = (w - sx + 1) / 2;
         if (rows <= 0 || cols <= 0) continue;
-        // Chunks of at least ~4096 pixels: at the coarse levels waking a
-        // thread costs more than the rows it would take.
-        const std::size_t grain = std::max<std::size_t>(4, std::size_t(4096 / cols));
+        // Chunks of at least ~512 pixels: below that, waking a thread costs
+        // more than the rows it would take. The coarse levels' pixels are
+        // the dearest (most of their windows propose and cross the
+        // example's edge): with 4096, the 128x128 level of a 512x512
+        // output and every smaller one ran on one thread, 4.2 ms of it.
+        const std::size_t grain = std::max<std::size_t>(4, std::size_t(512 / cols));
         parallel_for(threads, std::size_t(rows), grain, [&](std::size_t r0, std::size_t r1) {
             int xs[kSide], ys[kSide];
+            uint8_t* const due = revisit ? revisit->due.data() : nullptr;
             for (std::size_t r = r0; r < r1; ++r) {
                 const int y = subset_rows[r];
                 T* out = chosen.data() + r * std::size_t(cols);
+                uint8_t* changed = moved.data() + r * std::size_t(cols);
+                const T* in = map.data() + std::size_t(y) * w;
                 for (int i = 0; i < kSide; ++i) ys[i] = window_row(y + i - kRadius);
-                for (int i = 0; i < kSide; ++i) xs[i] = Image::wrap(sx + i - kRadius, w);
                 for (int x = sx, i = 0; x < w; x += 2, ++i) {
                     const std::size_t at = std::size_t(y) * w + x;
-                    if (!revisit) {
-                        out[i] = correct(x, y, xs, ys);
-                    } else if (revisit->due[at]) {
-                        out[i] = correct(x, y, xs, ys);
-                        revisit->due[at] = 0;
-                    } else {
-                        out[i] = map[at];
+                    if (due) {
+                        // Pixels not due (most of them in a level's later
+                        // passes, and where the still engine's
+                        // skip_coherent found them) go by unchanged; only
+                        // due ones have their window's columns made.
+                        if (!due[at]) {
+                            changed[i] = 0;
+                            continue;
+                        }
+                        due[at] = 0;
                     }
-                    // Slide the window two columns: wrap by comparison
-                    // except on outputs narrower than the window.
+                    // Wrap by comparison except on outputs narrower than
+                    // the window.
                     for (int j = 0; j < kSide; ++j) {
-                        int c = xs[j] + 2;
-                        if (c >= w) c = w >= kSide ? c - w : Image::wrap(x + 2 + j - kRadius, w);
+                        int c = x + j - kRadius;
+                        if (w < kSide) c = Image::wrap(c, w);
+                        else if (c < 0) c += w;
+                        else if (c >= w) c -= w;
                         xs[j] = c;
                     }
+                    out[i] = correct(x, y, xs, ys);
+                    changed[i] = uint8_t(!(out[i] == in[x]));
                 }
             }
         });
-        // Putting the choices in place is a copy: one thread is as fast. With
-        // `revisit`, every pixel whose window holds a changed one is due
-        // again, marked here, after the subset, so no flag is written twice
-        // at once (in a band, only the rows it holds).
+        // Putting the changed choices in place, serially: a pixel's state
+        // and the flags of the windows that hold it (with `revisit`, every
+        // pixel whose window holds a changed one is due again, marked here,
+        // after the subset, so no flag is written twice at once; in a band,
+        // only the rows it holds). Few change, so the flags are scanned
+        // eight at a time.
         for (int r = 0; r < rows; ++r) {
             const int y = subset_rows[std::size_t(r)];
             T* row = map.data() + std::size_t(y) * std::size_t(w);
             const T* in = chosen.data() + std::size_t(r) * std::size_t(cols);
-            for (int i = 0; i < cols; ++i) {
-                const int x = sx + 2 * i;
-                if (revisit && !(row[x] == in[i]))
+            const uint8_t* changed = moved.data() + std::size_t(r) * std::size_t(cols);
+            for (int i0 = 0; i0 < cols; i0 += 8) {
+                const int n = std::min(8, cols - i0);
+                uint64_t word = 0;
+                std::memcpy(&word, changed + i0, std::size_t(n));
+                if (word == 0) continue;
+                for (int i = i0; i < i0 + n; ++i) {
+                    if (!changed[i]) continue;
+                    const int x = sx + 2 * i;
+                    row[x] = in[i];
+                    if (!revisit) continue;
+                    // Rows and columns wrap by division only near the
+                    // torus's edges.
+                    const bool inner = x >= kRadius && x + kRadius < w;
                     for (int dy = -kRadius; dy <= kRadius; ++dy) {
-                        if (band && (y + dy < 0 || y + dy >= h)) continue;
-                        uint8_t* due = revisit->due.data() + std::size_t(band ? y + dy : Image::wrap(y + dy, h)) * w;
-                        for (int dx = -kRadius; dx <= kRadius; ++dx) due[Image::wrap(x + dx, w)] = 1;
+                        int yy = y + dy;
+                        if (yy < 0 || yy >= h) {
+                            if (band) continue;
+                            yy = Image::wrap(yy, h);
+                        }
+                        uint8_t* due = revisit->due.data() + std::size_t(yy) * w;
+                        if (inner)
+                            for (int dx = -kRadius; dx <= kRadius; ++dx) due[x + dx] = 1;
+                        else
+                            for (int dx = -kRadius; dx <= kRadius; ++dx) due[Image::wrap(x + dx, w)] = 1;
                     }
-                row[x] = in[i];
+                }
             }
         }
     }
@@ -193,20 +228,35 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
 // the frames of an animation). Left at the coarsest level's grid, the edges
 // lay where coherent copies tend to meet, and on 6 of 23 corpus textures the
 // wrap was a visible line.
+//
+// The sums are exact integers, so their order is free: the columns' are
+// taken in strips of columns, row after row (a column at a time strode
+// across the whole map, a cache miss a step), the rows' row by row, both
+// on up to `threads` threads (`step` must be safe to call from several at
+// once); it was a serial 5% of a 512x512 decode.
 template <typename Step>
-std::pair<int, int> torus_origin(int w, int h, Step&& step) {
+std::pair<int, int> torus_origin(int w, int h, Step&& step, int threads = 1) {
+    std::vector<int64_t> across_x(std::size_t(w), 0), across_y(std::size_t(h), 0);
+    constexpr int kStrip = 64;
+    parallel_for(threads, std::size_t((w + kStrip - 1) / kStrip), 1, [&](std::size_t s0, std::size_t s1) {
+        const int x0 = int(s0) * kStrip, x1 = std::min(w, int(s1) * kStrip);
+        for (int y = 0; y < h; ++y)
+            for (int x = x0; x < x1; ++x) across_x[std::size_t(x)] += step(x == 0 ? w - 1 : x - 1, y, x, y);
+    });
+    parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
+        for (int y = int(y0); y < int(y1); ++y) {
+            int64_t sum = 0;
+            const int above = y == 0 ? h - 1 : y - 1;
+            for (int x = 0; x < w; ++x) sum += step(x, above, x, y);
+            across_y[std::size_t(y)] = sum;
+        }
+    });
     int ox = 0, oy = 0;
     int64_t best_x = INT64_MAX, best_y = INT64_MAX;
-    for (int x = 0; x < w; ++x) {
-        int64_t sum = 0;
-        for (int y = 0; y < h; ++y) sum += step((x + w - 1) % w, y, x, y);
-        if (sum < best_x) best_x = sum, ox = x;
-    }
-    for (int y = 0; y < h; ++y) {
-        int64_t sum = 0;
-        for (int x = 0; x < w; ++x) sum += step(x, (y + h - 1) % h, x, y);
-        if (sum < best_y) best_y = sum, oy = y;
-    }
+    for (int x = 0; x < w; ++x)
+        if (across_x[std::size_t(x)] < best_x) best_x = across_x[std::size_t(x)], ox = x;
+    for (int y = 0; y < h; ++y)
+        if (across_y[std::size_t(y)] < best_y) best_y = across_y[std::size_t(y)], oy = y;
     return {ox, oy};
 }
 

@@ -35,14 +35,6 @@ uint32_t pixel_index(const Image& example, uint32_t p) {
     return uint32_t(position_y(p)) * uint32_t(example.width) + uint32_t(position_x(p));
 }
 
-// The change between two pixels that the torus cut minimises
-// (coherent::torus_origin): the sum of their channels' differences.
-int pixel_step(const uint8_t* a, const uint8_t* b, int channels) {
-    int d = 0;
-    for (int c = 0; c < channels; ++c) d += std::abs(int(a[c]) - int(b[c]));
-    return d;
-}
-
 // Position (x, y) of the example, folded inside if it is not.
 uint32_t folded(const AppearanceSpace& space, int x, int y) {
     return pack_position(space.fold_x(x), space.fold_y(y));
@@ -178,6 +170,93 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     return best;
 }
 
+// The byte loops of skip_coherent, apart, so that they vectorise: their
+// pointers are __restrict (bytes may alias anything, and the compiler
+// would otherwise reload every captured value after each store).
+//
+// run[x] = 1 when columns x - 2 .. x + 2 of `row` (w wide, a torus) each
+// continue the one to their left by `step`. `links` has w + 3 bytes.
+void continued_runs(const uint32_t* __restrict row, int w, uint32_t step, uint8_t* __restrict links,
+                    uint8_t* __restrict run) {
+    // links[x + 2]: column x + 1 continues column x; padded by the wrap.
+    for (int x = 0; x + 1 < w; ++x) links[x + 2] = uint8_t(row[x + 1] - row[x] == step);
+    links[w + 1] = uint8_t(row[0] - row[w - 1] == step);
+    links[0] = links[w];
+    links[1] = links[w + 1];
+    links[w + 2] = links[2];
+    for (int x = 0; x < w; ++x) run[x] = links[x] & links[x + 1] & links[x + 2] & links[x + 3];
+}
+
+// down[x] = 1 when `next` continues `row` at column x by `step`.
+void continued_rows(const uint32_t* __restrict row, const uint32_t* __restrict next, int w, uint32_t step,
+                    uint8_t* __restrict down) {
+    for (int x = 0; x < w; ++x) down[x] = uint8_t(next[x] - row[x] == step);
+}
+
+// Clears due[x] where the pixel's source `row[x]` lies inside (its
+// coordinates less `reach` below inside_x and inside_y) and the five rows'
+// runs (w apart, the pixel's in the middle) and the four down links at its
+// column all hold.
+void clear_continued(const uint32_t* __restrict row, const uint8_t* __restrict run, const uint8_t* __restrict down,
+                     int w, uint32_t reach, uint32_t inside_x, uint32_t inside_y, uint8_t* __restrict due) {
+    const std::size_t w1 = std::size_t(w), w2 = 2 * w1, w3 = 3 * w1, w4 = 4 * w1;
+    for (int x = 0; x < w; ++x) {
+        const uint32_t own = row[x];
+        const uint8_t inside =
+            uint8_t(((own & 0xFFFF) - reach < inside_x) & ((own >> 16) - reach < inside_y));
+        const uint8_t whole = inside & run[x] & run[x + w1] & run[x + w2] & run[x + w3] & run[x + w4] & down[x] &
+                              down[x + w1] & down[x + w2] & down[x + w3];
+        due[x] &= uint8_t(whole ^ 1);
+    }
+}
+
+// Clears the revisit flag of every pixel whose correction would keep its
+// position at once: with k = 1, a pixel whose source lies at least the
+// window's reach inside the example and whose whole window continues it
+// (correct_pixel's first check, proposing == 0). That is most of a level
+// (83% of the finest level's pixels on stk_granite, in each of its two
+// passes), and checking a window there costs 25 gathered positions and a
+// call per pixel. Here it is found for the whole map from the links
+// between adjacent pixels, a few byte operations a pixel that vectorise:
+// the window continues its centre at every tap if and only if each pixel
+// continues its left neighbour along the window's rows (20 links) and
+// its upper neighbour down the centre column (4), the differences of packed
+// positions being additive (mod 2^32; exact inside the example, which the
+// centre's reach guarantees). Skipped pixels keep the position a
+// correction would have given them, so the bytes are the same; a later
+// change in a window marks it due again (interleaved_pass).
+void skip_coherent(const LevelView& v, const PositionMap& map, coherent::Revisit& revisit,
+                   const coherent::Band* band, int threads) {
+    const int w = map.width, h = map.height;
+    const int reach = kRadius * v.spacing;
+    if (v.k != 1 || w < kSide || h < kSide || v.space.width <= 2 * reach || v.space.height <= 2 * reach) return;
+    const uint32_t* pos = map.positions.data();
+    const uint32_t step_x = uint32_t(v.spacing), step_y = uint32_t(v.spacing) << 16;
+    const uint32_t inside_x = uint32_t(v.space.width - 2 * reach), inside_y = uint32_t(v.space.height - 2 * reach);
+    // A band's windows in its first and last kRadius rows read clamped rows
+    // (a row twice), which never continue: those stay due.
+    const int first = band ? kRadius : 0, last = band ? h - kRadius : h;
+    if (first >= last) return;
+    const auto row_at = [&](int y) { return pos + std::size_t(band ? y : Image::wrap(y, h)) * std::size_t(w); };
+    parallel_for(threads, std::size_t(last - first), 32, [&](std::size_t r0, std::size_t r1) {
+        const int y0 = first + int(r0), y1 = first + int(r1);
+        const int rows = y1 - y0 + 2 * kRadius;  // rows y0 - kRadius .. y1 + kRadius - 1
+        // Per local row i (row y0 - kRadius + i): its runs, and the down
+        // links from it to row i + 1.
+        std::vector<uint8_t> runs(std::size_t(rows) * w), down(std::size_t(rows - 1) * w), links(std::size_t(w) + 3);
+        for (int i = 0; i < rows; ++i) {
+            const uint32_t* row = row_at(y0 - kRadius + i);
+            continued_runs(row, w, step_x, links.data(), runs.data() + std::size_t(i) * w);
+            if (i + 1 < rows)
+                continued_rows(row, row_at(y0 - kRadius + i + 1), w, step_y, down.data() + std::size_t(i) * w);
+        }
+        for (int y = y0; y < y1; ++y)
+            clear_continued(pos + std::size_t(y) * w, runs.data() + std::size_t(y - y0) * w,
+                            down.data() + std::size_t(y - y0) * w, w, uint32_t(reach), inside_x, inside_y,
+                            revisit.due.data() + std::size_t(y) * w);
+    });
+}
+
 // One correction pass over the whole level, or over a band of its rows
 // (coherent::interleaved_pass).
 void correction_pass(const LevelView& view, PositionMap& map, const CoherentOptions& options,
@@ -276,6 +355,7 @@ struct LevelPasses {
                              dsp::kernels()};
         coherent::Revisit revisit(map.positions.size());
         for (int pass = 0; pass < passes_at(l); ++pass) {
+            skip_coherent(view, map, revisit, band, options.threads);
             correction_pass(view, map, options, &revisit, band);
             done += uint64_t(map.width) * uint64_t(band ? own_rows : map.height);
             if (options.progress && !options.progress(done, total))
@@ -289,8 +369,10 @@ struct LevelPasses {
             // beside them (a byte per output pixel).
             const LevelView polish{space, sets, 0, 1, space.pixels.data(), 1, dsp::kernels()};
             std::fill(revisit.due.begin(), revisit.due.end(), uint8_t(1));
-            for (int pass = 0; pass < options.polish_passes; ++pass)
+            for (int pass = 0; pass < options.polish_passes; ++pass) {
+                skip_coherent(polish, map, revisit, band, options.threads);
                 correction_pass(polish, map, options, &revisit, band);
+            }
         }
     }
 
@@ -323,7 +405,8 @@ struct LevelPasses {
 
 // Output rows per band of the finest level, or 0 to synthesise it whole.
 // Whole, the level's buffers take 6 bytes a pixel (positions, revisit
-// flags, a subset's choices): within twice the output plus 8 MiB from 3
+// flags, a subset's choices; and a quarter of a byte for which of those
+// changed, left out of the sums here): within twice the output plus 8 MiB from 3
 // channels up, so those outputs and small ones keep the single pass over
 // the level. Otherwise bands of about 8 MiB of buffers: a band, the output
 // and the coarser level (half a byte a pixel, narrowed, or 1) stay within
@@ -368,6 +451,60 @@ void roll_in_place(Image& image, int ox, int oy) {
             y = from;
         }
     }
+}
+
+// The sum of |a[i] - b[i]| over n bytes.
+uint32_t byte_distance(const uint8_t* __restrict a, const uint8_t* __restrict b, std::size_t n) {
+    uint32_t d = 0;
+    for (std::size_t i = 0; i < n; ++i) d += uint32_t(std::abs(int(a[i]) - int(b[i])));
+    return d;
+}
+
+// acc[i - first] += |row[i] - row[i - channels]| for i in [first, last).
+void add_steps(const uint8_t* __restrict row, std::size_t first, std::size_t last, std::size_t channels,
+               uint32_t* __restrict acc) {
+    for (std::size_t i = first; i < last; ++i) acc[i - first] += uint32_t(std::abs(int(row[i]) - int(row[i - channels])));
+}
+
+// Cuts the torus of `image` open in place where its pixels change least:
+// coherent::torus_origin's choice, with the change between two pixels the
+// sum of their channels' differences. The sums are taken on the bytes as
+// they lie (a row against the one above; a row against itself a pixel
+// on, in strips of columns), which vectorise: through the positions, a
+// pixel at a time, they were 5% of a 512x512 decode. The same integers,
+// so the same cut.
+void cut_torus(Image& image, int threads) {
+    const int w = image.width, h = image.height;
+    const std::size_t ch = std::size_t(image.channels), row_bytes = std::size_t(w) * ch;
+    std::vector<int64_t> across_x(std::size_t(w), 0), across_y(std::size_t(h), 0);
+    parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
+        for (std::size_t y = y0; y < y1; ++y)
+            across_y[y] = byte_distance(image.at(0, y == 0 ? h - 1 : int(y) - 1), image.at(0, int(y)), row_bytes);
+    });
+    constexpr int kStrip = 256;
+    parallel_for(threads, std::size_t((w + kStrip - 1) / kStrip), 1, [&](std::size_t s0, std::size_t s1) {
+        const int x0 = int(s0) * kStrip, x1 = std::min(w, int(s1) * kStrip);
+        std::vector<uint32_t> acc(std::size_t(x1 - x0) * ch, 0);  // per byte of the strip
+        for (int y = 0; y < h; ++y) {
+            const uint8_t* row = image.at(0, y);
+            // Column 0 steps from the last column (the wrap).
+            if (x0 == 0)
+                for (std::size_t c = 0; c < ch; ++c) acc[c] += uint32_t(std::abs(int(row[c]) - int(row[row_bytes - ch + c])));
+            add_steps(row, std::size_t(std::max(x0, 1)) * ch, std::size_t(x1) * ch, ch,
+                      acc.data() + (x0 == 0 ? ch : 0));
+        }
+        for (int x = x0; x < x1; ++x) {
+            int64_t sum = 0;
+            for (std::size_t c = 0; c < ch; ++c) sum += acc[std::size_t(x - x0) * ch + c];
+            across_x[std::size_t(x)] = sum;
+        }
+    });
+    int ox = 0, oy = 0;
+    for (int x = 1; x < w; ++x)
+        if (across_x[std::size_t(x)] < across_x[std::size_t(ox)]) ox = x;
+    for (int y = 1; y < h; ++y)
+        if (across_y[std::size_t(y)] < across_y[std::size_t(oy)]) oy = y;
+    roll_in_place(image, ox, oy);
 }
 
 // The output of a large texture: the finest level synthesised in bands of
@@ -417,13 +554,7 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
     std::vector<uint32_t>().swap(part.positions);
     std::vector<uint32_t>().swap(coarse.positions);
     std::vector<uint16_t>().swap(narrow);
-    if (options.roll) {
-        const auto step = [&](int x0, int y0, int x1, int y1) {
-            return pixel_step(out.at(x0, y0), out.at(x1, y1), out.channels);
-        };
-        const std::pair<int, int> origin = coherent::torus_origin(w, h, step);
-        roll_in_place(out, origin.first, origin.second);
-    }
+    if (options.roll) cut_torus(out, options.threads);
     return out;
 }
 
@@ -468,9 +599,11 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
 }
 
 uint64_t coherent_output_memory(uint64_t width, uint64_t height, int channels) {
-    // Whole: max(6, 4 + channels, 2 x channels) bytes a pixel. In bands
+    // Whole: max(6.25, 4 + channels, 2 x channels) bytes a pixel. In bands
     // (from 6 > 2 x channels bytes a pixel only): at most 1 + channels + 6
-    // with the band, or 2 x channels + 6 at the end, plus kBandBytes.
+    // with the band (whose change flags add a 24th to kBandBytes), or 2 x
+    // channels + 6 at the end, plus kBandBytes: within the 6 + 2 x channels
+    // bytes a pixel counted.
     return width * height * (6 + 2 * uint64_t(channels)) + kBandBytes;
 }
 
@@ -530,50 +663,40 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
 
 Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads) {
     const int w = map.width, h = map.height;
-    // Where to cut the torus open is free (coherent::torus_origin); the
-    // change between two output pixels is read through their positions, the
-    // same sums as on the pixels themselves.
-    std::pair<int, int> origin{0, 0};
-    if (roll) {
-        const auto step = [&](int x0, int y0, int x1, int y1) {
-            const uint32_t p0 = map.positions[std::size_t(y0) * w + x0], p1 = map.positions[std::size_t(y1) * w + x1];
-            return pixel_step(example.at(position_x(p0), position_y(p0)), example.at(position_x(p1), position_y(p1)),
-                              example.channels);
-        };
-        origin = coherent::torus_origin(w, h, step);
-    }
-    const int ox = origin.first, oy = origin.second;
-    // Output pixel (x, y) is the example's pixel at the position of (x + ox,
-    // y + oy) on the torus, read through `index(i)` for map entry i.
+    const std::size_t channels = std::size_t(example.channels);
+    // The output through `index(i)`, the example pixel of map entry i, then
+    // cut open where its pixels change least (the same pixels as reading
+    // each through the cut's offset, and the same cut as one found through
+    // the positions).
     const auto read = [&](auto&& index) {
         Image out(w, h, example.channels);
         parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
-            for (int y = int(y0); y < int(y1); ++y) {
-                const std::size_t row = std::size_t(Image::wrap(y + oy, h)) * std::size_t(w);
-                for (int x = 0; x < w; ++x)
-                    copy_pixel(out.at(x, y), example.pixels.data() +
-                                                 std::size_t(index(row + std::size_t(Image::wrap(x + ox, w)))) *
-                                                     std::size_t(example.channels),
-                               example.channels);
-            }
+            for (std::size_t i = y0 * std::size_t(w); i < y1 * std::size_t(w); ++i)
+                copy_pixel(out.pixels.data() + i * channels, example.pixels.data() + std::size_t(index(i)) * channels,
+                           example.channels);
         });
         return out;
     };
-    if (example.pixel_count() > 65536)
-        return read([&](std::size_t i) { return pixel_index(example, map.positions[i]); });
-    // A small example (an atlas of up to 256x256, the common case): its
-    // pixel indices take 16 bits, so the positions are narrowed first and
-    // let go before the output is allocated. Peak: the positions and the
-    // narrow copy (6 bytes per output pixel), then the narrow copy and the
-    // output, instead of the positions and the output (4 + channels bytes,
-    // and the output's own copy in a cut torus besides).
-    std::vector<uint16_t> narrow(map.positions.size());
-    parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
-        for (std::size_t i = y0 * std::size_t(w); i < y1 * std::size_t(w); ++i)
-            narrow[i] = uint16_t(pixel_index(example, map.positions[i]));
-    });
-    std::vector<uint32_t>().swap(map.positions);
-    return read([&](std::size_t i) { return narrow[i]; });
+    Image out;
+    if (example.pixel_count() > 65536) {
+        out = read([&](std::size_t i) { return pixel_index(example, map.positions[i]); });
+    } else {
+        // A small example (an atlas of up to 256x256, the common case): its
+        // pixel indices take 16 bits, so the positions are narrowed first
+        // and let go before the output is allocated. Peak: the positions
+        // and the narrow copy (6 bytes per output pixel), then the narrow
+        // copy and the output, instead of the positions and the output (4
+        // + channels bytes).
+        std::vector<uint16_t> narrow(map.positions.size());
+        parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
+            for (std::size_t i = y0 * std::size_t(w); i < y1 * std::size_t(w); ++i)
+                narrow[i] = uint16_t(pixel_index(example, map.positions[i]));
+        });
+        std::vector<uint32_t>().swap(map.positions);
+        out = read([&](std::size_t i) { return narrow[i]; });
+    }
+    if (roll) cut_torus(out, threads);
+    return out;
 }
 
 }  // namespace vqtex

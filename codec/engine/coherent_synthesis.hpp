@@ -103,10 +103,11 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
 // The most synthesize_coherent allocates for a width x height output with
 // `channels` channels beside its analysis, the caller's copy of the output
 // included: the finest level whole (positions, revisit flags and a subset's
-// choices, 6 bytes a pixel; then the output and its copy), or in bands
-// (the coarser level, the output and a band of about 8 MiB, which on a wide
-// output with many passes may reach 6 bytes a pixel of it; then the output,
-// its copy and the band's freed memory). The decoder's memory check uses it.
+// choices and their change flags, 6.25 bytes a pixel; then the output and
+// its copy), or in bands (the coarser level, the output and a band of about
+// 8 MiB, which on a wide output with many passes may reach 6 bytes a pixel
+// of it; then the output, its copy and the band's freed memory). The
+// decoder's memory check uses it.
 uint64_t coherent_output_memory(uint64_t width, uint64_t height, int channels);
 
 // Above this, the appearance vectors of every level are not held at once

@@ -286,7 +286,7 @@ Volume synthesize_volume_coherent(const std::vector<AppearanceSpace>& example, c
             }
             return int64_t(d);
         };
-        const std::pair<int, int> origin = coherent::torus_origin(options.width, options.height, step);
+        const std::pair<int, int> origin = coherent::torus_origin(options.width, options.height, step, options.threads);
         if (origin.first || origin.second) {
             Volume rolled(out.width, out.height, out.frames, out.channels);
             for (int f = 0; f < out_frames; ++f)
