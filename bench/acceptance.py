@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Issue 17's acceptance test read over several vqtex-bench runs that differ
-only in --seed (docs/ATLAS.md "Several seeds").
+only in --seed (docs/ATLAS.md "Session 9: the acceptance over two seeds").
 
 vqtex-bench's summary compares vqtex with the best PEER+synth row on one
 decode per texture. A decode is one random sample of the texture: changing
@@ -14,7 +14,9 @@ the runs that scored it, and applies the bench's own rules
 is the lowest mean among the PEER+synth rows that scored the most of
 vqtex's textures; the verdict needs vqtex's mean at or below it and vqtex
 at or below it on two thirds of the textures (rounded up). Given one CSV,
-it prints the bench's own verdicts (a check of this script).
+it prints the bench's own verdicts (a check of this script), up to the
+CSV's four decimals: two scores that differ only beyond them tie here
+(at or below) where the bench may not.
 
 Usage: bench/acceptance.py RUN.csv [RUN.csv ...] [--kind +synth|+gmic]
 """
@@ -26,18 +28,32 @@ METRICS = (("compl", "completeness"), ("SWD", "swd"), ("coher", "coherence"))
 
 
 def read_runs(paths):
-    """rate -> codec -> texture -> [(completeness, swd, coherence) per run]."""
+    """rate -> codec -> texture -> [(completeness, swd, coherence) per run].
+
+    Within one CSV a repeated row replaces the earlier one, as the bench's
+    maps keep the last; across CSVs the runs are collected."""
     rows = collections.defaultdict(lambda: collections.defaultdict(lambda: collections.defaultdict(list)))
     ceilings = collections.defaultdict(lambda: collections.defaultdict(list))
+    vqtex_codecs = set()
     for path in paths:
+        run_rows, run_ceilings = {}, {}
         for r in csv.DictReader(open(path)):
             if r["protocol"] != "large" or r["status"] != "ok":
                 continue
             scores = tuple(float(r[column]) for _, column in METRICS)
             if r["codec"].startswith("ceiling:"):
-                ceilings[r["codec"]][r["texture"]].append(scores)
+                run_ceilings[(r["codec"], r["texture"])] = scores
             elif r["codec"].startswith("vqtex") or r["codec"].endswith(("+synth", "+gmic")):
-                rows[int(r["quality"])][r["codec"]][r["texture"]].append(scores)
+                run_rows[(int(r["quality"]), r["codec"], r["texture"])] = scores
+                if r["codec"].startswith("vqtex"):
+                    vqtex_codecs.add(r["codec"])
+        for (codec, texture), scores in run_ceilings.items():
+            ceilings[codec][texture].append(scores)
+        for (rate, codec, texture), scores in run_rows.items():
+            rows[rate][codec][texture].append(scores)
+    if len(vqtex_codecs) > 1:
+        raise SystemExit(f"acceptance: the runs hold several vqtex rows ({', '.join(sorted(vqtex_codecs))}); "
+                         "give runs of one encoding (--atlas or not) only")
     return rows, ceilings
 
 
@@ -50,7 +66,7 @@ def averaged(textures):
 def pair_up(vqtex, peer, m):
     n = below = 0
     mine_sum = theirs_sum = 0.0
-    for texture, scores in vqtex.items():
+    for texture, scores in sorted(vqtex.items()):
         if texture not in peer:
             continue
         mine, theirs = scores[m], peer[texture][m]
@@ -81,7 +97,9 @@ def main():
         vqtex = codecs[vqtex_codec]
         verdicts = []
         for m, (label, _) in enumerate(METRICS):
-            peers = [c for c in codecs if c.endswith(args.kind)]
+            # In name order, so that a tie on the mean goes to the first
+            # name, as in the bench's map.
+            peers = sorted(c for c in codecs if c.endswith(args.kind))
             widest = max((pair_up(vqtex, codecs[c], m)[0] for c in peers), default=0)
             best = None
             for c in peers:

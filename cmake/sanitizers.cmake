@@ -16,8 +16,8 @@ if(VQTEX_FUZZ)
   # Numeric loops that give the fuzzer no feedback go uninstrumented for
   # coverage (the list says which and why): they were most of its time.
   add_compile_options(-fsanitize-coverage-ignorelist=${CMAKE_CURRENT_SOURCE_DIR}/fuzz/coverage_ignore.txt)
-  # The appearance space's vector kernels go unchecked by the sanitizers in
-  # this build only (the list says why).
+  # The appearance space's vector kernels go without UBSan's checks in this
+  # build only (the list says why); ASan still checks them.
   add_compile_options(-fsanitize-ignorelist=${CMAKE_CURRENT_SOURCE_DIR}/fuzz/sanitizer_ignore.txt)
 endif()
 if(VQTEX_SANITIZE)

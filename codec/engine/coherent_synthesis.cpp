@@ -174,8 +174,9 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
 // pointers are __restrict (bytes may alias anything, and the compiler
 // would otherwise reload every captured value after each store).
 //
-// run[x] = 1 when columns x - 2 .. x + 2 of `row` (w wide, a torus) each
-// continue the one to their left by `step`. `links` has w + 3 bytes.
+// run[x] = 1 when columns x - 1 .. x + 2 of `row` (w wide, a torus) each
+// continue the one to their left by `step` (the four links of a 5-wide
+// window). `links` has w + 3 bytes.
 void continued_runs(const uint32_t* __restrict row, int w, uint32_t step, uint8_t* __restrict links,
                     uint8_t* __restrict run) {
     // links[x + 2]: column x + 1 continues column x; padded by the wrap.
@@ -404,11 +405,11 @@ struct LevelPasses {
 };
 
 // Output rows per band of the finest level, or 0 to synthesise it whole.
-// Whole, the level's buffers take 6 bytes a pixel (positions, revisit
-// flags, a subset's choices; and a quarter of a byte for which of those
-// changed, left out of the sums here): within twice the output plus 8 MiB from 3
-// channels up, so those outputs and small ones keep the single pass over
-// the level. Otherwise bands of about 8 MiB of buffers: a band, the output
+// Whole, the level's buffers take 6.25 bytes a pixel (positions, revisit
+// flags, a subset's choices, and a quarter of a byte for which of those
+// changed): within twice the output plus 8 MiB from 4 channels, and from 3
+// up to about 5800x5800, so those outputs and small ones keep the single
+// pass over the level. Otherwise bands of about 8 MiB of buffers: a band, the output
 // and the coarser level (half a byte a pixel, narrowed, or 1) stay within
 // twice the output plus 16 MiB (issue 17's budget), and so does the output
 // with the caller's copy of it beside a band's worth of freed memory that
@@ -418,8 +419,9 @@ int band_rows(const CoherentOptions& options, int channels, int margin) {
     const uint64_t pixels = uint64_t(options.width) * uint64_t(options.height);
     int rows = options.band_rows;
     if (rows <= 0) {
-        if (6 * pixels <= 2 * pixels * uint64_t(channels) + kBandBytes) return 0;
-        const uint64_t with_margins = kBandBytes / (6 * uint64_t(options.width));
+        // In quarter bytes: 25 a pixel whole.
+        if (25 * pixels <= 4 * (2 * pixels * uint64_t(channels) + kBandBytes)) return 0;
+        const uint64_t with_margins = 4 * kBandBytes / (25 * uint64_t(options.width));
         rows = int(std::min<uint64_t>(std::max<uint64_t>(with_margins, 4 * uint64_t(margin)) - 2 * uint64_t(margin),
                                       uint64_t(options.height)));
     }
@@ -617,8 +619,9 @@ uint64_t coherent_analysis_memory(int width, int height, int channels, int level
     // A level's appearance vectors, and its coherence sets for k > 1.
     const uint64_t level = n * (kAppearanceDims * sizeof(int16_t) + (coherence > 1 ? 4 * uint64_t(coherence) : 0));
     // The stack's colours (its finest level is a copy of the example) and
-    // the raw-colour vectors, then the levels held at once.
-    return n * (l * uint64_t(channels) + kAppearanceDims * sizeof(int16_t)) +
+    // the raw-colour vectors, then the levels held at once; for k > 1 also
+    // the sort order and ranks of the level whose sets are being built.
+    return n * (l * uint64_t(channels) + kAppearanceDims * sizeof(int16_t) + (coherence > 1 ? 8 : 0)) +
            (analysis_by_level(width, height, levels) ? level : l * level);
 }
 
