@@ -77,6 +77,27 @@ def pair_up(vqtex, peer, m):
     return n, below, (mine_sum / n if n else 0.0), (theirs_sum / n if n else 0.0)
 
 
+def best_peer(vqtex, peers, m):
+    """The bench's test on metric m of vqtex (texture -> scores) against
+    peers (codec -> texture -> scores): the best peer is the lowest mean
+    among those that scored the most of vqtex's textures, taken in name
+    order so that a tie on the mean goes to the first name, as in the
+    bench's map. Returns (peer, n, at_or_below, vqtex_mean, peer_mean,
+    needed, passes), or None without a peer."""
+    names = sorted(peers)
+    widest = max((pair_up(vqtex, peers[c], m)[0] for c in names), default=0)
+    best = None
+    for c in names:
+        n, below, mine, theirs = pair_up(vqtex, peers[c], m)
+        if n and n == widest and (best is None or theirs < best[4]):
+            best = (c, n, below, mine, theirs)
+    if best is None:
+        return None
+    c, n, below, mine, theirs = best
+    needed = (2 * n + 2) // 3
+    return c, n, below, mine, theirs, needed, mine <= theirs and below >= needed
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("runs", nargs="+", help="vqtex-bench --csv files, one per seed")
@@ -94,25 +115,13 @@ def main():
             continue
         for texture_runs in rows[rate][vqtex_codec].values():
             runs_per_row[len(texture_runs)] += 1
-        vqtex = codecs[vqtex_codec]
-        verdicts = []
+        peers = {c: t for c, t in codecs.items() if c.endswith(args.kind)}
         for m, (label, _) in enumerate(METRICS):
-            # In name order, so that a tie on the mean goes to the first
-            # name, as in the bench's map.
-            peers = sorted(c for c in codecs if c.endswith(args.kind))
-            widest = max((pair_up(vqtex, codecs[c], m)[0] for c in peers), default=0)
-            best = None
-            for c in peers:
-                n, below, mine, theirs = pair_up(vqtex, codecs[c], m)
-                if n and n == widest and (best is None or theirs < best[4]):
-                    best = (c, n, below, mine, theirs)
-            if best is None:
+            result = best_peer(codecs[vqtex_codec], peers, m)
+            if result is None:
                 print(f"{rate:>6} {label:<6} no peer{args.kind} row")
                 continue
-            c, n, below, mine, theirs = best
-            needed = (2 * n + 2) // 3
-            ok = mine <= theirs and below >= needed
-            verdicts.append(ok)
+            c, n, below, mine, theirs, needed, ok = result
             print(f"{rate:>6} {label:<6} {mine:7.2f} {c:>15} {theirs:7.2f} {n:3d} {below:8d} {needed:5d}  "
                   f"{'PASS' if ok else 'FAIL'}{'' if mine <= theirs else ' (mean above)'}")
         for name, textures in sorted(ceilings.items()):

@@ -20,19 +20,17 @@ import collections
 import csv
 import sys
 
-METRICS = ("compl", "SWD", "coher")
+import acceptance
+
+METRICS = tuple(label for label, _ in acceptance.METRICS)
 
 
 def bench_rows(path):
-    """rate -> codec -> texture -> (completeness, swd, coherence)."""
-    rows = collections.defaultdict(lambda: collections.defaultdict(dict))
-    for r in csv.DictReader(open(path)):
-        if r["protocol"] != "large" or r["status"] != "ok":
-            continue
-        if r["codec"].endswith("+synth") or r["codec"].startswith("vqtex"):
-            rows[int(r["quality"])][r["codec"]][r["texture"]] = (
-                float(r["completeness"]), float(r["swd"]), float(r["coherence"]))
-    return rows
+    """rate -> codec -> texture -> (completeness, swd, coherence): the bench's
+    vqtex and peer rows, read as acceptance.py reads them."""
+    rows, _ = acceptance.read_runs([path])
+    return {rate: {codec: acceptance.averaged(textures) for codec, textures in codecs.items()}
+            for rate, codecs in rows.items()}
 
 
 def candidates(specs):
@@ -49,23 +47,15 @@ def candidates(specs):
 
 
 def verdict(peers, chosen):
-    """The acceptance line of vqtex-bench for texture -> scores."""
+    """The acceptance line of vqtex-bench for texture -> scores (the test is
+    acceptance.best_peer's, the bench's own rules)."""
     parts = []
     for m, label in enumerate(METRICS):
-        best = None
-        for codec, rows in peers.items():
-            if any(t not in rows for t in chosen):
-                continue  # only peers that fit every texture compete
-            mean = sum(rows[t][m] for t in chosen) / len(chosen)
-            if best is None or mean < best[1]:
-                best = (codec, mean, rows)
-        if best is None:
+        result = acceptance.best_peer(chosen, peers, m)
+        if result is None:
             parts.append(label + " n/a")
             continue
-        codec, peer_mean, rows = best
-        mine = sum(s[m] for s in chosen.values()) / len(chosen)
-        count = sum(1 for t, s in chosen.items() if s[m] <= rows[t][m])
-        ok = mine <= peer_mean and 3 * count >= 2 * len(chosen)
+        codec, _, count, mine, peer_mean, _, ok = result
         parts.append("%s %.2f vs %s %.2f [%d] %s" % (label, mine, codec.split("+")[0], peer_mean, count,
                                                       "pass" if ok else "FAIL"))
     return " | ".join(parts)

@@ -249,7 +249,7 @@ void level_features(AppearanceSpace* spaces, std::size_t frames, int l, int thre
     while ((std::size_t((w + stride - 1) / stride) * std::size_t((h + stride - 1) / stride)) * sampled_frames >
            std::size_t(kMaxPcaSamples))
         ++stride;
-    const int spacing = 1 << l;
+    const int spacing = spaces[0].levels[std::size_t(l)].spacing;
     // The samples' windows go straight into columns, one per window
     // value (tap and channel), as principal_axes takes them; filled a
     // column at a time, so that the writes are in order.

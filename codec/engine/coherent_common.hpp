@@ -222,6 +222,20 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
     }
 }
 
+// The cut's column and row from the change summed across each column
+// (`across_x[x]`: between columns x - 1 and x, wrapped) and each row: the
+// first of the least, so that ties go the same way for every caller.
+inline std::pair<int, int> least_change_origin(const std::vector<int64_t>& across_x,
+                                               const std::vector<int64_t>& across_y) {
+    const auto first_least = [](const std::vector<int64_t>& across) {
+        std::size_t at = 0;
+        for (std::size_t i = 1; i < across.size(); ++i)
+            if (across[i] < across[at]) at = i;
+        return int(at);
+    };
+    return {first_least(across_x), first_least(across_y)};
+}
+
 // Where to cut a w x h torus open: the column and the row across which the
 // pixels change least, `step(x0, y0, x1, y1)` being the change between two
 // adjacent pixels (summed over everything that shares the cut, such as all
@@ -251,13 +265,7 @@ std::pair<int, int> torus_origin(int w, int h, Step&& step, int threads = 1) {
             across_y[std::size_t(y)] = sum;
         }
     });
-    int ox = 0, oy = 0;
-    int64_t best_x = INT64_MAX, best_y = INT64_MAX;
-    for (int x = 0; x < w; ++x)
-        if (across_x[std::size_t(x)] < best_x) best_x = across_x[std::size_t(x)], ox = x;
-    for (int y = 0; y < h; ++y)
-        if (across_y[std::size_t(y)] < best_y) best_y = across_y[std::size_t(y)], oy = y;
-    return {ox, oy};
+    return least_change_origin(across_x, across_y);
 }
 
 }  // namespace vqtex::coherent

@@ -35,6 +35,18 @@ uint32_t pixel_index(const Image& example, uint32_t p) {
     return uint32_t(position_y(p)) * uint32_t(example.width) + uint32_t(position_x(p));
 }
 
+// Positions of an example of at most 65536 pixels (an atlas of up to
+// 256x256, the common case) as 16-bit pixel indices, half their size; the
+// positions are let go.
+std::vector<uint16_t> narrow_positions(const Image& example, std::vector<uint32_t>& positions, int threads) {
+    std::vector<uint16_t> narrow(positions.size());
+    parallel_for(threads, narrow.size(), 4096, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i) narrow[i] = uint16_t(pixel_index(example, positions[i]));
+    });
+    std::vector<uint32_t>().swap(positions);
+    return narrow;
+}
+
 // Position (x, y) of the example, folded inside if it is not.
 uint32_t folded(const AppearanceSpace& space, int x, int y) {
     return pack_position(space.fold_x(x), space.fold_y(y));
@@ -501,12 +513,8 @@ void cut_torus(Image& image, int threads) {
             across_x[std::size_t(x)] = sum;
         }
     });
-    int ox = 0, oy = 0;
-    for (int x = 1; x < w; ++x)
-        if (across_x[std::size_t(x)] < across_x[std::size_t(ox)]) ox = x;
-    for (int y = 1; y < h; ++y)
-        if (across_y[std::size_t(y)] < across_y[std::size_t(oy)]) oy = y;
-    roll_in_place(image, ox, oy);
+    const std::pair<int, int> origin = coherent::least_change_origin(across_x, across_y);
+    roll_in_place(image, origin.first, origin.second);
 }
 
 // The output of a large texture: the finest level synthesised in bands of
@@ -521,15 +529,10 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
     const AppearanceSpace& space = passes.space;
     const int w = options.width, h = options.height;
     PositionMap coarse = passes.levels_down_to(1);
-    // The coarser level, narrowed to 16-bit example pixel indices when the
-    // example has at most 65536 pixels (an atlas of up to 256x256), as
+    // The coarser level, narrowed when the example allows, as
     // read_positions narrows the finest.
     std::vector<uint16_t> narrow;
-    if (example.pixel_count() <= 65536) {
-        narrow.resize(coarse.positions.size());
-        for (std::size_t i = 0; i < narrow.size(); ++i) narrow[i] = uint16_t(pixel_index(example, coarse.positions[i]));
-        std::vector<uint32_t>().swap(coarse.positions);
-    }
+    if (example.pixel_count() <= 65536) narrow = narrow_positions(example, coarse.positions, options.threads);
     const auto parent_at = [&](std::size_t i) {
         if (narrow.empty()) return coarse.positions[i];
         return pack_position(int(narrow[i] % uint32_t(example.width)), int(narrow[i] / uint32_t(example.width)));
@@ -684,18 +687,12 @@ Image read_positions(const Image& example, PositionMap&& map, bool roll, int thr
     if (example.pixel_count() > 65536) {
         out = read([&](std::size_t i) { return pixel_index(example, map.positions[i]); });
     } else {
-        // A small example (an atlas of up to 256x256, the common case): its
-        // pixel indices take 16 bits, so the positions are narrowed first
-        // and let go before the output is allocated. Peak: the positions
-        // and the narrow copy (6 bytes per output pixel), then the narrow
-        // copy and the output, instead of the positions and the output (4
-        // + channels bytes).
-        std::vector<uint16_t> narrow(map.positions.size());
-        parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
-            for (std::size_t i = y0 * std::size_t(w); i < y1 * std::size_t(w); ++i)
-                narrow[i] = uint16_t(pixel_index(example, map.positions[i]));
-        });
-        std::vector<uint32_t>().swap(map.positions);
+        // A small example: the positions are narrowed first and let go
+        // before the output is allocated. Peak: the positions and the
+        // narrow copy (6 bytes per output pixel), then the narrow copy and
+        // the output, instead of the positions and the output (4 +
+        // channels bytes).
+        const std::vector<uint16_t> narrow = narrow_positions(example, map.positions, threads);
         out = read([&](std::size_t i) { return narrow[i]; });
     }
     if (roll) cut_torus(out, threads);
