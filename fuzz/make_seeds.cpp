@@ -1,9 +1,9 @@
 // make_seeds.cpp - writes the fuzzers' seed corpora from the project's own
 // corpus/ images, with the public API: valid .vqt files covering every
 // format feature (keyed and keyless entries, noise and parent init, seam
-// closing on and off, 1 to 4 channels, every precision; format v4 atlas
-// files as the encoder writes them, the same as v3, and v4 files with a
-// stored exemplar size and stored parameters), and encoder inputs
+// closing on and off, 1 to 4 channels, every precision; format v5 atlas
+// files as the encoder writes them, the same as v3 and v4, and v5 files
+// with a stored exemplar size and stored parameters), and encoder inputs
 // in fuzz_encode.cpp's layout. Small crops keep the seeds small, which is
 // what mutation works best on. Usage: make_seeds CORPUS_DIR OUT_DIR
 #include <cstdio>
@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/checksum.hpp"
 #include "format/atlas_file.hpp"
 #include "image_io.hpp"
 #include "vqtex/vqtex.h"
@@ -143,10 +144,22 @@ int main(int argc, char** argv) {
         try {
             const vqtex::AtlasFile f = vqtex::decode_atlas_file(data, size, 32u << 20);
             const std::vector<uint8_t> bits(data + f.bitstream_offset, data + f.bitstream_offset + f.atlas_bytes);
+            vqtex::AtlasSynthesisParams v3_params = f.params;
+            v3_params.blend = 0;  // version 3 has none
             const std::vector<uint8_t> v3 =
-                vqtex::encode_atlas_file_v3(f.header, f.atlas.width, f.atlas.height, bits, f.params);
+                vqtex::encode_atlas_file_v3(f.header, f.atlas.width, f.atlas.height, bits, v3_params);
             write(out / "decode" / (name + "_v3.vqt"), v3.data(), v3.size());
             ++files;
+            if (f.parameter_bytes == 0) {
+                // Version 4: the same bytes with the version 4 and the
+                // checksum made again (its default parameters have no blend).
+                std::vector<uint8_t> v4(data, data + size);
+                v4[8] = 4;
+                const uint32_t crc = vqtex::crc32(v4.data(), v4.size() - 4);
+                for (int k = 0; k < 4; ++k) v4[v4.size() - 4 + std::size_t(k)] = uint8_t(crc >> (8 * k));
+                write(out / "decode" / (name + "_v4.vqt"), v4.data(), v4.size());
+                ++files;
+            }
             if (i % 2 == 0) {
                 vqtex::FileHeader h = f.header;
                 h.exemplar_width += 5;
@@ -156,8 +169,9 @@ int main(int argc, char** argv) {
                 sp.passes = 3;
                 sp.coherence = 2;
                 sp.jitter = 30;
-                const std::vector<uint8_t> v4 = vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, sp);
-                write(out / "decode" / (name + "_fields.vqt"), v4.data(), v4.size());
+                sp.blend = 3;
+                const std::vector<uint8_t> v5 = vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, sp);
+                write(out / "decode" / (name + "_fields.vqt"), v5.data(), v5.size());
                 ++files;
             }
         } catch (const std::exception& e) {

@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 
 #include "common/rng.hpp"
 #include "engine/appearance.hpp"
 #include "engine/coherence_sets.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/pyramid.hpp"
+#include "engine/seam_blend.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex;
@@ -299,10 +301,12 @@ TEST(Coherent, BrickStructureReproduced) {
 }
 
 TEST(Coherent, EveryOutputPixelIsAnExamplePixel) {
-    // Coordinates synthesis copies pixels: no colour the example lacks,
-    // hence no blur and no invented noise.
+    // Coordinates synthesis without a blend copies pixels: no colour the
+    // example lacks, hence no blur and no invented noise.
     const Image ex = textured(64, 48, 4);
-    const Image out = vqtex_test::synthesize(ex, coherent_params(100, 70, 3));
+    vqtex_synth_params p = coherent_params(100, 70, 3);
+    p.blend = 0;
+    const Image out = vqtex_test::synthesize(ex, p);
     std::vector<uint32_t> colours;
     for (int y = 0; y < ex.height; ++y)
         for (int x = 0; x < ex.width; ++x) {
@@ -326,6 +330,7 @@ TEST(Coherent, InvalidParametersRefused) {
     for (auto tweak :
          {+[](vqtex_synth_params& p) { p.coherence = 0; }, +[](vqtex_synth_params& p) { p.coherence = 17; },
           +[](vqtex_synth_params& p) { p.passes = 0; }, +[](vqtex_synth_params& p) { p.jitter = 1025; },
+          +[](vqtex_synth_params& p) { p.blend = 4; },
           +[](vqtex_synth_params& p) { p.engine = vqtex_engine(7); }}) {
         vqtex_synth_params p = coherent_params(32, 32, 1);
         tweak(p);
@@ -349,11 +354,80 @@ TEST(Coherent, GoldenHash) {
     // The engine's bytes pinned across builds, compilers and kernel sets
     // (the simd_whole_decode test forces each set): a change of this hash
     // is a change of every output, to be made on purpose and noted.
+    // Without the blend, the positions' pixels as before it existed; with
+    // the default blend, what the engine gives now.
     const Image ex = brick_wall(96, 96, 7);
-    const Image out = vqtex_test::synthesize(ex, coherent_params(150, 110, 9));
-    uint64_t h = 0xcbf29ce484222325ull;
-    for (uint8_t v : out.pixels) h = (h ^ v) * 0x100000001b3ull;
-    EXPECT_EQ(h, 0x217a760a4b8cbd8dull) << std::hex << h;
+    const auto hash_of = [&](uint32_t blend) {
+        vqtex_synth_params p = coherent_params(150, 110, 9);
+        p.blend = blend;
+        uint64_t h = 0xcbf29ce484222325ull;
+        for (uint8_t v : vqtex_test::synthesize(ex, p).pixels) h = (h ^ v) * 0x100000001b3ull;
+        return h;
+    };
+    EXPECT_EQ(hash_of(0), 0x217a760a4b8cbd8dull) << std::hex << hash_of(0);
+    EXPECT_EQ(coherent_params(1, 1, 1).blend, 2u);
+    EXPECT_EQ(hash_of(2), 0xe57f22f79c9296b9ull) << std::hex << hash_of(2);
+}
+
+TEST(Coherent, BlendChangesOnlySeamsAndMixesTheCopiesMeetingThere) {
+    // Each output pixel is a weighted mean of what its neighbours' copies
+    // put at it: where the whole window continues one copy, the pixel is
+    // that copy's, exactly; elsewhere every channel lies between the least
+    // and the most its proposals hold. Mirrored and tileable examples (a
+    // tileable one's proposals wrap), every radius.
+    for (bool tileable : {false, true}) {
+        const Image ex = textured(40, 36, 3);
+        const AppearanceSpace space = build_appearance_space(ex, 4, tileable, 1);
+        const CoherenceSets sets = build_coherence_sets(space, 1, 2, 1);
+        CoherentOptions options;
+        options.width = 57;
+        options.height = 43;
+        options.seed = 5;
+        const PositionMap map = synthesize_positions(space, sets, options);
+        const Image plain = read_positions(ex, PositionMap(map), false, 1, 0, tileable);
+        for (int r = 1; r <= vqtex::kMaxBlendRadius; ++r) {
+            const Image blended = read_positions(ex, PositionMap(map), false, 2, r, tileable);
+            const std::string what = std::string(tileable ? "tileable" : "mirrored") + ", radius " + std::to_string(r);
+            int seams = 0, changed = 0;
+            for (int y = 0; y < map.height; ++y)
+                for (int x = 0; x < map.width; ++x) {
+                    int lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
+                    bool one_copy = true;
+                    const uint32_t own = map.positions[std::size_t(y) * map.width + x];
+                    for (int dy = -r; dy <= r; ++dy)
+                        for (int dx = -r; dx <= r; ++dx) {
+                            const uint32_t p = map.positions[std::size_t(Image::wrap(y + dy, map.height)) * map.width +
+                                                             Image::wrap(x + dx, map.width)];
+                            int sx = position_x(p) - dx, sy = position_y(p) - dy;
+                            if (tileable) {
+                                sx = Image::wrap(sx, ex.width);
+                                sy = Image::wrap(sy, ex.height);
+                            } else if (sx < 0 || sy < 0 || sx >= ex.width || sy >= ex.height) {
+                                one_copy = false;
+                                continue;
+                            }
+                            one_copy = one_copy && pack_position(sx, sy) == own;
+                            for (int c = 0; c < 3; ++c) {
+                                lo[c] = std::min(lo[c], int(ex.at(sx, sy)[c]));
+                                hi[c] = std::max(hi[c], int(ex.at(sx, sy)[c]));
+                            }
+                        }
+                    const uint8_t* got = blended.at(x, y);
+                    if (one_copy) {
+                        ASSERT_EQ(std::memcmp(got, plain.at(x, y), 3), 0) << what << " at " << x << "," << y;
+                        continue;
+                    }
+                    ++seams;
+                    changed += std::memcmp(got, plain.at(x, y), 3) != 0;
+                    for (int c = 0; c < 3; ++c) {
+                        ASSERT_GE(got[c], lo[c]) << what << " at " << x << "," << y;
+                        ASSERT_LE(got[c], hi[c]) << what << " at " << x << "," << y;
+                    }
+                }
+            EXPECT_GT(seams, 0) << what;
+            EXPECT_GT(changed, seams / 2) << what << ": the seams' pixels are mixed";
+        }
+    }
 }
 
 TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
@@ -365,10 +439,11 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
     struct Case {
         int w, h, channels, passes, polish, jitter, coherence;
         bool roll, tileable;
+        int blend;
     };
-    const Case cases[] = {{61, 97, 1, 2, 1, 0, 1, true, false},  {40, 121, 2, 2, 1, 0, 1, true, false},
-                          {33, 80, 3, 2, 1, 64, 1, true, false}, {50, 99, 1, 3, 2, 0, 3, false, false},
-                          {47, 60, 3, 1, 0, 0, 1, true, true}};
+    const Case cases[] = {{61, 97, 1, 2, 1, 0, 1, true, false, 0},  {40, 121, 2, 2, 1, 0, 1, true, false, 2},
+                          {33, 80, 3, 2, 1, 64, 1, true, false, 3}, {50, 99, 1, 3, 2, 0, 3, false, false, 1},
+                          {47, 60, 3, 1, 0, 0, 1, true, true, 2}};
     for (const Case& c : cases) {
         const Image rgb = textured(40, 36, 3);
         Image ex(rgb.width, rgb.height, c.channels);
@@ -382,7 +457,9 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
         options.polish_passes = c.polish;
         options.jitter = c.jitter;
         options.roll = c.roll;
-        const std::string what = std::to_string(c.w) + "x" + std::to_string(c.h) + "x" + std::to_string(c.channels);
+        options.blend = c.blend;
+        const std::string what = std::to_string(c.w) + "x" + std::to_string(c.h) + "x" + std::to_string(c.channels) +
+                                 " blend " + std::to_string(c.blend);
         const Image whole = synthesize_coherent(ex, 4, c.tileable, c.coherence, options).image;
         for (int band : {1, 2, 7, 16}) {
             options.band_rows = band;

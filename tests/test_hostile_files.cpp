@@ -554,18 +554,20 @@ TEST(HostileFiles, AtlasFilesStayWithinTheMemoryLimit) {
     ep.codebook = VQTEX_CODEBOOK_ATLAS;
     ep.threads = 1;
     ep.target_size = 1500;
-    const std::vector<uint8_t> v4 = encode(load_corpus("cellular_128.png"), ep);
-    const vqtex::AtlasFile f = vqtex::decode_atlas_file(v4.data(), v4.size(), 1u << 30);
-    ASSERT_EQ(f.header.version, 4);
-    const std::vector<uint8_t> bits(v4.begin() + std::ptrdiff_t(f.bitstream_offset),
-                                    v4.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
-    const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(f.header, 128, 128, bits, f.params);
-    for (const std::vector<uint8_t>* file : {&v4, &v3}) {
-        SCOPED_TRACE(file == &v4 ? "format v4" : "format v3");
+    const std::vector<uint8_t> v5 = encode(load_corpus("cellular_128.png"), ep);
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(v5.data(), v5.size(), 1u << 30);
+    ASSERT_EQ(f.header.version, 5);
+    const std::vector<uint8_t> bits(v5.begin() + std::ptrdiff_t(f.bitstream_offset),
+                                    v5.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
+    vqtex::AtlasSynthesisParams v3_params = f.params;
+    v3_params.blend = 0;  // version 3 has none
+    const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(f.header, 128, 128, bits, v3_params);
+    for (const std::vector<uint8_t>* file : {&v5, &v3}) {
+        SCOPED_TRACE(file == &v5 ? "format v5" : "format v3");
         expect_limit_is_kept(*file);
         // The atlas width and height, 128 each as two-byte varints (80 01),
         // start the ATLS payload (v3) or follow the packed byte at offset 10
-        // (v4); 4096 is 80 20. A 4096x4096 atlas at a 32 MiB limit is
+        // (v5); 4096 is 80 20. A 4096x4096 atlas at a 32 MiB limit is
         // refused before anything of its size is allocated.
         std::vector<uint8_t> big = *file;
         std::size_t at = 11;

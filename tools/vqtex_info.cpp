@@ -38,11 +38,11 @@ FileReport info_one(const std::string& input) {
     if (vqtex_inspect(bytes.data(), bytes.size(), 0, &info, &err) != VQTEX_OK)
         throw std::runtime_error(input + ": " + err.detail);
     // Bytes per kind of section, all levels together.
-    // Formats 3 and 4 hold an atlas and the engine's parameters instead;
-    // format 4 has no sections, and inspect lists its two parts under the
-    // same tags (vqtex.h).
-    const bool atlas = info.format_version == 3 || info.format_version == 4;
-    const bool compact = info.format_version == 4;
+    // Formats 3 to 5 hold an atlas and the engine's parameters instead;
+    // formats 4 and 5 have no sections, and inspect lists their two parts
+    // under the same tags (vqtex.h).
+    const bool atlas = info.format_version >= 3 && info.format_version <= 5;
+    const bool compact = info.format_version == 4 || info.format_version == 5;
     const char* tree_kinds[] = {"LEVL", "HIST", "TOPO", "CODE", "ENTR"};
     const char* tree_meaning[] = {"level parameters", "noise histograms", "tree topology + leaf weights",
                                   "leaf codewords", "leaf entries (pixels + keys)"};
@@ -100,8 +100,9 @@ FileReport info_one(const std::string& input) {
         add(t, " (finest first)\n");
     }
     if (atlas) {
-        add(t, "atlas     %ux%u, coded as AV1%s\n", info.atlas_width, info.atlas_height,
-            compact ? "; compact header (format 4)" : "");
+        add(t, "atlas     %ux%u, coded as AV1%s%s\n", info.atlas_width, info.atlas_height,
+            compact ? "; compact header (format " : "",
+            compact ? (std::to_string(info.format_version) + ")").c_str() : "");
         add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels\n", info.levels, info.codewords[0]);
     } else
         add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",

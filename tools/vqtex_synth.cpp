@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
     double train_fraction = 1.0;
     bool exhaustive = false, tsvq = false, tileable = false, json = false, quiet = false, paper = false;
     std::string engine = "coherent";
-    uint32_t coherence = 0, passes = 0, jitter = 0;
+    uint32_t coherence = 0, passes = 0, jitter = 0, blend = 0;
     app.add_option("files", files,
                    "EXAMPLE OUTPUT (any format OpenImageIO reads and writes, from the extension), or with -o: "
                    "examples and folders of them")
@@ -176,6 +176,10 @@ int main(int argc, char** argv) {
                                       "coherent engine: variety, coordinate jitter in 1/256 of a level's spacing, "
                                       "0 to 1024 (default 0)")
                            ->check(CLI::Range(0, 1024));
+    auto* blend_opt = app.add_option("--blend", blend,
+                                     "coherent engine, still textures: blend the copies meeting at seams over this "
+                                     "radius, 0 (none) to 3 (default 2)")
+                          ->check(CLI::Range(0, 3));
     app.add_option("--levels", levels, "pyramid levels (default: automatic, 4 for 128x128)");
     app.add_option("--shapes", shapes,
                    "neighbourhood per level, finest first, RxC:k (default for 4 levels 9x9:2,7x7:2,5x5:2,5x5:1)");
@@ -210,7 +214,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     if (paper) engine = "paper";
     if (engine == "paper") {
-        for (const auto* o : {coherence_opt, passes_opt, jitter_opt})
+        for (const auto* o : {coherence_opt, passes_opt, jitter_opt, blend_opt})
             if (o->count()) {
                 std::fprintf(stderr, "vqtex-synth: error: %s applies to the coherent engine, not to --engine paper\n",
                              o->get_name().c_str());
@@ -236,6 +240,7 @@ int main(int argc, char** argv) {
         if (coherence) params.coherence = coherence;
         if (passes) params.passes = passes;
         if (jitter_opt->count()) params.jitter = jitter;
+        if (blend_opt->count()) params.blend = blend;
         if (paper) {
             init = "noise";
             no_seam_closing = true;

@@ -68,6 +68,7 @@ std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint
     opt.coherence_bias = f.params.coherence_bias;
     opt.roll = f.params.roll;
     opt.jitter = f.params.jitter;
+    opt.blend = f.params.blend;
     opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
     std::vector<Image> out;
     out.push_back(
@@ -173,7 +174,7 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
             for (int l = 0; l < f.header.levels; ++l) info->codewords[l] = uint32_t(f.atlas.pixel_count());
             info->atlas_width = uint32_t(f.atlas.width);
             info->atlas_height = uint32_t(f.atlas.height);
-            if (f.header.version == kCompactAtlasFormatVersion) {
+            if (is_compact_atlas_version(f.header.version)) {
                 // No sections: the two parts of the file that are not its
                 // header and checksum, under the tags version 3 gives them.
                 const vqtex_section_info parts[2] = {{"ATLS", 0, 0, f.atlas_bytes, f.atlas_bytes},

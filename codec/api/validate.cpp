@@ -8,6 +8,7 @@
 #include "api/api_support.hpp"
 #include "common/error.hpp"
 #include "engine/neighborhood.hpp"
+#include "engine/seam_blend.hpp"
 #include "tsvq/tsvq_search.hpp"
 
 namespace vqtex {
@@ -83,6 +84,10 @@ void validate(const vqtex_synth_params* p) {
     if (p->passes < 1 || p->passes > 8)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "passes must be 1 to 8 correction passes per level");
     if (p->jitter > 1024) fail(VQTEX_ERROR_INVALID_ARGUMENT, "jitter must be 0 to 1024 (1/256 of a level's spacing)");
+    if (p->blend > uint32_t(kMaxBlendRadius))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "blend must be 0 to " + std::to_string(kMaxBlendRadius) +
+                                               " (the radius of the blend at seams, in pixels; got " +
+                                               std::to_string(p->blend) + ")");
     validate(p->model);
     check_search(p->search);
     check_backtrack(p->backtrack, kNoLimit, "");

@@ -13,6 +13,7 @@
 #include "dsp/dsp.hpp"
 #include "engine/coherent_candidates.hpp"
 #include "engine/coherent_common.hpp"
+#include "engine/seam_blend.hpp"
 #include "engine/pyramid.hpp"
 #include "vqtex/vqtex.h"
 
@@ -357,7 +358,11 @@ struct LevelPasses {
 
     // Rows from a band's edges that the finest level's passes may leave
     // wrong: 2 more than its subsets, four a pass (coherent::Band).
-    int band_margin() const { return 4 * (passes_at(0) + std::max(0, options.polish_passes)) + 2; }
+    // With a blend, its radius more: a band's own pixels read the map that
+    // far past them.
+    int band_margin() const {
+        return 4 * (passes_at(0) + std::max(0, options.polish_passes)) + 2 + std::clamp(options.blend, 0, kMaxBlendRadius);
+    }
 
     // Level l's passes on `map` (the whole level, or with `band` some of its
     // rows, of which `own_rows` count for progress), then at the finest
@@ -421,7 +426,9 @@ struct LevelPasses {
 // flags, a subset's choices, and a quarter of a byte for which of those
 // changed): within twice the output plus 8 MiB from 4 channels, and from 3
 // up to about 5800x5800, so those outputs and small ones keep the single
-// pass over the level. Otherwise bands of about 8 MiB of buffers: a band, the output
+// pass over the level. With a blend, reading it holds the positions and the
+// output, 4 + channels bytes a pixel: 3 channels stay whole up to about
+// 2900x2900. Otherwise bands of about 8 MiB of buffers: a band, the output
 // and the coarser level (half a byte a pixel, narrowed, or 1) stay within
 // twice the output plus 16 MiB (issue 17's budget), and so does the output
 // with the caller's copy of it beside a band's worth of freed memory that
@@ -431,8 +438,9 @@ int band_rows(const CoherentOptions& options, int channels, int margin) {
     const uint64_t pixels = uint64_t(options.width) * uint64_t(options.height);
     int rows = options.band_rows;
     if (rows <= 0) {
-        // In quarter bytes: 25 a pixel whole.
-        if (25 * pixels <= 4 * (2 * pixels * uint64_t(channels) + kBandBytes)) return 0;
+        // In quarter bytes: 25 a pixel whole, or 4 (4 + channels) to read a blend.
+        const uint64_t whole = options.blend > 0 ? std::max<uint64_t>(25, 4 * (4 + uint64_t(channels))) : 25;
+        if (whole * pixels <= 4 * (2 * pixels * uint64_t(channels) + kBandBytes)) return 0;
         const uint64_t with_margins = 4 * kBandBytes / (25 * uint64_t(options.width));
         rows = int(std::min<uint64_t>(std::max<uint64_t>(with_margins, 4 * uint64_t(margin)) - 2 * uint64_t(margin),
                                       uint64_t(options.height)));
@@ -548,6 +556,12 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
         start_rows(space, parent_at, coarse.width, w, h, 0, space.levels[0].spacing, options, true, rows_of.first,
                    part.height, part.positions.data());
         passes.run(0, part, &rows_of, rows);
+        if (options.blend > 0) {
+            blend_rows(example, space.wraps, options.blend,
+                       [&](int y) { return part.positions.data() + std::size_t(y - y0 + margin) * std::size_t(w); }, w,
+                       y0, rows, out, y0, options.threads);
+            continue;
+        }
         parallel_for(options.threads, std::size_t(rows), 16, [&](std::size_t r0, std::size_t r1) {
             for (std::size_t r = r0; r < r1; ++r) {
                 const uint32_t* p = part.positions.data() + (r + std::size_t(margin)) * std::size_t(w);
@@ -573,7 +587,9 @@ Image synthesize_pixels(const Image& example, const AppearanceSpace& space, cons
     passes.by_level_sets = by_level_sets;
     const int margin = passes.band_margin();
     const int band = band_rows(options, example.channels, margin);
-    if (band == 0) return read_positions(example, passes.levels_down_to(0), options.roll, options.threads);
+    if (band == 0)
+        return read_positions(example, passes.levels_down_to(0), options.roll, options.threads, options.blend,
+                              space.wraps);
     return synthesize_in_bands(example, passes, band, margin);
 }
 
@@ -667,8 +683,20 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
     return r;
 }
 
-Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads) {
+Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads, int blend, bool wraps) {
     const int w = map.width, h = map.height;
+    if (blend > 0) {
+        // Read through the packed positions, which the blend's window
+        // check needs: 4 + channels bytes a pixel at the peak, as for a
+        // large example below.
+        Image out(w, h, example.channels);
+        blend_rows(example, wraps, blend,
+                   [&](int y) { return map.positions.data() + std::size_t(Image::wrap(y, h)) * std::size_t(w); }, w, 0,
+                   h, out, 0, threads);
+        std::vector<uint32_t>().swap(map.positions);
+        if (roll) cut_torus(out, threads);
+        return out;
+    }
     const std::size_t channels = std::size_t(example.channels);
     // The output through `index(i)`, the example pixel of map entry i, then
     // cut open where its pixels change least (the same pixels as reading

@@ -35,6 +35,9 @@ struct CoherentOptions {
     int coarse_passes = 4;  // at the coarsest, which starts from random positions
     int jitter = 0;         // per level, in 1/256 of the level's spacing
     int polish_passes = 1;       // finest level: passes matching raw colours (5x5)
+    // Radius of the blend of the copies that meet at a seam as the output is
+    // read (seam_blend.hpp), 0 to kMaxBlendRadius; 0 copies each pixel.
+    int blend = 0;
     bool roll = true;            // cut the torus open where the pixels change least
     // Distance surcharge, in 1/256, of a candidate that continues no
     // neighbour's source (a k-coherence alternative) over one that does:
@@ -73,10 +76,13 @@ inline int position_y(uint32_t p) { return int(p >> 16); }
 PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSets& sets,
                                  const CoherentOptions& options);
 
-// The output pixels: the example's pixels at the positions, with the torus
-// cut open where the pixels change least when `roll` is set. Takes the map
-// so as to let it go before the output is allocated (peak memory).
-Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads = 1);
+// The output pixels: the example's pixels at the positions, with the copies
+// that meet at seams blended over `blend` pixels (seam_blend.hpp; the
+// example's edges wrap when `wraps`), and the torus cut open where the
+// pixels change least when `roll` is set. Takes the map so as to let it go
+// as soon as it can (peak memory).
+Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads = 1, int blend = 0,
+                     bool wraps = false);
 
 // Stack depth for an example: the coarsest level's spacing is a quarter of
 // the example's smaller side, so its 5x5 neighbourhoods of 5x5 appearance

@@ -1,9 +1,11 @@
-// atlas_file.cpp - reading and writing format versions 3 and 4
+// atlas_file.cpp - reading and writing format versions 3 to 5
 // (docs/FORMAT.md section 8). Version 3: the container of sections 2.1-2.4
 // holding exactly two sections, ATLS (the coded atlas) and SYNP (the
 // engine's parameters). Version 4 (section 8.7): the same content behind a
 // compact header, signature and version, one packed byte, varints, the
 // parameters only when they are not the defaults, the bitstream, CRC-32.
+// Version 5 (section 8.8): version 4 with the seam blend's radius, the one
+// the encoder writes.
 #include "format/atlas_file.hpp"
 
 #include <string>
@@ -12,6 +14,7 @@
 #include "common/checksum.hpp"
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"
+#include "engine/seam_blend.hpp"
 #include "format/atlas_coder.hpp"
 
 namespace vqtex {
@@ -52,6 +55,7 @@ AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {
     p.coherence = in(r.u8("coherence"), 1, 4, "coherence");
     p.roll = in(r.u8("roll flag"), 0, 1, "roll flag") != 0;
     p.jitter = in(r.u16("jitter"), 0, 256, "jitter");
+    p.blend = 0;
     r.expect_end();
     return p;
 }
@@ -63,15 +67,18 @@ constexpr uint8_t kPackedExemplarSize = 1u << 5;  // the exemplar size is stored
 constexpr uint8_t kPackedParameters = 1u << 6;    // the parameters are stored (they are not the defaults)
 constexpr uint8_t kPackedTileable = 1u << 7;      // the atlas wraps
 // Signature, version, packed byte, one-byte atlas width, height and seed,
-// CRC-32: no version 4 file is shorter.
+// CRC-32: no version 4 or 5 file is shorter.
 constexpr std::size_t kCompactMinSize = sizeof kMagic + 2 + 1 + 3 + kTrailerSize;
 
-// The parameters a version 4 file leaves out. These are the values of the
-// format, fixed by docs/FORMAT.md 8.7, not whatever the engine's defaults
-// become: a file written with them decodes the same forever.
-bool are_v4_defaults(const AtlasSynthesisParams& p) {
+// The parameters a version 4 or 5 file leaves out. These are the values of
+// the format, fixed by docs/FORMAT.md 8.7 and 8.8, not whatever the
+// engine's defaults become: a file written with them decodes the same
+// forever. Version 4 has no blend (0); version 5's default is 2.
+constexpr int kV5DefaultBlend = 2;
+bool are_compact_defaults(const AtlasSynthesisParams& p, uint16_t version) {
     return p.passes == 2 && p.coarse_passes == 4 && p.polish_passes == 1 && p.coherence_bias == 256 &&
-           p.coherence == 1 && p.roll && p.jitter == 0;
+           p.coherence == 1 && p.roll && p.jitter == 0 &&
+           p.blend == (version == kBlendAtlasFormatVersion ? kV5DefaultBlend : 0);
 }
 
 // The checks both versions make once the header's fields are read: the
@@ -90,12 +97,13 @@ void check_atlas(int aw, int ah, int levels, int channels, std::size_t input_byt
                  std::to_string(memory_limit >> 20) + " MiB: raise memory_limit (--memory-limit)");
 }
 
-// Version 4: the CRC first (the file has no sizes to walk), then the fields
+// Versions 4 and 5: the CRC first (the file has no sizes to walk), then the fields
 // in their order, each checked as it is read.
 AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
+    const uint16_t version = read_format_version(data, size);
     if (size < kCompactMinSize)
-        fail(VQTEX_ERROR_TRUNCATED, "file is " + std::to_string(size) +
-                                        " bytes; a format version 4 file has at least " +
+        fail(VQTEX_ERROR_TRUNCATED, "file is " + std::to_string(size) + " bytes; a format version " +
+                                        std::to_string(version) + " file has at least " +
                                         std::to_string(kCompactMinSize));
     const std::size_t end = size - kTrailerSize;
     const uint32_t stored_crc = uint32_t(data[end]) | uint32_t(data[end + 1]) << 8 | uint32_t(data[end + 2]) << 16 |
@@ -104,12 +112,12 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
     if (stored_crc != actual_crc)
         fail(VQTEX_ERROR_CHECKSUM, "checksum mismatch (file says " + std::to_string(stored_crc) + ", bytes give " +
                                        std::to_string(actual_crc) + "): the file is damaged or truncated");
-    ByteReader r(data, end, "format version 4 header");
+    ByteReader r(data, end, "format version " + std::to_string(version) + " header");
     r.bytes(sizeof kMagic + 2, "signature and version");
     const uint8_t packed = r.u8("packed fields");
     AtlasFile f;
     FileHeader& h = f.header;
-    h.version = kCompactAtlasFormatVersion;
+    h.version = version;
     h.channels = uint8_t((packed & kPackedChannels) + 1);
     h.levels = uint8_t(((packed >> kPackedLevelsShift) & 7) + 1);
     h.init = 0;
@@ -128,6 +136,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
     h.seed = r.varint("seed");
     AtlasSynthesisParams& p = f.params;
     p.example_tileable = (packed & kPackedTileable) != 0;
+    p.blend = version == kBlendAtlasFormatVersion ? kV5DefaultBlend : 0;
     if (packed & kPackedParameters) {
         const std::size_t at = r.position();
         p.passes = int(r.varint_in("passes", 1, 16));
@@ -137,7 +146,8 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
         p.coherence = int(r.varint_in("coherence", 1, 4));
         p.roll = r.varint_in("roll flag", 0, 1) != 0;
         p.jitter = int(r.varint_in("jitter", 0, 256));
-        if (are_v4_defaults(p))
+        if (version == kBlendAtlasFormatVersion) p.blend = int(r.varint_in("blend", 0, kMaxBlendRadius));
+        if (are_compact_defaults(p, version))
             r.corrupt("the parameters are stored but are the defaults (packed bit 6 must then be 0)");
         f.parameter_bytes = r.position() - at;
     }
@@ -156,7 +166,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
 bool is_atlas_file(const uint8_t* data, std::size_t size) {
     try {
         const uint16_t version = read_format_version(data, size);
-        return version == kAtlasFormatVersion || version == kCompactAtlasFormatVersion;
+        return version == kAtlasFormatVersion || is_compact_atlas_version(version);
     } catch (const Error&) {
         return false;
     }
@@ -171,7 +181,7 @@ uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, in
 }
 
 AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
-    if (read_format_version(data, size) == kCompactAtlasFormatVersion)
+    if (is_compact_atlas_version(read_format_version(data, size)))
         return decode_compact_atlas_file(data, size, memory_limit);
     const Container c = read_container(data, size, memory_limit);
     if (c.header.version != kAtlasFormatVersion)
@@ -219,14 +229,14 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
                                        const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params) {
     if (header.channels < 1 || header.channels > 4 || header.levels < 1 || header.levels > 8 ||
         atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide || atlas_width > kMaxAtlasSide ||
-        atlas_height > kMaxAtlasSide || atlas_bitstream.empty())
-        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 4 can hold");
+        atlas_height > kMaxAtlasSide || atlas_bitstream.empty() || params.blend < 0 || params.blend > kMaxBlendRadius)
+        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 5 can hold");
     const bool exemplar_size =
         header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
-    const bool parameters = !are_v4_defaults(params);
+    const bool parameters = !are_compact_defaults(params, kBlendAtlasFormatVersion);
     ByteWriter w;
     w.bytes(kMagic, sizeof kMagic);
-    w.u16(kCompactAtlasFormatVersion);
+    w.u16(kBlendAtlasFormatVersion);
     w.u8(uint8_t((header.channels - 1) | (header.levels - 1) << kPackedLevelsShift |
                  (exemplar_size ? kPackedExemplarSize : 0) | (parameters ? kPackedParameters : 0) |
                  (params.example_tileable ? kPackedTileable : 0)));
@@ -245,6 +255,7 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
         w.varint(uint64_t(params.coherence));
         w.varint(params.roll ? 1 : 0);
         w.varint(uint64_t(params.jitter));
+        w.varint(uint64_t(params.blend));
     }
     w.bytes(atlas_bitstream);
     w.u32(crc32(w.data().data(), w.size()));
@@ -254,6 +265,8 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
 std::vector<uint8_t> encode_atlas_file_v3(const FileHeader& header, int atlas_width, int atlas_height,
                                           const std::vector<uint8_t>& atlas_bitstream,
                                           const AtlasSynthesisParams& params) {
+    if (params.blend != 0)
+        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file_v3: format version 3 has no blend (it must be 0)");
     FileHeader h = header;
     h.version = kAtlasFormatVersion;
     h.flags = 0;

@@ -37,6 +37,9 @@ struct AtlasSynthesisParams {
     int coherence = 1;              // k of the coherence sets, 1..4
     bool roll = true;               // cut the torus where pixels change least
     int jitter = 0;                 // 0..256, in 1/256 of a level's spacing
+    // Radius of the blend at the output's seams, 0..kMaxBlendRadius (version
+    // 5; files of versions 3 and 4 have none, 0).
+    int blend = 2;
 };
 
 struct AtlasFile {

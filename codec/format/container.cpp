@@ -76,20 +76,23 @@ uint16_t read_format_version(const uint8_t* data, std::size_t size) {
     if (size < 10) fail(VQTEX_ERROR_TRUNCATED, "file ends inside the header (" + std::to_string(size) + " bytes)");
     const uint16_t version = uint16_t(data[8] | (data[9] << 8));
     if (version != kFormatVersion && version != kVolumeFormatVersion && version != kAtlasFormatVersion &&
-        version != kCompactAtlasFormatVersion)
+        !is_compact_atlas_version(version))
         fail(VQTEX_ERROR_UNSUPPORTED_VERSION,
              "file is format version " + std::to_string(version) + "; this library reads versions " +
                  std::to_string(kFormatVersion) + " (still textures), " + std::to_string(kVolumeFormatVersion) +
-                 " (animations), " + std::to_string(kAtlasFormatVersion) + " and " +
-                 std::to_string(kCompactAtlasFormatVersion) + " (atlas textures): use a matching vqtex release");
+                 " (animations), " + std::to_string(kAtlasFormatVersion) + ", " +
+                 std::to_string(kCompactAtlasFormatVersion) + " and " + std::to_string(kBlendAtlasFormatVersion) +
+                 " (atlas textures): use a matching vqtex release");
     return version;
 }
 
 FileHeader read_header(const uint8_t* data, std::size_t size) {
-    if (read_format_version(data, size) == kCompactAtlasFormatVersion)
+    const uint16_t version = read_format_version(data, size);
+    if (is_compact_atlas_version(version))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
-             "file holds a still texture (an atlas with the compact header of format version 4), not an "
-             "animation: decode it with vqtex_decode (vqtex-decode without --frames)");
+             "file holds a still texture (an atlas with the compact header of format version " +
+                 std::to_string(version) +
+                 "), not an animation: decode it with vqtex_decode (vqtex-decode without --frames)");
     if (size < kHeaderSize + kTrailerSize)
         fail(VQTEX_ERROR_TRUNCATED, "file ends inside the header (" + std::to_string(size) + " bytes)");
 

@@ -27,6 +27,13 @@ inline constexpr uint16_t kAtlasFormatVersion = 3;
 // versions 1-3 answer UNSUPPORTED_VERSION, but nothing else of the
 // container: atlas_file.cpp reads them, read_header refuses them.
 inline constexpr uint16_t kCompactAtlasFormatVersion = 4;
+// Version 5 (docs/FORMAT.md section 8.8): version 4's layout with one more
+// parameter, the radius of the blend at the output's seams, which version 4
+// files decode without, as they always have. The encoder writes version 5.
+inline constexpr uint16_t kBlendAtlasFormatVersion = 5;
+inline bool is_compact_atlas_version(uint16_t version) {
+    return version == kCompactAtlasFormatVersion || version == kBlendAtlasFormatVersion;
+}
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;
 inline constexpr std::size_t kTrailerSize = 4;

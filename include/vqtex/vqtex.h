@@ -163,6 +163,8 @@ typedef struct vqtex_synth_params {
     uint32_t passes;           /* correction passes per level (the finest: one fewer, then a colour pass), 1 to 8 [--passes] */
     uint32_t jitter;           /* variety: seeded displacement of each level's coordinates, in
                                   1/256 of the level's spacing, 0 to 1024 [--jitter] */
+    uint32_t blend;            /* still textures: radius of the blend of the copies that meet at the
+                                  output's seams, 0 (none) to 3; default 2 [--blend] */
     /* Paper engine (the coherent one reads model.levels and
      * model.example_tileable only). */
     vqtex_model_params model;

@@ -1,0 +1,35 @@
+// seam_blend.hpp - the output's pixels read through the finest level's
+// positions, with the copies that meet at a seam blended: the averaging
+// step of texture optimisation (Kwatra, Essa, Bobick & Kwatra 2005, section
+// 3) and the voting of Wexler, Shechtman & Irani 2007, applied once to the
+// coordinates the coherent engine settled on. See docs/SYNTHESIS.md.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "common/image.hpp"
+
+namespace vqtex {
+
+// The largest blend radius a file may ask for (docs/FORMAT.md 8.7).
+inline constexpr int kMaxBlendRadius = 3;
+
+// Writes output rows [first, first + count) of a w-wide texture into rows
+// [out_first, out_first + count) of `out` (w x ?, example.channels). Pixel
+// (x, y) is the weighted mean, over the (2 radius + 1)^2 window around it,
+// of the example pixel that each neighbour's copy puts at (x, y): the
+// neighbour at offset (dx, dy) holding position p proposes p - (dx, dy).
+// Weights are binomial, (1 2 1), (1 4 6 4 1) or (1 6 15 20 15 6 1) in each
+// axis; a proposal past the example's edge is left out (the centre's own
+// never is), unless `wraps`, when it wraps. Inside a coherent copy every
+// neighbour proposes the centre's own pixel, so the pixel is copied
+// exactly: only seams change. Radius 0 copies every pixel. `row_at(y)`
+// gives map row y's packed positions (coherent_synthesis.hpp), for y from
+// first - radius to first + count + radius - 1 (the caller wraps or offsets
+// y). Integer arithmetic, rows split among `threads`: the same bytes for any
+// thread count.
+void blend_rows(const Image& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
+                int w, int first, int count, Image& out, int out_first, int threads);
+
+}  // namespace vqtex
