@@ -304,9 +304,9 @@ TEST(Coherent, EveryOutputPixelIsAnExamplePixel) {
     // Coordinates synthesis without a blend copies pixels: no colour the
     // example lacks, hence no blur and no invented noise.
     const Image ex = textured(64, 48, 4);
-    vqtex_synth_params p = coherent_params(100, 70, 3);
-    p.blend = 0;
-    const Image out = vqtex_test::synthesize(ex, p);
+    vqtex_synth_params params = coherent_params(100, 70, 3);
+    params.blend = 0;
+    const Image out = vqtex_test::synthesize(ex, params);
     std::vector<uint32_t> colours;
     for (int y = 0; y < ex.height; ++y)
         for (int x = 0; x < ex.width; ++x) {
@@ -440,12 +440,15 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
         int w, h, channels, passes, polish, jitter, coherence;
         bool roll, tileable;
         int blend;
+        int example_w = 40, example_h = 36;
     };
+    // The last example has more than 65536 pixels: the coarser level's
+    // positions are kept as 3-byte indices.
     const Case cases[] = {{61, 97, 1, 2, 1, 0, 1, true, false, 0},  {40, 121, 2, 2, 1, 0, 1, true, false, 2},
                           {33, 80, 3, 2, 1, 64, 1, true, false, 3}, {50, 99, 1, 3, 2, 0, 3, false, false, 1},
-                          {47, 60, 3, 1, 0, 0, 1, true, true, 2}};
+                          {47, 60, 3, 1, 0, 0, 1, true, true, 2},   {45, 70, 1, 2, 1, 0, 1, true, false, 2, 300, 230}};
     for (const Case& c : cases) {
-        const Image rgb = textured(40, 36, 3);
+        const Image rgb = textured(c.example_w, c.example_h, 3);
         Image ex(rgb.width, rgb.height, c.channels);
         for (std::size_t i = 0; i < ex.pixel_count(); ++i)
             for (int k = 0; k < c.channels; ++k) ex.pixels[i * std::size_t(c.channels) + std::size_t(k)] = rgb.pixels[i * 3 + std::size_t(k)];

@@ -26,14 +26,30 @@ using coherent::kTaps;
 using coherent::pixel_hash;
 static_assert(kTaps < 32, "a window's taps are bits of one uint32_t");
 constexpr int kMaxCandidates = kTaps * 16;
-// A band's buffers when the finest level is synthesised in bands (band_rows).
+// A band's buffers when the finest level is synthesised in bands (band_rows),
+// at most, and at least (band_bytes).
 constexpr uint64_t kBandBytes = uint64_t(8) << 20;
+constexpr uint64_t kMinBandBytes = uint64_t(2) << 20;
 // Coherence sets leave out positions within this many of a level's spacings.
 constexpr int kCoherenceExclusion = 2;
 
 // The example pixel's index (y * width + x) at position p.
 uint32_t pixel_index(const Image& example, uint32_t p) {
     return uint32_t(position_y(p)) * uint32_t(example.width) + uint32_t(position_x(p));
+}
+
+// Positions of an example of at most 2^24 pixels as 3-byte pixel indices,
+// three quarters of their size; the positions are let go.
+std::vector<uint8_t> narrow_positions24(const Image& example, std::vector<uint32_t>& positions, int threads) {
+    std::vector<uint8_t> narrow(3 * positions.size());
+    parallel_for(threads, positions.size(), 4096, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i) {
+            const uint32_t index = pixel_index(example, positions[i]);
+            for (int b = 0; b < 3; ++b) narrow[3 * i + std::size_t(b)] = uint8_t(index >> (8 * b));
+        }
+    });
+    std::vector<uint32_t>().swap(positions);
+    return narrow;
 }
 
 // Positions of an example of at most 65536 pixels (an atlas of up to
@@ -354,6 +370,10 @@ struct LevelPasses {
         build_level_features(*by_level_space, l, options.threads);
         by_level_sets->levels[std::size_t(l)] =
             build_level_coherence_sets(*by_level_space, l, by_level_sets->k, kCoherenceExclusion, options.threads);
+        // The level's stack colours served only to make its vectors (the
+        // finest level's are the example's, whose channel count the
+        // vectors' making reads).
+        if (l > 0) by_level_space->levels[std::size_t(l)].colours = Image();
     }
 
     // Rows from a band's edges that the finest level's passes may leave
@@ -434,14 +454,14 @@ struct LevelPasses {
 // with the caller's copy of it beside a band's worth of freed memory that
 // the allocator may keep. Each band's `margin` rows on either side are
 // synthesised twice.
-int band_rows(const CoherentOptions& options, int channels, int margin) {
+int band_rows(const CoherentOptions& options, int channels, int margin, uint64_t band_bytes) {
     const uint64_t pixels = uint64_t(options.width) * uint64_t(options.height);
     int rows = options.band_rows;
     if (rows <= 0) {
         // In quarter bytes: 25 a pixel whole, or 4 (4 + channels) to read a blend.
         const uint64_t whole = options.blend > 0 ? std::max<uint64_t>(25, 4 * (4 + uint64_t(channels))) : 25;
-        if (whole * pixels <= 4 * (2 * pixels * uint64_t(channels) + kBandBytes)) return 0;
-        const uint64_t with_margins = 4 * kBandBytes / (25 * uint64_t(options.width));
+        if (whole * pixels <= 4 * (2 * pixels * uint64_t(channels) + band_bytes)) return 0;
+        const uint64_t with_margins = 4 * band_bytes / (25 * uint64_t(options.width));
         rows = int(std::min<uint64_t>(std::max<uint64_t>(with_margins, 4 * uint64_t(margin)) - 2 * uint64_t(margin),
                                       uint64_t(options.height)));
     }
@@ -537,13 +557,19 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
     const AppearanceSpace& space = passes.space;
     const int w = options.width, h = options.height;
     PositionMap coarse = passes.levels_down_to(1);
-    // The coarser level, narrowed when the example allows, as
-    // read_positions narrows the finest.
+    // The coarser level as pixel indices, as read_positions narrows the
+    // finest: 2 bytes each up to 65536 example pixels, else 3.
     std::vector<uint16_t> narrow;
-    if (example.pixel_count() <= 65536) narrow = narrow_positions(example, coarse.positions, options.threads);
+    std::vector<uint8_t> narrow24;
+    if (example.pixel_count() <= 65536)
+        narrow = narrow_positions(example, coarse.positions, options.threads);
+    else
+        narrow24 = narrow_positions24(example, coarse.positions, options.threads);
     const auto parent_at = [&](std::size_t i) {
-        if (narrow.empty()) return coarse.positions[i];
-        return pack_position(int(narrow[i] % uint32_t(example.width)), int(narrow[i] / uint32_t(example.width)));
+        const uint32_t index = narrow.empty() ? uint32_t(narrow24[3 * i]) | uint32_t(narrow24[3 * i + 1]) << 8 |
+                                                    uint32_t(narrow24[3 * i + 2]) << 16
+                                              : narrow[i];
+        return pack_position(int(index % uint32_t(example.width)), int(index / uint32_t(example.width)));
     };
     Image out(w, h, example.channels);
     PositionMap part{w, 0, {}};
@@ -571,10 +597,22 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
         });
     }
     std::vector<uint32_t>().swap(part.positions);
-    std::vector<uint32_t>().swap(coarse.positions);
     std::vector<uint16_t>().swap(narrow);
+    std::vector<uint8_t>().swap(narrow24);
     if (options.roll) cut_torus(out, options.threads);
     return out;
+}
+
+// A band's buffers: 8 MiB, less what the analysis holds beyond 4 MiB (an
+// atlas of more than 65536 pixels: a 512x512 grey one is counted 9.5 MiB,
+// so 2.5 MiB bands), down to
+// 2 MiB, so that the whole decode stays within twice the output plus 16
+// MiB. The band's size changes no byte of the output.
+uint64_t band_bytes(const Image& example, const AppearanceSpace& space, int coherence) {
+    const uint64_t held = coherent_analysis_memory(example.width, example.height, example.channels,
+                                                   int(space.levels.size()), coherence);
+    const uint64_t spare = kBandBytes + kAnalysisAtOnceBytes;
+    return held >= spare - kMinBandBytes ? kMinBandBytes : std::min(kBandBytes, spare - held);
 }
 
 // The output: the finest level whole and read through its positions, or
@@ -586,7 +624,7 @@ Image synthesize_pixels(const Image& example, const AppearanceSpace& space, cons
     passes.by_level_space = by_level_space;
     passes.by_level_sets = by_level_sets;
     const int margin = passes.band_margin();
-    const int band = band_rows(options, example.channels, margin);
+    const int band = band_rows(options, example.channels, margin, band_bytes(example, space, sets.k));
     if (band == 0)
         return read_positions(example, passes.levels_down_to(0), options.roll, options.threads, options.blend,
                               space.wraps);
@@ -676,7 +714,7 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
     r.image = synthesize_pixels(example, space, sets, options, by_level ? &space : nullptr, by_level ? &sets : nullptr);
     // What the analysis makes, whether it is held at once or level by level.
     const uint64_t n = example.pixel_count();
-    for (const auto& l : space.levels) r.model_bytes += l.colours.byte_count() + n * kAppearanceDims * sizeof(int16_t);
+    r.model_bytes = space.levels.size() * (example.byte_count() + n * kAppearanceDims * sizeof(int16_t));
     if (sets.k > 1) r.model_bytes += space.levels.size() * n * uint64_t(sets.k) * sizeof(uint32_t);
     r.analyse_seconds = std::chrono::duration<double>(t1 - t0).count();
     r.synthesise_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
