@@ -2,7 +2,7 @@
 // 17, docs/ATLAS.md "Which atlas"): for each photograph (exemplar = its
 // top-left quarter, held-out = its bottom-right quarter, as vqtex-bench
 // cuts them) and each byte target, every candidate region of the exemplar
-// is coded as a format 4 file at the finest AV1 level that fits, decoded
+// is coded as a format 5 file at the finest AV1 level that fits, decoded
 // at 2x2 the exemplar with the public API, and scored twice:
 //  * against the held-out crop (what the benchmark measures; the encoder
 //    never sees it);

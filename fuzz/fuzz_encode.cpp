@@ -44,7 +44,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     p.model.leaf = (flags >> 3) & 1 ? VQTEX_LEAF_CENTROID : VQTEX_LEAF_MEDOID;
     p.init = (flags >> 4) & 1 ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
     p.model.closing_divisor = (flags >> 5) % 4;
-    // Both file kinds: the atlas (format 4, the default) and the trees.
+    // Both file kinds: the atlas (format 5, the default) and the trees.
     p.codebook = (flags >> 7) & 1 ? VQTEX_CODEBOOK_TREES : VQTEX_CODEBOOK_ATLAS;
     p.model.closing_window = in.next() % 8;
     const uint8_t precision = in.next();

@@ -118,8 +118,9 @@ int main(int argc, char** argv) {
         }
     }
     // Atlas files: each channel count, a preset and a target size, as the
-    // encoder writes them (v4) and as v3 (ATLS and SYNP sections), so the
-    // fuzzers reach both readers and dav1d; every other one also as a v4
+    // encoder writes them (v5), as v3 (ATLS and SYNP sections) and as v4
+    // (no blend), so the fuzzers reach every reader and dav1d; every other
+    // one also as a v5
     // file with the packed byte's optional fields, an exemplar size that
     // is not the atlas's and parameters that are not the defaults.
     for (size_t i = 0; i < std::size(images); ++i) {

@@ -1,8 +1,9 @@
-// test_atlas.cpp - formats v3 and v4 (issue 17; docs/FORMAT.md section 8):
+// test_atlas.cpp - formats v3, v4 and v5 (issue 17; docs/FORMAT.md section 8):
 // the atlas coder (AV1 raw OBUs, libaom and dav1d) on its own, then whole
 // files: round trip, rate control, bit-exact decoding across thread counts,
-// the decoder running the same engine as vqtex_synthesize, v4 decoding as
-// v3 from the same bitstream, hostile files, the golden files.
+// the decoder running the same engine as vqtex_synthesize, v5 decoding as
+// v3 from the same bitstream (without the blend), hostile files, the golden
+// files.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,7 +116,7 @@ std::vector<uint8_t> varints(std::initializer_list<uint64_t> values) {
     return std::move(w.data());
 }
 
-// A v4 file from its packed byte, the bytes of its fields and what follows
+// A compact (v5, or v4) file from its packed byte, the bytes of its fields and what follows
 // them (the bitstream), with a correct checksum: what a hostile writer can
 // make (docs/FORMAT.md 8.7).
 std::vector<uint8_t> compact_file(uint8_t packed, const std::vector<uint8_t>& fields,
@@ -415,9 +416,10 @@ TEST(AtlasFile, HostileSectionsAreCorruptOrOverTheLimitNeverACrash) {
     expect_over_limit_and_not_an_animation(file, p);
 }
 
-// Format v4 holds what v3 holds behind a smaller header: from the same
-// bitstream, header fields and parameters, the two decode to the same
-// pixels, at the default size and seed and at others. The cases cover each
+// Format v5 holds what v3 holds behind a smaller header, plus the blend: from the same
+// bitstream, header fields and parameters (blend 0), the two decode to the
+// same pixels, at the default size and seed and at others; with the default
+// blend they differ. The cases cover each
 // channel count, a crop (the exemplar size stored), non-default parameters
 // with a wrapping atlas, and a seed that needs six varint bytes.
 TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {

@@ -369,63 +369,125 @@ TEST(Coherent, GoldenHash) {
     EXPECT_EQ(hash_of(2), 0xe57f22f79c9296b9ull) << std::hex << hash_of(2);
 }
 
-TEST(Coherent, BlendChangesOnlySeamsAndMixesTheCopiesMeetingThere) {
-    // Each output pixel is a weighted mean of what its neighbours' copies
-    // put at it: where the whole window continues one copy, the pixel is
-    // that copy's, exactly; elsewhere every channel lies between the least
-    // and the most its proposals hold. Mirrored and tileable examples (a
-    // tileable one's proposals wrap), every radius.
-    for (bool tileable : {false, true}) {
-        const Image ex = textured(40, 36, 3);
-        const AppearanceSpace space = build_appearance_space(ex, 4, tileable, 1);
-        const CoherenceSets sets = build_coherence_sets(space, 1, 2, 1);
-        CoherentOptions options;
-        options.width = 57;
-        options.height = 43;
-        options.seed = 5;
-        const PositionMap map = synthesize_positions(space, sets, options);
-        const Image plain = read_positions(ex, PositionMap(map), false, 1, 0, tileable);
-        for (int r = 1; r <= vqtex::kMaxBlendRadius; ++r) {
-            const Image blended = read_positions(ex, PositionMap(map), false, 2, r, tileable);
-            const std::string what = std::string(tileable ? "tileable" : "mirrored") + ", radius " + std::to_string(r);
-            int seams = 0, changed = 0;
-            for (int y = 0; y < map.height; ++y)
-                for (int x = 0; x < map.width; ++x) {
-                    int lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
-                    bool one_copy = true;
-                    const uint32_t own = map.positions[std::size_t(y) * map.width + x];
-                    for (int dy = -r; dy <= r; ++dy)
-                        for (int dx = -r; dx <= r; ++dx) {
-                            const uint32_t p = map.positions[std::size_t(Image::wrap(y + dy, map.height)) * map.width +
-                                                             Image::wrap(x + dx, map.width)];
-                            int sx = position_x(p) - dx, sy = position_y(p) - dy;
-                            if (tileable) {
-                                sx = Image::wrap(sx, ex.width);
-                                sy = Image::wrap(sy, ex.height);
-                            } else if (sx < 0 || sy < 0 || sx >= ex.width || sy >= ex.height) {
-                                one_copy = false;
-                                continue;
-                            }
-                            one_copy = one_copy && pack_position(sx, sy) == own;
-                            for (int c = 0; c < 3; ++c) {
-                                lo[c] = std::min(lo[c], int(ex.at(sx, sy)[c]));
-                                hi[c] = std::max(hi[c], int(ex.at(sx, sy)[c]));
-                            }
+// docs/FORMAT.md 8.8's blend, as written there, for pixel (x, y) of a map.
+std::vector<uint8_t> reference_blend(const Image& ex, bool wraps, int r, const PositionMap& map, int x, int y) {
+    static const int weights[4][7] = {{1}, {1, 2, 1}, {1, 4, 6, 4, 1}, {1, 6, 15, 20, 15, 6, 1}};
+    uint64_t sum[4] = {0, 0, 0, 0}, total = 0;
+    for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx) {
+            const uint32_t q =
+                map.positions[std::size_t(Image::wrap(y + dy, map.height)) * map.width + Image::wrap(x + dx, map.width)];
+            int sx = position_x(q) - dx, sy = position_y(q) - dy;
+            if (wraps) {
+                sx = Image::wrap(sx, ex.width);
+                sy = Image::wrap(sy, ex.height);
+            } else if (sx < 0 || sy < 0 || sx >= ex.width || sy >= ex.height) {
+                continue;
+            }
+            const uint64_t weight = uint64_t(weights[r][dx + r] * weights[r][dy + r]);
+            for (int c = 0; c < ex.channels; ++c) sum[c] += weight * ex.at(sx, sy)[c];
+            total += weight;
+        }
+    std::vector<uint8_t> out(std::size_t(ex.channels));
+    for (int c = 0; c < ex.channels; ++c) out[std::size_t(c)] = uint8_t((sum[c] + total / 2) / total);
+    return out;
+}
+
+TEST(Coherent, BlendIsTheFormatsWeightedMeanAndChangesOnlySeams) {
+    // Every pixel against FORMAT.md 8.8's procedure, on synthesised maps
+    // (copies and seams as the engine makes them) and on maps of random
+    // positions (every window a seam): mirrored and tileable examples,
+    // 1 to 4 channels, every radius, outputs and examples narrower than a
+    // window, 1 and 3 threads. Where the whole window continues one copy
+    // the pixel is that copy's, so a blend changes only seams.
+    struct Case {
+        int ew, eh, channels, w, h;
+        bool tileable, synthesised;
+    };
+    const Case cases[] = {{40, 36, 3, 57, 43, false, true}, {40, 36, 3, 57, 43, true, true},
+                          {33, 29, 1, 31, 40, false, true}, {12, 10, 4, 20, 9, true, false},
+                          {5, 3, 2, 3, 2, false, false},    {2, 7, 3, 1, 6, true, false}};
+    for (const Case& c : cases) {
+        const Image rgba = textured(c.ew, c.eh, 4);
+        Image ex(c.ew, c.eh, c.channels);
+        for (std::size_t i = 0; i < ex.pixel_count(); ++i)
+            for (int k = 0; k < c.channels; ++k) ex.pixels[i * std::size_t(c.channels) + std::size_t(k)] = rgba.pixels[i * 3 + std::size_t(k % 3)];
+        PositionMap map;
+        if (c.synthesised) {
+            const AppearanceSpace space = build_appearance_space(ex, 3, c.tileable, 1);
+            const CoherenceSets sets = build_coherence_sets(space, 1, 2, 1);
+            CoherentOptions options;
+            options.width = c.w;
+            options.height = c.h;
+            options.seed = 5;
+            map = synthesize_positions(space, sets, options);
+        } else {
+            map = PositionMap{c.w, c.h, std::vector<uint32_t>(std::size_t(c.w) * c.h)};
+            Rng rng(uint64_t(c.w * 131 + c.h));
+            for (uint32_t& p : map.positions) p = pack_position(int(rng.next() % uint64_t(c.ew)), int(rng.next() % uint64_t(c.eh)));
+        }
+        const Image plain = read_positions(ex, PositionMap(map), false, 1, 0, c.tileable);
+        for (int r = 1; r <= vqtex::kMaxBlendRadius; ++r)
+            for (int threads : {1, 3}) {
+                const Image blended = read_positions(ex, PositionMap(map), false, threads, r, c.tileable);
+                const std::string what = std::to_string(c.ew) + "x" + std::to_string(c.eh) + "x" +
+                                         std::to_string(c.channels) + (c.tileable ? " tileable" : " mirrored") +
+                                         ", output " + std::to_string(c.w) + "x" + std::to_string(c.h) + ", radius " +
+                                         std::to_string(r) + ", " + std::to_string(threads) + " threads";
+                int seams = 0, changed = 0;
+                for (int y = 0; y < map.height; ++y)
+                    for (int x = 0; x < map.width; ++x) {
+                        const std::vector<uint8_t> want = reference_blend(ex, c.tileable, r, map, x, y);
+                        ASSERT_EQ(std::memcmp(blended.at(x, y), want.data(), want.size()), 0)
+                            << what << " at " << x << "," << y;
+                        const uint32_t own = map.positions[std::size_t(y) * map.width + x];
+                        bool one_copy = true;
+                        for (int dy = -r; dy <= r; ++dy)
+                            for (int dx = -r; dx <= r; ++dx)
+                                one_copy = one_copy &&
+                                           map.positions[std::size_t(Image::wrap(y + dy, map.height)) * map.width +
+                                                         Image::wrap(x + dx, map.width)] ==
+                                               pack_position(position_x(own) + dx, position_y(own) + dy) &&
+                                           position_x(own) + dx >= 0 && position_x(own) + dx < c.ew &&
+                                           position_y(own) + dy >= 0 && position_y(own) + dy < c.eh;
+                        if (one_copy) {
+                            ASSERT_EQ(std::memcmp(blended.at(x, y), plain.at(x, y), std::size_t(c.channels)), 0)
+                                << what << " at " << x << "," << y;
+                        } else {
+                            ++seams;
+                            changed += std::memcmp(blended.at(x, y), plain.at(x, y), std::size_t(c.channels)) != 0;
                         }
-                    const uint8_t* got = blended.at(x, y);
-                    if (one_copy) {
-                        ASSERT_EQ(std::memcmp(got, plain.at(x, y), 3), 0) << what << " at " << x << "," << y;
-                        continue;
                     }
-                    ++seams;
-                    changed += std::memcmp(got, plain.at(x, y), 3) != 0;
-                    for (int c = 0; c < 3; ++c) {
-                        ASSERT_GE(got[c], lo[c]) << what << " at " << x << "," << y;
-                        ASSERT_LE(got[c], hi[c]) << what << " at " << x << "," << y;
-                    }
-                }
-            EXPECT_GT(seams, 0) << what;
-            EXPECT_GT(changed, seams / 2) << what << ": the seams' pixels are mixed";
+                EXPECT_GT(seams, 0) << what;
+                EXPECT_GT(changed, 0) << what;
+            }
+    }
+}
+
+TEST(Coherent, PixelIndicesKeepEveryPositionInTwoThreeOrFourBytes) {
+    EXPECT_EQ(PixelIndices::bytes_for(1), 2);
+    EXPECT_EQ(PixelIndices::bytes_for(65536), 2);
+    EXPECT_EQ(PixelIndices::bytes_for(65537), 3);
+    EXPECT_EQ(PixelIndices::bytes_for(uint64_t(1) << 24), 3);
+    EXPECT_EQ(PixelIndices::bytes_for((uint64_t(1) << 24) + 1), 4);
+    // Examples of 256x256, 4096x4096 and 8192x4096 pixels: the corners and
+    // positions whose every byte of index is set.
+    struct Case {
+        int width, height, bytes;
+    };
+    for (const Case& c : {Case{256, 256, 2}, Case{4096, 4096, 3}, Case{8192, 4096, 4}}) {
+        std::vector<uint32_t> positions = {pack_position(0, 0), pack_position(c.width - 1, 0),
+                                           pack_position(0, c.height - 1), pack_position(c.width - 1, c.height - 1),
+                                           pack_position(c.width / 3, c.height / 2 + 1)};
+        const std::vector<uint32_t> kept = positions;
+        const PixelIndices narrow =
+            narrow_positions(c.width, uint64_t(c.width) * uint64_t(c.height), positions, 2);
+        EXPECT_TRUE(positions.empty());
+        EXPECT_EQ(narrow.bytes, c.bytes);
+        EXPECT_EQ(narrow.data.size(), kept.size() * std::size_t(c.bytes));
+        for (std::size_t i = 0; i < kept.size(); ++i) {
+            EXPECT_EQ(narrow.position(i), kept[i]) << c.width << "x" << c.height << " entry " << i;
+            EXPECT_EQ(narrow.index(i), uint32_t(position_y(kept[i])) * uint32_t(c.width) + uint32_t(position_x(kept[i])));
         }
     }
 }

@@ -268,6 +268,8 @@ int main(int argc, char** argv) {
                                             "vqtex-encode the sequence, then vqtex-decode)");
             if (!animated && frames_opt->count())
                 throw std::invalid_argument("--frames needs an animation: a frame sequence as input");
+            if (animated && blend_opt->count())
+                throw std::invalid_argument("--blend applies to still textures: animations are not blended at seams");
             ProgressBar bar(!quiet && !json);
             const FileReport r =
                 animated ? synthesize_animation(params, frames, quiet, files[0], files[1], threads, &bar)

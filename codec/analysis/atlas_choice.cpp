@@ -1,4 +1,4 @@
-// atlas_choice.cpp - the atlas of a format 4 file and its AV1 level for a
+// atlas_choice.cpp - the atlas of a format 5 file and its AV1 level for a
 // byte budget (issue 17; docs/ATLAS.md "Which atlas" has the measurements
 // behind the rules here).
 #include "analysis/atlas_choice.hpp"

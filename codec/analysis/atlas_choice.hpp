@@ -22,7 +22,7 @@ struct AtlasChoiceOptions {
 };
 
 struct AtlasChoice {
-    std::vector<uint8_t> file;  // a whole atlas file (format 4)
+    std::vector<uint8_t> file;  // a whole atlas file (format 5)
     int cq = 0;                 // libaom's level, 0..63
     int levels = 0;
     Image atlas;                // what was coded (before coding)

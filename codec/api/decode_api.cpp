@@ -45,7 +45,7 @@ std::pair<uint32_t, uint32_t> output_size(const vqtex_decode_params* p, uint32_t
     return {w, h};
 }
 
-// A format v3 or v4 file (docs/FORMAT.md section 8): the atlas decoded, then the
+// A format v3, v4 or v5 file (docs/FORMAT.md section 8): the atlas decoded, then the
 // coherent engine synthesises from it exactly as vqtex_synthesize would
 // from that image. Returns the texture alone: the engine has no pyramid of
 // pixels, so a mip chain is downsampled from it.

@@ -13,6 +13,7 @@
 #include "dsp/dsp.hpp"
 #include "engine/coherent_candidates.hpp"
 #include "engine/coherent_common.hpp"
+#include "engine/copy_links.hpp"
 #include "engine/seam_blend.hpp"
 #include "engine/pyramid.hpp"
 #include "vqtex/vqtex.h"
@@ -36,32 +37,6 @@ constexpr int kCoherenceExclusion = 2;
 // The example pixel's index (y * width + x) at position p.
 uint32_t pixel_index(const Image& example, uint32_t p) {
     return uint32_t(position_y(p)) * uint32_t(example.width) + uint32_t(position_x(p));
-}
-
-// Positions of an example of at most 2^24 pixels as 3-byte pixel indices,
-// three quarters of their size; the positions are let go.
-std::vector<uint8_t> narrow_positions24(const Image& example, std::vector<uint32_t>& positions, int threads) {
-    std::vector<uint8_t> narrow(3 * positions.size());
-    parallel_for(threads, positions.size(), 4096, [&](std::size_t i0, std::size_t i1) {
-        for (std::size_t i = i0; i < i1; ++i) {
-            const uint32_t index = pixel_index(example, positions[i]);
-            for (int b = 0; b < 3; ++b) narrow[3 * i + std::size_t(b)] = uint8_t(index >> (8 * b));
-        }
-    });
-    std::vector<uint32_t>().swap(positions);
-    return narrow;
-}
-
-// Positions of an example of at most 65536 pixels (an atlas of up to
-// 256x256, the common case) as 16-bit pixel indices, half their size; the
-// positions are let go.
-std::vector<uint16_t> narrow_positions(const Image& example, std::vector<uint32_t>& positions, int threads) {
-    std::vector<uint16_t> narrow(positions.size());
-    parallel_for(threads, narrow.size(), 4096, [&](std::size_t i0, std::size_t i1) {
-        for (std::size_t i = i0; i < i1; ++i) narrow[i] = uint16_t(pixel_index(example, positions[i]));
-    });
-    std::vector<uint32_t>().swap(positions);
-    return narrow;
 }
 
 // Position (x, y) of the example, folded inside if it is not.
@@ -199,47 +174,6 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     return best;
 }
 
-// The byte loops of skip_coherent, apart, so that they vectorise: their
-// pointers are __restrict (bytes may alias anything, and the compiler
-// would otherwise reload every captured value after each store).
-//
-// run[x] = 1 when columns x - 1 .. x + 2 of `row` (w wide, a torus) each
-// continue the one to their left by `step` (the four links of a 5-wide
-// window). `links` has w + 3 bytes.
-void continued_runs(const uint32_t* __restrict row, int w, uint32_t step, uint8_t* __restrict links,
-                    uint8_t* __restrict run) {
-    // links[x + 2]: column x + 1 continues column x; padded by the wrap.
-    for (int x = 0; x + 1 < w; ++x) links[x + 2] = uint8_t(row[x + 1] - row[x] == step);
-    links[w + 1] = uint8_t(row[0] - row[w - 1] == step);
-    links[0] = links[w];
-    links[1] = links[w + 1];
-    links[w + 2] = links[2];
-    for (int x = 0; x < w; ++x) run[x] = links[x] & links[x + 1] & links[x + 2] & links[x + 3];
-}
-
-// down[x] = 1 when `next` continues `row` at column x by `step`.
-void continued_rows(const uint32_t* __restrict row, const uint32_t* __restrict next, int w, uint32_t step,
-                    uint8_t* __restrict down) {
-    for (int x = 0; x < w; ++x) down[x] = uint8_t(next[x] - row[x] == step);
-}
-
-// Clears due[x] where the pixel's source `row[x]` lies inside (its
-// coordinates less `reach` below inside_x and inside_y) and the five rows'
-// runs (w apart, the pixel's in the middle) and the four down links at its
-// column all hold.
-void clear_continued(const uint32_t* __restrict row, const uint8_t* __restrict run, const uint8_t* __restrict down,
-                     int w, uint32_t reach, uint32_t inside_x, uint32_t inside_y, uint8_t* __restrict due) {
-    const std::size_t w1 = std::size_t(w), w2 = 2 * w1, w3 = 3 * w1, w4 = 4 * w1;
-    for (int x = 0; x < w; ++x) {
-        const uint32_t own = row[x];
-        const uint8_t inside =
-            uint8_t(((own & 0xFFFF) - reach < inside_x) & ((own >> 16) - reach < inside_y));
-        const uint8_t whole = inside & run[x] & run[x + w1] & run[x + w2] & run[x + w3] & run[x + w4] & down[x] &
-                              down[x + w1] & down[x + w2] & down[x + w3];
-        due[x] &= uint8_t(whole ^ 1);
-    }
-}
-
 // Clears the revisit flag of every pixel whose correction would keep its
 // position at once: with k = 1, a pixel whose source lies at least the
 // window's reach inside the example and whose whole window continues it
@@ -273,17 +207,21 @@ void skip_coherent(const LevelView& v, const PositionMap& map, coherent::Revisit
         const int rows = y1 - y0 + 2 * kRadius;  // rows y0 - kRadius .. y1 + kRadius - 1
         // Per local row i (row y0 - kRadius + i): its runs, and the down
         // links from it to row i + 1.
-        std::vector<uint8_t> runs(std::size_t(rows) * w), down(std::size_t(rows - 1) * w), links(std::size_t(w) + 3);
+        std::vector<uint8_t> runs(std::size_t(rows) * w), down(std::size_t(rows - 1) * w),
+            links(std::size_t(w) + 2 * kRadius), whole(static_cast<std::size_t>(w));
         for (int i = 0; i < rows; ++i) {
             const uint32_t* row = row_at(y0 - kRadius + i);
-            continued_runs(row, w, step_x, links.data(), runs.data() + std::size_t(i) * w);
+            coherent::window_runs(row, w, kRadius, step_x, links.data(), runs.data() + std::size_t(i) * w);
             if (i + 1 < rows)
-                continued_rows(row, row_at(y0 - kRadius + i + 1), w, step_y, down.data() + std::size_t(i) * w);
+                coherent::window_down(row, row_at(y0 - kRadius + i + 1), w, step_y, down.data() + std::size_t(i) * w);
         }
-        for (int y = y0; y < y1; ++y)
-            clear_continued(pos + std::size_t(y) * w, runs.data() + std::size_t(y - y0) * w,
-                            down.data() + std::size_t(y - y0) * w, w, uint32_t(reach), inside_x, inside_y,
-                            revisit.due.data() + std::size_t(y) * w);
+        for (int y = y0; y < y1; ++y) {
+            coherent::whole_windows(pos + std::size_t(y) * w, runs.data() + std::size_t(y - y0) * w,
+                                    down.data() + std::size_t(y - y0) * w, w, kRadius, uint32_t(reach), inside_x,
+                                    inside_y, whole.data());
+            uint8_t* due = revisit.due.data() + std::size_t(y) * w;
+            for (int x = 0; x < w; ++x) due[x] &= uint8_t(whole[std::size_t(x)] ^ 1);
+        }
     });
 }
 
@@ -449,7 +387,8 @@ struct LevelPasses {
 // pass over the level. With a blend, reading it holds the positions and the
 // output, 4 + channels bytes a pixel: 3 channels stay whole up to about
 // 2900x2900. Otherwise bands of about 8 MiB of buffers: a band, the output
-// and the coarser level (half a byte a pixel, narrowed, or 1) stay within
+// and the coarser level (its pixel indices: 0.5 or 0.75 bytes an output
+// pixel for an atlas, PixelIndices) stay within
 // twice the output plus 16 MiB (issue 17's budget), and so does the output
 // with the caller's copy of it beside a band's worth of freed memory that
 // the allocator may keep. Each band's `margin` rows on either side are
@@ -557,20 +496,10 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
     const AppearanceSpace& space = passes.space;
     const int w = options.width, h = options.height;
     PositionMap coarse = passes.levels_down_to(1);
-    // The coarser level as pixel indices, as read_positions narrows the
-    // finest: 2 bytes each up to 65536 example pixels, else 3.
-    std::vector<uint16_t> narrow;
-    std::vector<uint8_t> narrow24;
-    if (example.pixel_count() <= 65536)
-        narrow = narrow_positions(example, coarse.positions, options.threads);
-    else
-        narrow24 = narrow_positions24(example, coarse.positions, options.threads);
-    const auto parent_at = [&](std::size_t i) {
-        const uint32_t index = narrow.empty() ? uint32_t(narrow24[3 * i]) | uint32_t(narrow24[3 * i + 1]) << 8 |
-                                                    uint32_t(narrow24[3 * i + 2]) << 16
-                                              : narrow[i];
-        return pack_position(int(index % uint32_t(example.width)), int(index / uint32_t(example.width)));
-    };
+    // The coarser level as pixel indices (2 or 3 bytes each for an atlas,
+    // PixelIndices), as read_positions narrows the finest.
+    PixelIndices parents = narrow_positions(example.width, example.pixel_count(), coarse.positions, options.threads);
+    const auto parent_at = [&](std::size_t i) { return parents.position(i); };
     Image out(w, h, example.channels);
     PositionMap part{w, 0, {}};
     passes.enter(0);
@@ -597,16 +526,14 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
         });
     }
     std::vector<uint32_t>().swap(part.positions);
-    std::vector<uint16_t>().swap(narrow);
-    std::vector<uint8_t>().swap(narrow24);
+    std::vector<uint8_t>().swap(parents.data);
     if (options.roll) cut_torus(out, options.threads);
     return out;
 }
 
 // A band's buffers: 8 MiB, less what the analysis holds beyond 4 MiB (an
-// atlas of more than 65536 pixels: a 512x512 grey one is counted 9.5 MiB,
-// so 2.5 MiB bands), down to
-// 2 MiB, so that the whole decode stays within twice the output plus 16
+// atlas of more than 65536 pixels: a 512x512 grey one of 8 levels is
+// counted 10 MiB, so 2 MiB bands), down to 2 MiB, so that the whole decode stays within twice the output plus 16
 // MiB. The band's size changes no byte of the output.
 uint64_t band_bytes(const Image& example, const AppearanceSpace& space, int coherence) {
     const uint64_t held = coherent_analysis_memory(example.width, example.height, example.channels,
@@ -632,6 +559,24 @@ Image synthesize_pixels(const Image& example, const AppearanceSpace& space, cons
 }
 
 }  // namespace
+
+PixelIndices narrow_positions(int example_width, uint64_t example_pixels, std::vector<uint32_t>& positions,
+                              int threads) {
+    PixelIndices out;
+    out.bytes = PixelIndices::bytes_for(example_pixels);
+    out.example_width = example_width;
+    out.data.resize(positions.size() * std::size_t(out.bytes));
+    const std::size_t bytes = std::size_t(out.bytes);
+    parallel_for(threads, positions.size(), 4096, [&](std::size_t i0, std::size_t i1) {
+        for (std::size_t i = i0; i < i1; ++i) {
+            const uint32_t index = uint32_t(position_y(positions[i])) * uint32_t(example_width) +
+                                   uint32_t(position_x(positions[i]));
+            for (std::size_t b = 0; b < bytes; ++b) out.data[i * bytes + b] = uint8_t(index >> (8 * b));
+        }
+    });
+    std::vector<uint32_t>().swap(positions);
+    return out;
+}
 
 void correct_positions(const AppearanceSpace& space, const CoherenceSets& sets, int level, PositionMap& map,
                        const CoherentOptions& options) {
@@ -758,8 +703,8 @@ Image read_positions(const Image& example, PositionMap&& map, bool roll, int thr
         // narrow copy (6 bytes per output pixel), then the narrow copy and
         // the output, instead of the positions and the output (4 +
         // channels bytes).
-        const std::vector<uint16_t> narrow = narrow_positions(example, map.positions, threads);
-        out = read([&](std::size_t i) { return narrow[i]; });
+        const PixelIndices narrow = narrow_positions(example.width, example.pixel_count(), map.positions, threads);
+        out = read([&](std::size_t i) { return narrow.index(i); });
     }
     if (roll) cut_torus(out, threads);
     return out;

@@ -71,6 +71,36 @@ inline uint32_t pack_position(int x, int y) { return (uint32_t(y) << 16) | uint3
 inline int position_x(uint32_t p) { return int(p & 0xFFFF); }
 inline int position_y(uint32_t p) { return int(p >> 16); }
 
+// Positions as the example's pixel indices (y * width + x) in the fewest
+// whole bytes: 2 up to 65536 example pixels (an atlas of up to 256x256, the
+// common case), 3 up to 2^24 (every atlas a file can hold), else 4. For the
+// maps that are held only to be read: half or three quarters of the size.
+struct PixelIndices {
+    int bytes = 4;
+    int example_width = 1;
+    std::vector<uint8_t> data;  // little-endian, `bytes` per entry
+
+    static int bytes_for(uint64_t example_pixels) {
+        return example_pixels <= (uint64_t(1) << 16) ? 2 : example_pixels <= (uint64_t(1) << 24) ? 3 : 4;
+    }
+    uint32_t index(std::size_t i) const {
+        const uint8_t* p = data.data() + i * std::size_t(bytes);
+        uint32_t v = uint32_t(p[0]) | uint32_t(p[1]) << 8;
+        if (bytes > 2) v |= uint32_t(p[2]) << 16;
+        if (bytes > 3) v |= uint32_t(p[3]) << 24;
+        return v;
+    }
+    uint32_t position(std::size_t i) const {
+        const uint32_t k = index(i), w = uint32_t(example_width);
+        return pack_position(int(k % w), int(k / w));
+    }
+};
+
+// `positions` (of an example `example_width` wide with `example_pixels`
+// pixels) as PixelIndices; the positions are let go.
+PixelIndices narrow_positions(int example_width, uint64_t example_pixels, std::vector<uint32_t>& positions,
+                              int threads = 1);
+
 // The finest level's positions, on the torus as synthesised (the cut that
 // `roll` asks for is made by read_positions).
 PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSets& sets,

@@ -9,6 +9,7 @@
 
 #include "common/parallel.hpp"
 #include "engine/coherent_synthesis.hpp"
+#include "engine/copy_links.hpp"
 
 namespace vqtex {
 namespace {
@@ -17,44 +18,6 @@ namespace {
 // column's and its row's, at most 64 x 64, so a pixel's sum fits in 32 bits.
 constexpr int kWeights[kMaxBlendRadius + 1][2 * kMaxBlendRadius + 1] = {
     {1}, {1, 2, 1}, {1, 4, 6, 4, 1}, {1, 6, 15, 20, 15, 6, 1}};
-
-// run[x] = 1 when, along `row` (w wide, a torus), each of columns
-// x - r + 1 .. x + r continues the one to its left (position + 1): the 2r
-// links of a window's row. `links` has w + 2r bytes. Byte loops apart from
-// the rest so that they vectorise.
-void row_runs(const uint32_t* __restrict row, int w, int r, uint8_t* __restrict links, uint8_t* __restrict run) {
-    // links[c + r]: column c + 1 continues column c, padded by the wrap.
-    for (int x = 0; x + 1 < w; ++x) links[x + r] = uint8_t(row[x + 1] - row[x] == 1);
-    links[w - 1 + r] = uint8_t(row[0] - row[w - 1] == 1);
-    for (int i = 0; i < r; ++i) {
-        links[i] = links[w + i];
-        links[w + r + i] = links[r + i];
-    }
-    std::memset(run, 1, std::size_t(w));
-    for (int k = 0; k < 2 * r; ++k)
-        for (int x = 0; x < w; ++x) run[x] &= links[x + k];
-}
-
-// down[x] = 1 when `next` continues `row` one row down at column x.
-void row_links_down(const uint32_t* __restrict row, const uint32_t* __restrict next, int w, uint8_t* __restrict down) {
-    for (int x = 0; x < w; ++x) down[x] = uint8_t(next[x] - row[x] == (uint32_t(1) << 16));
-}
-
-// whole[x] = 1 when the window around row[x] continues it at every tap:
-// its source lies at least r inside the example (coordinates less r below
-// inside_x and inside_y), the 2r + 1 rows' runs hold (`runs`, w apart, the
-// pixel's row in the middle) and so do the 2r links down its column
-// (`down`, w apart, from the window's first row).
-void whole_windows(const uint32_t* __restrict row, const uint8_t* __restrict runs, const uint8_t* __restrict down,
-                   int w, int r, uint32_t inside_x, uint32_t inside_y, uint8_t* __restrict whole) {
-    for (int x = 0; x < w; ++x)
-        whole[x] = uint8_t(((row[x] & 0xFFFF) - uint32_t(r) < inside_x) & ((row[x] >> 16) - uint32_t(r) < inside_y));
-    const std::size_t stride = std::size_t(w);
-    for (int i = 0; i <= 2 * r; ++i)
-        for (int x = 0; x < w; ++x) whole[x] &= runs[std::size_t(i) * stride + x];
-    for (int i = 0; i < 2 * r; ++i)
-        for (int x = 0; x < w; ++x) whole[x] &= down[std::size_t(i) * stride + x];
-}
 
 // Pixel (x, y)'s blend at a seam (blend_rows), for C channels: `rows`
 // are the map's rows from y - r, `xs` the window's wrapped columns.
@@ -102,8 +65,10 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
         std::vector<uint8_t> runs(std::size_t(rows) * w), down(std::size_t(std::max(rows - 1, 0)) * w),
             links(std::size_t(w) + 2 * std::size_t(r));
         for (int i = 0; i < rows; ++i) {
-            row_runs(row[std::size_t(i)], w, r, links.data(), runs.data() + std::size_t(i) * w);
-            if (i + 1 < rows) row_links_down(row[std::size_t(i)], row[std::size_t(i) + 1], w, down.data() + std::size_t(i) * w);
+            coherent::window_runs(row[std::size_t(i)], w, r, 1, links.data(), runs.data() + std::size_t(i) * w);
+            if (i + 1 < rows)
+                coherent::window_down(row[std::size_t(i)], row[std::size_t(i) + 1], w, uint32_t(1) << 16,
+                                      down.data() + std::size_t(i) * w);
         }
         std::vector<int> xs(static_cast<std::size_t>(side));
         std::vector<uint8_t> whole(static_cast<std::size_t>(w));
@@ -113,8 +78,9 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
             // The whole window continues the centre when every row's links
             // hold and the centre column's links down do (each tap is then
             // the centre's position plus its offset).
-            whole_windows(centre, runs.data() + std::size_t(local - r) * w, down.data() + std::size_t(local - r) * w, w,
-                          r, inside_x, inside_y, whole.data());
+            coherent::whole_windows(centre, runs.data() + std::size_t(local - r) * w,
+                                    down.data() + std::size_t(local - r) * w, w, r, uint32_t(r), inside_x, inside_y,
+                                    whole.data());
             uint8_t* dst = out.pixels.data() + std::size_t(out_first + (y - first)) * std::size_t(w) * channels;
             for (int x = 0; x < w; ++x, dst += channels) {
                 const uint32_t own = centre[x];

@@ -12,7 +12,7 @@
 
 namespace vqtex {
 
-// The largest blend radius a file may ask for (docs/FORMAT.md 8.7).
+// The largest blend radius a file may ask for (docs/FORMAT.md 8.8).
 inline constexpr int kMaxBlendRadius = 3;
 
 // Writes output rows [first, first + count) of a w-wide texture into rows

@@ -73,8 +73,7 @@ constexpr std::size_t kCompactMinSize = sizeof kMagic + 2 + 1 + 3 + kTrailerSize
 // The parameters a version 4 or 5 file leaves out. These are the values of
 // the format, fixed by docs/FORMAT.md 8.7 and 8.8, not whatever the
 // engine's defaults become: a file written with them decodes the same
-// forever. Version 4 has no blend (0); version 5's default is 2.
-constexpr int kV5DefaultBlend = 2;
+// forever. Version 4 has no blend (0); version 5's default is kV5DefaultBlend.
 bool are_compact_defaults(const AtlasSynthesisParams& p, uint16_t version) {
     return p.passes == 2 && p.coarse_passes == 4 && p.polish_passes == 1 && p.coherence_bias == 256 &&
            p.coherence == 1 && p.roll && p.jitter == 0 &&

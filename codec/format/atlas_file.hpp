@@ -1,9 +1,10 @@
-// atlas_file.hpp - format versions 3 and 4 (issue 17, docs/FORMAT.md
+// atlas_file.hpp - format versions 3 to 5 (issue 17, docs/FORMAT.md
 // section 8): a still texture stored as an atlas, an image whose windows are the
 // coherent engine's codebook (in this first version the exemplar or a crop
 // of it), coded as AV1 (atlas_coder.hpp), plus the engine's parameters.
-// Version 3 holds them in the container's sections (ATLS, SYNP); version 4,
-// which the encoder writes, behind a compact header (section 8.7). The
+// Version 3 holds them in the container's sections (ATLS, SYNP); version 4
+// behind a compact header (section 8.7); version 5, which the encoder
+// writes, adds the blend at seams to version 4 (section 8.8). The
 // decoder rebuilds the appearance space from the decoded atlas and
 // synthesises with codec/engine/coherent_synthesis.hpp.
 #pragma once
@@ -28,6 +29,11 @@ enum class AtlasCoder : uint8_t { Av1 = 0 };
 inline constexpr int kMinAtlasSide = 8;
 
 // The SYNP section: what the coherent engine runs with (docs/FORMAT.md 8.4).
+// Format version 5's blend when its parameters are not stored (docs/FORMAT.md
+// 8.8), and what the encoder writes. Fixed by the format, as the other
+// defaults are (atlas_file.cpp).
+inline constexpr int kV5DefaultBlend = 2;
+
 struct AtlasSynthesisParams {
     bool example_tileable = false;  // the atlas wraps (positions wrap instead of reflecting)
     int passes = 2;                 // correction passes per level, 1..16
@@ -39,11 +45,11 @@ struct AtlasSynthesisParams {
     int jitter = 0;                 // 0..256, in 1/256 of a level's spacing
     // Radius of the blend at the output's seams, 0..kMaxBlendRadius (version
     // 5; files of versions 3 and 4 have none, 0).
-    int blend = 2;
+    int blend = kV5DefaultBlend;
 };
 
 struct AtlasFile {
-    // Version 3 or 4; levels = the engine's stack depth. A version 4 file's
+    // Version 3, 4 or 5; levels = the engine's stack depth. A version 4 or 5 file's
     // fields are put here as version 3 would have them (init 0, backtrack 1,
     // no flags, no sections).
     FileHeader header;
@@ -51,10 +57,10 @@ struct AtlasFile {
     AtlasSynthesisParams params;
     Image atlas;                       // decoded
     std::size_t atlas_bytes = 0;       // the coded atlas bitstream
-    std::size_t bitstream_offset = 0;  // version 4: where that bitstream starts in the file
-    std::size_t parameter_bytes = 0;   // version 4: the parameter varints (0 for the defaults)
+    std::size_t bitstream_offset = 0;  // versions 4, 5: where that bitstream starts in the file
+    std::size_t parameter_bytes = 0;   // versions 4, 5: the parameter varints (0 for the defaults)
     // What the memory limit counts for the input beside the atlas and the
-    // engine: the sections' raw sizes (version 3) or the file (version 4).
+    // engine: the sections' raw sizes (version 3) or the file (versions 4, 5).
     std::size_t input_bytes = 0;
 };
 
@@ -75,7 +81,7 @@ AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t m
 uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
                              uint64_t width, uint64_t height);
 
-// A version 4 file (what the encoder writes): the exemplar size, channels,
+// A version 5 file (what the encoder writes): the exemplar size, channels,
 // levels and seed of `header` (its other fields are not stored), the coded
 // atlas and the parameters. The exemplar size is stored only when it is
 // not the atlas's, the parameters only when they are not the defaults.

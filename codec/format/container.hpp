@@ -98,12 +98,12 @@ struct Container {
 
 // Checks 1-4 of docs/FORMAT.md 2.4, which every version shares (the
 // signature and the version field: TRUNCATED, BAD_MAGIC,
-// UNSUPPORTED_VERSION), and returns the version, 1 to 4.
+// UNSUPPORTED_VERSION), and returns the version, 1 to 5.
 uint16_t read_format_version(const uint8_t* data, std::size_t size);
 
 // The header's fields as read, after the signature, the version and the
 // header's length are checked (TRUNCATED, BAD_MAGIC, UNSUPPORTED_VERSION);
-// read_container checks the rest. A version 4 file has no such header:
+// read_container checks the rest. A version 4 or 5 file has no such header:
 // INVALID_ARGUMENT (vqtex_decode reads it, through atlas_file.hpp).
 FileHeader read_header(const uint8_t* data, std::size_t size);
 

@@ -455,7 +455,8 @@ VQTEX_API vqtex_status vqtex_decode_volume(const vqtex_decode_params* params, ui
  * against its first, so it loops in time (docs/ANIMATION.md says how well).
  * Uses params->engine (VQTEX_ENGINE_COHERENT only), passes,
  * model.levels, model.example_tileable, seed, threads and progress;
- * coherence must be 1 and jitter 0. The same bytes for any thread count.
+ * coherence must be 1 and jitter 0; blend is not used (frames are not
+ * blended at seams). The same bytes for any thread count.
  * `out` receives a new volume (free with vqtex_volume_free); stats and error
  * may be NULL. */
 VQTEX_API vqtex_status vqtex_synthesize_volume(const vqtex_synth_params* params, const vqtex_volume* example,
