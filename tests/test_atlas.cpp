@@ -232,6 +232,7 @@ TEST(AtlasFile, RoundTripDecodesAtAnySizeAndInspects) {
     EXPECT_EQ(info.levels, 6u);
     EXPECT_EQ(info.atlas_width, 128u);
     EXPECT_EQ(info.atlas_height, 128u);
+    EXPECT_EQ(info.blend, 2u) << "format 5's default";
     // Where the bytes go: the AV1 bitstream, no parameters (the defaults),
     // and 20 bytes of header and checksum (docs/FORMAT.md 8.7).
     ASSERT_EQ(info.section_count, 2u);
@@ -243,6 +244,7 @@ TEST(AtlasFile, RoundTripDecodesAtAnySizeAndInspects) {
     const vqtex_file_info info3 = vqtex_cpp::inspect(v3.data(), v3.size());
     EXPECT_EQ(info3.format_version, 3u);
     EXPECT_EQ(info3.atlas_width, 128u);
+    EXPECT_EQ(info3.blend, 0u);
     EXPECT_EQ(v3.size(), file.size() + 71) << "91 bytes of v3 container against 20";
     const vqtex::Image dflt = decode(file, decode_params(0, 0));
     EXPECT_EQ(dflt.width, 128);

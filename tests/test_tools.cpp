@@ -149,6 +149,7 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     // names as format 3's sections); --trees stores the paper's codebooks
     // (format 1).
     EXPECT_NE(r.output.find("format 5"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("seams blended over 2 pixels"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("ATLS"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("atlas     128x128, coded as AV1"), std::string::npos) << r.output;
     const std::string trees = (dir / "t.vqt").string();

@@ -73,6 +73,7 @@ FileReport info_one(const std::string& input) {
     j["exemplar_frames"] = info.exemplar_frames;
     if (atlas) {
         j["atlas_width"] = info.atlas_width;
+        j["blend"] = info.blend;
         j["atlas_height"] = info.atlas_height;
         j["coder"] = "AV1";  // the only atlas coder of formats 3 and 4
     }
@@ -103,7 +104,8 @@ FileReport info_one(const std::string& input) {
         add(t, "atlas     %ux%u, coded as AV1%s%s\n", info.atlas_width, info.atlas_height,
             compact ? "; compact header (format " : "",
             compact ? (std::to_string(info.format_version) + ")").c_str() : "");
-        add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels\n", info.levels, info.codewords[0]);
+        add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s\n", info.levels, info.codewords[0],
+            info.blend ? ("seams blended over " + std::to_string(info.blend) + " pixels").c_str() : "seams not blended");
     } else
         add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
             info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",

@@ -174,6 +174,7 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
             for (int l = 0; l < f.header.levels; ++l) info->codewords[l] = uint32_t(f.atlas.pixel_count());
             info->atlas_width = uint32_t(f.atlas.width);
             info->atlas_height = uint32_t(f.atlas.height);
+            info->blend = uint32_t(f.params.blend);
             if (is_compact_atlas_version(f.header.version)) {
                 // No sections: the two parts of the file that are not its
                 // header and checksum, under the tags version 3 gives them.

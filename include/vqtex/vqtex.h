@@ -322,7 +322,8 @@ typedef struct vqtex_file_info {
     vqtex_section_info sections[VQTEX_MAX_SECTIONS];
     uint32_t exemplar_frames;                      /* animated texture: frames of the example; 0 for a still one */
     uint8_t window_frames[VQTEX_MAX_LEVELS];       /* animated texture: D of each level's {RxCxD,k} */
-    uint32_t atlas_width, atlas_height;            /* atlas texture (format 3 or 4): the atlas's size; 0 otherwise */
+    uint32_t atlas_width, atlas_height;            /* atlas texture (format 3 to 5): the atlas's size; 0 otherwise */
+    uint32_t blend;                                /* atlas texture: radius of the blend at seams (format 5); 0 otherwise */
 } vqtex_file_info;
 
 /* Verifies and describes a file (everything the decoder checks). */
