@@ -73,9 +73,9 @@ FileReport info_one(const std::string& input) {
     j["exemplar_frames"] = info.exemplar_frames;
     if (atlas) {
         j["atlas_width"] = info.atlas_width;
-        j["blend"] = info.blend;
         j["atlas_height"] = info.atlas_height;
-        j["coder"] = "AV1";  // the only atlas coder of formats 3 and 4
+        j["coder"] = "AV1";  // the only atlas coder of formats 3 to 5
+        j["blend"] = info.blend;
     }
     j["codewords"] = nlohmann::ordered_json::array();
     for (uint32_t l = 0; l < info.levels; ++l) j["codewords"].push_back(info.codewords[l]);
