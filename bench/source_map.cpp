@@ -120,16 +120,8 @@ int main(int argc, char** argv) {
         if (!height) height = example.height * 2;
         const AppearanceSpace space = build_appearance_space(example, levels, params.example_tileable, 2);
         const CoherenceSets sets = build_coherence_sets(space, params.coherence, 2, 2);
-        CoherentOptions options;
-        options.width = width;
-        options.height = height;
-        options.seed = seed;
+        CoherentOptions options = coherent_options(params, width, height, seed);
         options.threads = 2;
-        options.passes = params.passes;
-        options.coarse_passes = params.coarse_passes;
-        options.polish_passes = params.polish_passes;
-        options.coherence_bias = params.coherence_bias;
-        options.jitter = params.jitter;
         const PositionMap map = synthesize_positions(space, sets, options);
         const int ew = example.width, eh = example.height;
         std::vector<uint8_t> rgb(map.positions.size() * 3);

@@ -57,18 +57,9 @@ std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint
     check_output_memory(f.input_bytes + atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels,
                                                             f.header.levels, f.params.coherence, w, h),
                         limit, "a " + std::to_string(w) + "x" + std::to_string(h) + " output");
-    CoherentOptions opt;
-    opt.width = int(w);
-    opt.height = int(h);
-    opt.seed = p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed;
+    CoherentOptions opt = coherent_options(f.params, int(w), int(h),
+                                           p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed);
     opt.threads = resolve_threads(p->threads);
-    opt.passes = f.params.passes;
-    opt.coarse_passes = f.params.coarse_passes;
-    opt.polish_passes = f.params.polish_passes;
-    opt.coherence_bias = f.params.coherence_bias;
-    opt.roll = f.params.roll;
-    opt.jitter = f.params.jitter;
-    opt.blend = f.params.blend;
     opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
     std::vector<Image> out;
     out.push_back(

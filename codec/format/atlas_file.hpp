@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/image.hpp"
+#include "engine/coherent_synthesis.hpp"
 #include "format/container.hpp"
 
 namespace vqtex {
@@ -47,6 +48,10 @@ struct AtlasSynthesisParams {
     // 5; files of versions 3 and 4 have none, 0).
     int blend = kV5DefaultBlend;
 };
+
+// The engine's options for a file's parameters, at an output size and seed
+// (the rest left at CoherentOptions' defaults: threads 1, no progress).
+CoherentOptions coherent_options(const AtlasSynthesisParams& params, int width, int height, uint64_t seed);
 
 struct AtlasFile {
     // Version 3, 4 or 5; levels = the engine's stack depth. A version 4 or 5 file's
