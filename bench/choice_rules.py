@@ -5,7 +5,7 @@ atlas-choice CSVs by their proxy scores (p_*, what the encoder can see),
 and its held-out scores (h_*, computed as vqtex-bench computes them) are
 compared with the PEER+synth rows of a vqtex-bench CSV, as vqtex-bench's
 summary does: per metric, the best peer is the lowest mean among the peers
-that scored every texture, and the verdict needs vqtex's mean at or below
+that scored the most textures (bench/acceptance.py's best_peer), and the verdict needs vqtex's mean at or below
 it and vqtex at or below it on two thirds of the textures.
 
 Offline, because a bench run per rule would take minutes each and the

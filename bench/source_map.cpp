@@ -100,7 +100,6 @@ int main(int argc, char** argv) {
         vqtex_tools::load_image_io();
         Image example;
         AtlasSynthesisParams params;
-        params.blend = 0;  // positions only
         int levels = 0;
         if (input.size() > 4 && input.compare(input.size() - 4, 4, ".vqt") == 0) {
             const std::vector<uint8_t> bytes = vqtex_tools::load_bytes(input);
@@ -119,7 +118,7 @@ int main(int argc, char** argv) {
         if (!width) width = example.width * 2;
         if (!height) height = example.height * 2;
         const AppearanceSpace space = build_appearance_space(example, levels, params.example_tileable, 2);
-        const CoherenceSets sets = build_coherence_sets(space, params.coherence, 2, 2);
+        const CoherenceSets sets = build_coherence_sets(space, params.coherence, kCoherenceExclusion, 2);
         CoherentOptions options = coherent_options(params, width, height, seed);
         options.threads = 2;
         const PositionMap map = synthesize_positions(space, sets, options);

@@ -145,10 +145,8 @@ int main(int argc, char** argv) {
         try {
             const vqtex::AtlasFile f = vqtex::decode_atlas_file(data, size, 32u << 20);
             const std::vector<uint8_t> bits(data + f.bitstream_offset, data + f.bitstream_offset + f.atlas_bytes);
-            vqtex::AtlasSynthesisParams v3_params = f.params;
-            v3_params.blend = 0;  // version 3 has none
             const std::vector<uint8_t> v3 =
-                vqtex::encode_atlas_file_v3(f.header, f.atlas.width, f.atlas.height, bits, v3_params);
+                vqtex::encode_atlas_file_v3(f.header, f.atlas.width, f.atlas.height, bits, f.params);
             write(out / "decode" / (name + "_v3.vqt"), v3.data(), v3.size());
             ++files;
             if (f.parameter_bytes == 0) {

@@ -104,9 +104,7 @@ std::vector<uint8_t> bitstream_of(const std::vector<uint8_t>& v5) {
 
 std::vector<uint8_t> as_v3(const std::vector<uint8_t>& v5) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(v5.data(), v5.size(), 1u << 30);
-    vqtex::AtlasSynthesisParams params = f.params;
-    params.blend = 0;
-    return vqtex::encode_atlas_file_v3(f.header, f.atlas.width, f.atlas.height, bitstream_of(v5), params);
+    return vqtex::encode_atlas_file_v3(f.header, f.atlas.width, f.atlas.height, bitstream_of(v5), f.params);
 }
 
 // Varints as the files write them.
@@ -460,10 +458,8 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
             sp.jitter = 40;
             sp.blend = 0;  // version 3's, so that their decodes compare
         }
-        vqtex::AtlasSynthesisParams v3_params = sp;
-        v3_params.blend = 0;
         const std::vector<uint8_t> v4 = vqtex::encode_atlas_file(h, c.aw, c.ah, bits, sp);
-        const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(h, c.aw, c.ah, bits, v3_params);
+        const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(h, c.aw, c.ah, bits, sp);
         const std::string what =
             std::to_string(c.channels) + " channels, " + std::to_string(c.aw) + "x" + std::to_string(c.ah) + " atlas";
         EXPECT_EQ(v4.size(), bits.size() + c.overhead) << what;
@@ -670,8 +666,8 @@ TEST(AtlasFile, GoldenBlendFileDecodesToKnownPixels) {
     const vqtex::Image unblended = decode(as_v4, decode_params(96, 80, 5));
     EXPECT_EQ(fnv1a(unblended.pixels.data(), unblended.pixels.size()), 0x2eda1c7bb1a70f4bull) << "the v4 golden's";
     // (Where the torus is cut open follows the blended pixels, so the two
-    // images may be turned against each other; Coherent.BlendChanges-
-    // OnlySeamsAndMixesTheCopiesMeetingThere checks the blend itself.)
+    // images may be turned against each other; Coherent.BlendIsThe-
+    // FormatsWeightedMeanAndChangesOnlySeams checks the blend itself.)
     EXPECT_NE(img.pixels, unblended.pixels);
 }
 

@@ -104,6 +104,17 @@ Image textured(int w, int h, uint64_t seed) {
     return img;
 }
 
+// textured's image with `channels` channels, channel k being its channel
+// k mod 3.
+Image textured(int w, int h, uint64_t seed, int channels) {
+    const Image rgb = textured(w, h, seed);
+    Image out(w, h, channels);
+    for (std::size_t i = 0; i < out.pixel_count(); ++i)
+        for (int k = 0; k < channels; ++k)
+            out.pixels[i * std::size_t(channels) + std::size_t(k)] = rgb.pixels[i * 3 + std::size_t(k % 3)];
+    return out;
+}
+
 }  // namespace
 
 TEST(Coherent, DefaultsSelectTheCoherentEngine) {
@@ -408,10 +419,7 @@ TEST(Coherent, BlendIsTheFormatsWeightedMeanAndChangesOnlySeams) {
                           {33, 29, 1, 31, 40, false, true}, {12, 10, 4, 20, 9, true, false},
                           {5, 3, 2, 3, 2, false, false},    {2, 7, 3, 1, 6, true, false}};
     for (const Case& c : cases) {
-        const Image rgba = textured(c.ew, c.eh, 4);
-        Image ex(c.ew, c.eh, c.channels);
-        for (std::size_t i = 0; i < ex.pixel_count(); ++i)
-            for (int k = 0; k < c.channels; ++k) ex.pixels[i * std::size_t(c.channels) + std::size_t(k)] = rgba.pixels[i * 3 + std::size_t(k % 3)];
+        const Image ex = textured(c.ew, c.eh, 4, c.channels);
         PositionMap map;
         if (c.synthesised) {
             const AppearanceSpace space = build_appearance_space(ex, 3, c.tileable, 1);
@@ -510,10 +518,7 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
                           {33, 80, 3, 2, 1, 64, 1, true, false, 3}, {50, 99, 1, 3, 2, 0, 3, false, false, 1},
                           {47, 60, 3, 1, 0, 0, 1, true, true, 2},   {45, 70, 1, 2, 1, 0, 1, true, false, 2, 300, 230}};
     for (const Case& c : cases) {
-        const Image rgb = textured(c.example_w, c.example_h, 3);
-        Image ex(rgb.width, rgb.height, c.channels);
-        for (std::size_t i = 0; i < ex.pixel_count(); ++i)
-            for (int k = 0; k < c.channels; ++k) ex.pixels[i * std::size_t(c.channels) + std::size_t(k)] = rgb.pixels[i * 3 + std::size_t(k)];
+        const Image ex = textured(c.example_w, c.example_h, 3, c.channels);
         CoherentOptions options;
         options.width = c.w;
         options.height = c.h;
@@ -546,11 +551,7 @@ TEST(Coherent, AnalysisLevelByLevelGivesTheBytesOfTheWholeStack) {
     };
     const Case cases[] = {{3, 1, 0, false}, {1, 2, 0, true}, {3, 3, 5, false}, {2, 1, 7, true}};
     for (const Case& c : cases) {
-        const Image rgb = textured(45, 38, 3);
-        Image ex(rgb.width, rgb.height, c.channels);
-        for (std::size_t i = 0; i < ex.pixel_count(); ++i)
-            for (int k = 0; k < c.channels; ++k)
-                ex.pixels[i * std::size_t(c.channels) + std::size_t(k)] = rgb.pixels[i * 3 + std::size_t(k)];
+        const Image ex = textured(45, 38, 3, c.channels);
         CoherentOptions options;
         options.width = 70;
         options.height = 66;

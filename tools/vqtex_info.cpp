@@ -101,11 +101,13 @@ FileReport info_one(const std::string& input) {
         add(t, " (finest first)\n");
     }
     if (atlas) {
-        add(t, "atlas     %ux%u, coded as AV1%s%s\n", info.atlas_width, info.atlas_height,
-            compact ? "; compact header (format " : "",
-            compact ? (std::to_string(info.format_version) + ")").c_str() : "");
+        const std::string header =
+            compact ? "; compact header (format " + std::to_string(info.format_version) + ")" : std::string();
+        add(t, "atlas     %ux%u, coded as AV1%s\n", info.atlas_width, info.atlas_height, header.c_str());
+        const std::string seams =
+            info.blend ? "seams blended over " + std::to_string(info.blend) + " pixels" : "seams not blended";
         add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s\n", info.levels, info.codewords[0],
-            info.blend ? ("seams blended over " + std::to_string(info.blend) + " pixels").c_str() : "seams not blended");
+            seams.c_str());
     } else
         add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
             info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",

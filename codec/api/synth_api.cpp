@@ -14,6 +14,7 @@
 #include "api/validate.hpp"
 #include "common/error.hpp"
 #include "common/image.hpp"
+#include "engine/seam_blend.hpp"
 #include "common/parallel.hpp"
 #include "engine/appearance.hpp"
 #include "engine/coherence_sets.hpp"
@@ -147,7 +148,7 @@ void vqtex_synth_params_init(vqtex_synth_params* p) {
     // every score improves, for the decoder's atlases and for exemplars
     // alike; radius 3 scores within 0.05 of it for twice the taps
     // (docs/SYNTHESIS.md). The same default as format version 5's.
-    p->blend = 2;
+    p->blend = kDefaultBlendRadius;
     p->search = VQTEX_SEARCH_TSVQ;
     // Two leaves. One (a single descent) is faster and on 10 photographed
     // corpus textures scores as well (sliced Wasserstein 8.8 against 9.2),

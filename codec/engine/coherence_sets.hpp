@@ -33,6 +33,10 @@ struct CoherenceSets {
 // shifted by a pixel. Sets with fewer candidates repeat the position itself.
 CoherenceSets build_coherence_sets(const AppearanceSpace& space, int k, int exclusion, int threads);
 
+// The exclusion the coherent engine's sets use: they leave out positions
+// within this many of a level's spacings.
+inline constexpr int kCoherenceExclusion = 2;
+
 // One level's sets (`space` must hold that level's appearance vectors).
 std::vector<uint32_t> build_level_coherence_sets(const AppearanceSpace& space, int level, int k, int exclusion,
                                                 int threads);

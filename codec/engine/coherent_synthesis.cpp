@@ -31,13 +31,6 @@ constexpr int kMaxCandidates = kTaps * 16;
 // at most, and at least (band_bytes).
 constexpr uint64_t kBandBytes = uint64_t(8) << 20;
 constexpr uint64_t kMinBandBytes = uint64_t(2) << 20;
-// Coherence sets leave out positions within this many of a level's spacings.
-constexpr int kCoherenceExclusion = 2;
-
-// The example pixel's index (y * width + x) at position p.
-uint32_t pixel_index(const Image& example, uint32_t p) {
-    return uint32_t(position_y(p)) * uint32_t(example.width) + uint32_t(position_x(p));
-}
 
 // Position (x, y) of the example, folded inside if it is not.
 uint32_t folded(const AppearanceSpace& space, int x, int y) {
@@ -511,19 +504,10 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
         start_rows(space, parent_at, coarse.width, w, h, 0, space.levels[0].spacing, options, true, rows_of.first,
                    part.height, part.positions.data());
         passes.run(0, part, &rows_of, rows);
-        if (options.blend > 0) {
-            blend_rows(example, space.wraps, options.blend,
-                       [&](int y) { return part.positions.data() + std::size_t(y - y0 + margin) * std::size_t(w); }, w,
-                       y0, rows, out, y0, options.threads);
-            continue;
-        }
-        parallel_for(options.threads, std::size_t(rows), 16, [&](std::size_t r0, std::size_t r1) {
-            for (std::size_t r = r0; r < r1; ++r) {
-                const uint32_t* p = part.positions.data() + (r + std::size_t(margin)) * std::size_t(w);
-                for (int x = 0; x < w; ++x)
-                    copy_pixel(out.at(x, y0 + int(r)), example.at(position_x(p[x]), position_y(p[x])), example.channels);
-            }
-        });
+        // The band's own rows (blend 0 copies each pixel).
+        blend_rows(example, space.wraps, options.blend,
+                   [&](int y) { return part.positions.data() + std::size_t(y - y0 + margin) * std::size_t(w); }, y0,
+                   rows, out, options.threads);
     }
     std::vector<uint32_t>().swap(part.positions);
     std::vector<uint8_t>().swap(parents.data);
@@ -668,44 +652,32 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
 
 Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads, int blend, bool wraps) {
     const int w = map.width, h = map.height;
-    if (blend > 0) {
+    if (blend > 0 || PixelIndices::bytes_for(example.pixel_count()) > 2) {
         // Read through the packed positions, which the blend's window
-        // check needs: 4 + channels bytes a pixel at the peak, as for a
-        // large example below.
+        // check needs (blend 0 copies each pixel): 4 + channels bytes a
+        // pixel at the peak.
         Image out(w, h, example.channels);
         blend_rows(example, wraps, blend,
-                   [&](int y) { return map.positions.data() + std::size_t(Image::wrap(y, h)) * std::size_t(w); }, w, 0,
-                   h, out, 0, threads);
+                   [&](int y) { return map.positions.data() + std::size_t(Image::wrap(y, h)) * std::size_t(w); }, 0, h,
+                   out, threads);
         std::vector<uint32_t>().swap(map.positions);
         if (roll) cut_torus(out, threads);
         return out;
     }
+    // A small example and no blend: the positions are narrowed to 2-byte
+    // indices first and let go before the output is allocated. Peak: the
+    // positions and the narrow copy (6 bytes per output pixel), then the
+    // narrow copy and the output, instead of the positions and the output
+    // (4 + channels bytes). Then the torus is cut open where its pixels
+    // change least (the same cut as one found through the positions).
     const std::size_t channels = std::size_t(example.channels);
-    // The output through `index(i)`, the example pixel of map entry i, then
-    // cut open where its pixels change least (the same pixels as reading
-    // each through the cut's offset, and the same cut as one found through
-    // the positions).
-    const auto read = [&](auto&& index) {
-        Image out(w, h, example.channels);
-        parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
-            for (std::size_t i = y0 * std::size_t(w); i < y1 * std::size_t(w); ++i)
-                copy_pixel(out.pixels.data() + i * channels, example.pixels.data() + std::size_t(index(i)) * channels,
-                           example.channels);
-        });
-        return out;
-    };
-    Image out;
-    if (example.pixel_count() > 65536) {
-        out = read([&](std::size_t i) { return pixel_index(example, map.positions[i]); });
-    } else {
-        // A small example: the positions are narrowed first and let go
-        // before the output is allocated. Peak: the positions and the
-        // narrow copy (6 bytes per output pixel), then the narrow copy and
-        // the output, instead of the positions and the output (4 +
-        // channels bytes).
-        const PixelIndices narrow = narrow_positions(example.width, example.pixel_count(), map.positions, threads);
-        out = read([&](std::size_t i) { return narrow.index(i); });
-    }
+    const PixelIndices narrow = narrow_positions(example.width, example.pixel_count(), map.positions, threads);
+    Image out(w, h, example.channels);
+    parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
+        for (std::size_t i = y0 * std::size_t(w); i < y1 * std::size_t(w); ++i)
+            copy_pixel(out.pixels.data() + i * channels, example.pixels.data() + std::size_t(narrow.index(i)) * channels,
+                       example.channels);
+    });
     if (roll) cut_torus(out, threads);
     return out;
 }

@@ -4,7 +4,6 @@
 #include "engine/seam_blend.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <vector>
 
 #include "common/parallel.hpp"
@@ -49,10 +48,23 @@ void blend_pixel(const Image& example, bool wraps, int r, const uint32_t* const*
 }  // namespace
 
 void blend_rows(const Image& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
-                int w, int first, int count, Image& out, int out_first, int threads) {
-    const int r = std::clamp(radius, 0, kMaxBlendRadius), side = 2 * r + 1;
+                int first, int count, Image& out, int threads) {
+    const int r = std::clamp(radius, 0, kMaxBlendRadius);
+    const int w = out.width;
     const std::size_t channels = std::size_t(example.channels);
     const int ew = example.width, eh = example.height;
+    if (r == 0) {
+        // Every pixel copied: no window to check.
+        parallel_for(threads, std::size_t(count), 16, [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t i = i0; i < i1; ++i) {
+                const uint32_t* positions = row_at(first + int(i));
+                uint8_t* dst = out.at(0, first + int(i));
+                for (int x = 0; x < w; ++x, dst += channels)
+                    copy_pixel(dst, example.at(position_x(positions[x]), position_y(positions[x])), example.channels);
+            }
+        });
+        return;
+    }
     // A centre at least r inside the example: the window check below is
     // exact there (packed positions add without carrying across fields).
     const uint32_t inside_x = uint32_t(std::max(0, ew - 2 * r)), inside_y = uint32_t(std::max(0, eh - 2 * r));
@@ -70,7 +82,7 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
                 coherent::window_down(row[std::size_t(i)], row[std::size_t(i) + 1], w, uint32_t(1) << 16,
                                       down.data() + std::size_t(i) * w);
         }
-        std::vector<int> xs(static_cast<std::size_t>(side));
+        int xs[2 * kMaxBlendRadius + 1];
         std::vector<uint8_t> whole(static_cast<std::size_t>(w));
         for (int y = y0; y < y1; ++y) {
             const int local = y - y0 + r;  // the centre row among `row`
@@ -81,21 +93,20 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
             coherent::whole_windows(centre, runs.data() + std::size_t(local - r) * w,
                                     down.data() + std::size_t(local - r) * w, w, r, uint32_t(r), inside_x, inside_y,
                                     whole.data());
-            uint8_t* dst = out.pixels.data() + std::size_t(out_first + (y - first)) * std::size_t(w) * channels;
+            uint8_t* dst = out.at(0, y);
             for (int x = 0; x < w; ++x, dst += channels) {
                 const uint32_t own = centre[x];
                 if (whole[std::size_t(x)]) {
-                    std::memcpy(dst, example.pixels.data() + (std::size_t(own >> 16) * ew + (own & 0xFFFF)) * channels,
-                                channels);
+                    copy_pixel(dst, example.at(position_x(own), position_y(own)), example.channels);
                     continue;
                 }
-                for (int dx = -r; dx <= r; ++dx) xs[std::size_t(dx + r)] = Image::wrap(x + dx, w);
+                for (int dx = -r; dx <= r; ++dx) xs[dx + r] = Image::wrap(x + dx, w);
                 const uint32_t* const* window = row.data() + (local - r);
                 switch (channels) {
-                    case 1: blend_pixel<1>(example, wraps, r, window, xs.data(), dst); break;
-                    case 2: blend_pixel<2>(example, wraps, r, window, xs.data(), dst); break;
-                    case 3: blend_pixel<3>(example, wraps, r, window, xs.data(), dst); break;
-                    default: blend_pixel<4>(example, wraps, r, window, xs.data(), dst); break;
+                    case 1: blend_pixel<1>(example, wraps, r, window, xs, dst); break;
+                    case 2: blend_pixel<2>(example, wraps, r, window, xs, dst); break;
+                    case 3: blend_pixel<3>(example, wraps, r, window, xs, dst); break;
+                    default: blend_pixel<4>(example, wraps, r, window, xs, dst); break;
                 }
             }
         }

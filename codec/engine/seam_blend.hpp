@@ -14,9 +14,13 @@ namespace vqtex {
 
 // The largest blend radius a file may ask for (docs/FORMAT.md 8.8).
 inline constexpr int kMaxBlendRadius = 3;
+// vqtex_synthesize's radius (docs/SYNTHESIS.md: radius 3 scores within
+// 0.05 of it for twice the taps). Format version 5's default is the
+// format's own constant (atlas_file.hpp), equal to it today.
+inline constexpr int kDefaultBlendRadius = 2;
 
-// Writes output rows [first, first + count) of a w-wide texture into rows
-// [out_first, out_first + count) of `out` (w x ?, example.channels). Pixel
+// Writes rows [first, first + count) of `out` (example.channels, as wide as
+// the map). Pixel
 // (x, y) is the weighted mean, over the (2 radius + 1)^2 window around it,
 // of the example pixel that each neighbour's copy puts at (x, y): the
 // neighbour at offset (dx, dy) holding position p proposes p - (dx, dy).
@@ -30,6 +34,6 @@ inline constexpr int kMaxBlendRadius = 3;
 // y). Integer arithmetic, rows split among `threads`: the same bytes for any
 // thread count.
 void blend_rows(const Image& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
-                int w, int first, int count, Image& out, int out_first, int threads);
+                int first, int count, Image& out, int threads);
 
 }  // namespace vqtex

@@ -73,11 +73,13 @@ constexpr std::size_t kCompactMinSize = sizeof kMagic + 2 + 1 + 3 + kTrailerSize
 // The parameters a version 4 or 5 file leaves out. These are the values of
 // the format, fixed by docs/FORMAT.md 8.7 and 8.8, not whatever the
 // engine's defaults become: a file written with them decodes the same
-// forever. Version 4 has no blend (0); version 5's default is kV5DefaultBlend.
+// forever.
+// The blend when it is not stored: version 4 has none, version 5's default.
+constexpr int default_blend(uint16_t version) { return version == kBlendAtlasFormatVersion ? kV5DefaultBlend : 0; }
+
 bool are_compact_defaults(const AtlasSynthesisParams& p, uint16_t version) {
     return p.passes == 2 && p.coarse_passes == 4 && p.polish_passes == 1 && p.coherence_bias == 256 &&
-           p.coherence == 1 && p.roll && p.jitter == 0 &&
-           p.blend == (version == kBlendAtlasFormatVersion ? kV5DefaultBlend : 0);
+           p.coherence == 1 && p.roll && p.jitter == 0 && p.blend == default_blend(version);
 }
 
 // The checks both versions make once the header's fields are read: the
@@ -135,7 +137,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
     h.seed = r.varint("seed");
     AtlasSynthesisParams& p = f.params;
     p.example_tileable = (packed & kPackedTileable) != 0;
-    p.blend = version == kBlendAtlasFormatVersion ? kV5DefaultBlend : 0;
+    p.blend = default_blend(version);
     if (packed & kPackedParameters) {
         const std::size_t at = r.position();
         p.passes = int(r.varint_in("passes", 1, 16));
@@ -279,8 +281,6 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
 std::vector<uint8_t> encode_atlas_file_v3(const FileHeader& header, int atlas_width, int atlas_height,
                                           const std::vector<uint8_t>& atlas_bitstream,
                                           const AtlasSynthesisParams& params) {
-    if (params.blend != 0)
-        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file_v3: format version 3 has no blend (it must be 0)");
     FileHeader h = header;
     h.version = kAtlasFormatVersion;
     h.flags = 0;

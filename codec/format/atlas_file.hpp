@@ -95,7 +95,8 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
 
 // The same content as a version 3 file (the header fields of `header`
 // other than version, flags and section count). Kept for the tests and the
-// fuzzers' seeds: version 3 must go on decoding.
+// fuzzers' seeds: version 3 must go on decoding. Version 3 has no blend:
+// params.blend is not stored, and the file decodes without one.
 std::vector<uint8_t> encode_atlas_file_v3(const FileHeader& header, int atlas_width, int atlas_height,
                                           const std::vector<uint8_t>& atlas_bitstream,
                                           const AtlasSynthesisParams& params);
