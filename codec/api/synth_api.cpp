@@ -39,6 +39,7 @@ void synthesize_coherent_api(const vqtex_synth_params& params, const Image& exam
     opt.coarse_passes = std::max(4, int(params.passes));
     opt.jitter = int(params.jitter);
     opt.blend = int(params.blend);
+    opt.relocate = getenv("TMP_RELOCATE") ? atoi(getenv("TMP_RELOCATE")) : 0;  // TMP
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
     CoherentResult r = synthesize_coherent(example, levels, params.model.example_tileable != 0, int(params.coherence),
                                            opt, stage_progress(params.progress, params.progress_user, VQTEX_STAGE_ANALYSE));

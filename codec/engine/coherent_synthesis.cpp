@@ -14,6 +14,7 @@
 #include "engine/coherent_candidates.hpp"
 #include "engine/coherent_common.hpp"
 #include "engine/copy_links.hpp"
+#include "engine/copy_relocation.hpp"
 #include "engine/seam_blend.hpp"
 #include "engine/pyramid.hpp"
 #include "vqtex/vqtex.h"
@@ -330,6 +331,7 @@ struct LevelPasses {
             if (options.progress && !options.progress(done, total))
                 fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
         }
+        if (!band && l >= kRelocationMinLevel) relocate_copies(space, l, map, options.relocate, options.seed);
         if (l == 0 && options.polish_passes > 0) {
             // Seams between coherent copies are placed by colours at last:
             // the coherence of the output's own pixels is what a viewer sees.

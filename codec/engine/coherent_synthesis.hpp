@@ -38,6 +38,10 @@ struct CoherentOptions {
     // Radius of the blend of the copies that meet at a seam as the output is
     // read (seam_blend.hpp), 0 to kMaxBlendRadius; 0 copies each pixel.
     int blend = 0;
+    // Candidate translations tried per copy by the copy relocation after the
+    // passes of each level from kRelocationMinLevel up (copy_relocation.hpp);
+    // 0: none.
+    int relocate = 0;
     bool roll = true;            // cut the torus open where the pixels change least
     // Distance surcharge, in 1/256, of a candidate that continues no
     // neighbour's source (a k-coherence alternative) over one that does:
@@ -60,6 +64,11 @@ struct CoherentOptions {
     int analysis_by_level = -1;
     std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
 };
+
+// The finest level the copy relocation runs at: below it, the copies of a
+// large output are many and small, and moving them cost 130 ms of a 512x512
+// synthesis for little (docs/SYNTHESIS.md "Session 11").
+inline constexpr int kRelocationMinLevel = 2;
 
 // Positions into the example, (y << 16) | x, for a width x height output.
 struct PositionMap {

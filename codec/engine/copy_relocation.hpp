@@ -1,0 +1,31 @@
+// copy_relocation.hpp - moving whole copies to where they fit the copies
+// around them: the choice of copy that image quilting (Efros & Freeman
+// 2001) makes by a patch's overlap, made here after the fact on a level of
+// the coordinate map (Lefebvre & Hoppe 2005), with the two-sided seam cost
+// of graph-cut textures (Kwatra et al. 2003). docs/SYNTHESIS.md "Session 11".
+//
+// A copy is a connected region of the map whose adjacent positions continue
+// one another (each the other shifted by the level's spacing). The engine
+// places copies where the coarse levels put them and then only grows them,
+// so two copies that meet are rarely ones that agree. Here each copy but a
+// dominant one tries `candidates` seeded translations that keep it inside
+// the example, and takes the one whose content best matches, across every
+// link it shares with another copy, what that copy would put there. The
+// number of copies and their shapes stay; which part of the example each
+// shows changes.
+#pragma once
+
+#include <cstdint>
+
+#include "engine/appearance.hpp"
+#include "engine/coherent_synthesis.hpp"
+
+namespace vqtex {
+
+// Relocates the copies of `map`, level `level` of the synthesis (its
+// positions `space.levels[level].spacing` apart; that level's appearance
+// vectors must be present). Serial and integer: the same map for any
+// thread count. Does nothing for a tileable example (its copies wrap).
+void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, int candidates, uint64_t seed);
+
+}  // namespace vqtex
