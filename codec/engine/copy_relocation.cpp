@@ -45,15 +45,19 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
         out = pack_position(x, y);
         return true;
     };
+    // Vectors are clamped to +-kAppearanceClamp, so a distance fits 32 bits
+    // (8 squares of at most 4094^2).
+    static_assert(int64_t(kAppearanceDims) * (2 * kAppearanceClamp) * (2 * kAppearanceClamp) < (int64_t(1) << 31),
+                  "an appearance distance must fit int32_t");
     const auto distance = [&](uint32_t a, uint32_t b) {
         const int16_t* u = features + (std::size_t(position_y(a)) * std::size_t(ew) + position_x(a)) * kAppearanceDims;
         const int16_t* v = features + (std::size_t(position_y(b)) * std::size_t(ew) + position_x(b)) * kAppearanceDims;
-        int64_t d = 0;
+        int32_t d = 0;
         for (int i = 0; i < kAppearanceDims; ++i) {
-            const int64_t t = int64_t(u[i]) - int64_t(v[i]);
+            const int32_t t = int32_t(u[i]) - int32_t(v[i]);
             d += t * t;
         }
-        return d;
+        return int64_t(d);
     };
     const auto neighbour = [&](std::size_t i, int k) {
         const int x = int(i % std::size_t(w)), y = int(i / std::size_t(w));
