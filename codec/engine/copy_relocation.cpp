@@ -3,6 +3,8 @@
 #include "engine/copy_relocation.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <utility>
 #include <vector>
 
 #include "common/image.hpp"
@@ -149,10 +151,12 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
             }
             penalty = terms ? sum / terms : 0;
         }
-        // The mismatch of the copy moved by (tx, ty), given up at `bound`.
-        const auto cost = [&](int tx, int ty, int64_t bound) {
+        // The mismatch of the copy moved by (tx, ty) over every `stride`-th
+        // link, given up at `bound`.
+        const auto cost = [&](int tx, int ty, int64_t bound, std::size_t stride = 1) {
             int64_t c = 0;
-            for (const Link& link : links) {
+            for (std::size_t li = 0; li < links.size(); li += stride) {
+                const Link& link = links[li];
                 const uint32_t mine = pack_position(position_x(link.mine) + tx, position_y(link.mine) + ty);
                 uint32_t onto;
                 c += link.has_view ? distance(mine, link.view) : penalty;
@@ -167,6 +171,30 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
         const int lo_y = -min_y, span_y = eh - (max_y - min_y);
         const uint64_t base = coherent::pixel_hash(seed, level, kRelocationPurpose, int(first % std::size_t(w)),
                                                    int(first / std::size_t(w)));
+        static const std::size_t screen = getenv("TMP_SCREEN") ? std::size_t(atoi(getenv("TMP_SCREEN"))) : 0;
+        static const int keep = getenv("TMP_KEEP") ? atoi(getenv("TMP_KEEP")) : 4;
+        if (screen > 0 && links.size() > screen) {
+            const std::size_t stride = (links.size() + screen - 1) / screen;
+            std::vector<std::pair<int64_t, int>> screened;
+            for (int t = 0; t < candidates; ++t) {
+                const uint64_t r = coherent::mix64(base + uint64_t(t));
+                const int tx = lo_x + int((r & 0xFFFFFFFF) % uint64_t(span_x));
+                const int ty = lo_y + int((r >> 32) % uint64_t(span_y));
+                screened.push_back({cost(tx, ty, INT64_MAX, stride), t});
+            }
+            std::sort(screened.begin(), screened.end());
+            for (int m = 0; m < keep && m < int(screened.size()); ++m) {
+                const uint64_t r = coherent::mix64(base + uint64_t(screened[std::size_t(m)].second));
+                const int tx = lo_x + int((r & 0xFFFFFFFF) % uint64_t(span_x));
+                const int ty = lo_y + int((r >> 32) % uint64_t(span_y));
+                const int64_t c = cost(tx, ty, best);
+                if (c < best) {
+                    best = c;
+                    best_x = tx;
+                    best_y = ty;
+                }
+            }
+        } else
         for (int t = 0; t < candidates; ++t) {
             const uint64_t r = coherent::mix64(base + uint64_t(t));
             const int tx = lo_x + int((r & 0xFFFFFFFF) % uint64_t(span_x));
