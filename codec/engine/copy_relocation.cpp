@@ -138,7 +138,8 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
                 links.push_back(link);
             }
         finish();
-        if (links.empty()) continue;
+        static const std::size_t min_px = getenv("TMP_MINPX") ? std::size_t(atoi(getenv("TMP_MINPX"))) : 0;
+        if (links.empty() || pixels.size() < min_px) continue;
         // A term that cannot be read (off the example) costs the copy's mean
         // term where it is, so that the sums of two translations compare.
         int64_t penalty = 0;
@@ -171,12 +172,14 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
         const int lo_y = -min_y, span_y = eh - (max_y - min_y);
         const uint64_t base = coherent::pixel_hash(seed, level, kRelocationPurpose, int(first % std::size_t(w)),
                                                    int(first / std::size_t(w)));
+        static const int per_link = getenv("TMP_PERLINK") ? atoi(getenv("TMP_PERLINK")) : 0;
+        const int tried = per_link > 0 ? std::clamp(int(links.size()) * per_link / 4, 8, candidates) : candidates;
         static const std::size_t screen = getenv("TMP_SCREEN") ? std::size_t(atoi(getenv("TMP_SCREEN"))) : 0;
         static const int keep = getenv("TMP_KEEP") ? atoi(getenv("TMP_KEEP")) : 4;
         if (screen > 0 && links.size() > screen) {
             const std::size_t stride = (links.size() + screen - 1) / screen;
             std::vector<std::pair<int64_t, int>> screened;
-            for (int t = 0; t < candidates; ++t) {
+            for (int t = 0; t < tried; ++t) {
                 const uint64_t r = coherent::mix64(base + uint64_t(t));
                 const int tx = lo_x + int((r & 0xFFFFFFFF) % uint64_t(span_x));
                 const int ty = lo_y + int((r >> 32) % uint64_t(span_y));
@@ -195,7 +198,7 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
                 }
             }
         } else
-        for (int t = 0; t < candidates; ++t) {
+        for (int t = 0; t < tried; ++t) {
             const uint64_t r = coherent::mix64(base + uint64_t(t));
             const int tx = lo_x + int((r & 0xFFFFFFFF) % uint64_t(span_x));
             const int ty = lo_y + int((r >> 32) % uint64_t(span_y));
