@@ -174,6 +174,25 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
                                                    int(first / std::size_t(w)));
         static const int per_link = getenv("TMP_PERLINK") ? atoi(getenv("TMP_PERLINK")) : 0;
         const int tried = per_link > 0 ? std::clamp(int(links.size()) * per_link / 4, 8, candidates) : candidates;
+        static const bool from_neighbours = getenv("TMP_NEIGHBOURS") != nullptr;
+        if (from_neighbours) {
+            // The translations that make the copy continue a neighbouring copy across one of its links.
+            std::vector<std::pair<int, int>> tried_moves;
+            for (const Link& link : links) {
+                if (!link.has_view) continue;
+                const int tx = position_x(link.view) - position_x(link.mine), ty = position_y(link.view) - position_y(link.mine);
+                if (tx == 0 && ty == 0) continue;
+                if (tx < lo_x || tx >= lo_x + span_x || ty < lo_y || ty >= lo_y + span_y) continue;
+                if (std::find(tried_moves.begin(), tried_moves.end(), std::make_pair(tx, ty)) != tried_moves.end()) continue;
+                tried_moves.push_back({tx, ty});
+                const int64_t c = cost(tx, ty, best);
+                if (c < best) {
+                    best = c;
+                    best_x = tx;
+                    best_y = ty;
+                }
+            }
+        }
         static const std::size_t screen = getenv("TMP_SCREEN") ? std::size_t(atoi(getenv("TMP_SCREEN"))) : 0;
         static const int keep = getenv("TMP_KEEP") ? atoi(getenv("TMP_KEEP")) : 4;
         if (screen > 0 && links.size() > screen) {
