@@ -331,7 +331,7 @@ struct LevelPasses {
             if (options.progress && !options.progress(done, total))
                 fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
         }
-        if (!band && l >= kRelocationMinLevel) relocate_copies(space, l, map, options.relocate, options.seed);
+        if (!band && l >= kRelocationMinLevel) relocate_copies(space, l, map, options.relocate, options.seed, options.threads);
         if (l == 0 && options.polish_passes > 0) {
             // Seams between coherent copies are placed by colours at last:
             // the coherence of the output's own pixels is what a viewer sees.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/image.hpp"
+#include "common/parallel.hpp"
 #include "engine/coherent_common.hpp"
 
 namespace vqtex {
@@ -32,7 +33,8 @@ struct Link {
 
 }  // namespace
 
-void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, int candidates, uint64_t seed) {
+void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, int candidates, uint64_t seed,
+                     int threads) {
     const int w = map.width, h = map.height;
     const std::size_t n = std::size_t(w) * std::size_t(h);
     if (candidates <= 0 || space.wraps || n < 2) return;
@@ -88,6 +90,87 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
         }
     for (std::size_t i = 0; i < n; ++i) label[i] = root(uint32_t(i));
 
+    if (getenv("TMP_JACOBI")) {
+        // Every copy scored against the map as it is, in parallel; then all moved.
+        std::vector<uint32_t> start(n + 1, 0), order(n);
+        for (std::size_t i = 0; i < n; ++i) ++start[label[i] + 1];
+        for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+        {
+            std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+            for (std::size_t i = 0; i < n; ++i) order[fill[label[i]]++] = uint32_t(i);
+        }
+        std::vector<uint32_t> roots;
+        for (std::size_t i = 0; i < n; ++i)
+            if (label[i] == i) roots.push_back(uint32_t(i));
+        std::vector<std::pair<int, int>> move(roots.size(), {0, 0});
+        parallel_for(threads, roots.size(), 4, [&](std::size_t r0, std::size_t r1) {
+            std::vector<Link> lk;
+            for (std::size_t ri = r0; ri < r1; ++ri) {
+                const uint32_t first = roots[ri];
+                const uint32_t* px = order.data() + start[first];
+                const std::size_t count = start[first + 1] - start[first];
+                if (2 * count >= n) continue;
+                int min_x = ew, min_y = eh, max_x = 0, max_y = 0;
+                for (std::size_t q = 0; q < count; ++q) {
+                    const uint32_t p = pos[px[q]];
+                    min_x = std::min(min_x, position_x(p)); max_x = std::max(max_x, position_x(p));
+                    min_y = std::min(min_y, position_y(p)); max_y = std::max(max_y, position_y(p));
+                }
+                lk.clear();
+                for (std::size_t q = 0; q < count; ++q)
+                    for (int k = 0; k < 4; ++k) {
+                        const std::size_t j = neighbour(px[q], k);
+                        if (label[j] == first) continue;
+                        Link link{pos[px[q]], pos[j], 0, false, int8_t(kStepX[k]), int8_t(kStepY[k])};
+                        link.has_view = moved(pos[j], -kStepX[k] * s, -kStepY[k] * s, link.view);
+                        lk.push_back(link);
+                    }
+                if (lk.empty()) continue;
+                int64_t penalty = 0;
+                {
+                    int64_t sum = 0, terms = 0;
+                    for (const Link& link : lk) {
+                        uint32_t onto;
+                        if (link.has_view) sum += distance(link.mine, link.view), ++terms;
+                        if (moved(link.mine, link.dx * s, link.dy * s, onto)) sum += distance(onto, link.there), ++terms;
+                    }
+                    penalty = terms ? sum / terms : 0;
+                }
+                const auto cost = [&](int tx, int ty, int64_t bound) {
+                    int64_t c = 0;
+                    for (const Link& link : lk) {
+                        const uint32_t mine = pack_position(position_x(link.mine) + tx, position_y(link.mine) + ty);
+                        uint32_t onto;
+                        c += link.has_view ? distance(mine, link.view) : penalty;
+                        c += moved(mine, link.dx * s, link.dy * s, onto) ? distance(onto, link.there) : penalty;
+                        if (c >= bound) break;
+                    }
+                    return c;
+                };
+                int64_t best = cost(0, 0, INT64_MAX);
+                const int lo_x = -min_x, span_x = ew - (max_x - min_x);
+                const int lo_y = -min_y, span_y = eh - (max_y - min_y);
+                const uint64_t base = coherent::pixel_hash(seed, level, kRelocationPurpose, int(first % uint32_t(w)),
+                                                           int(first / uint32_t(w)));
+                for (int t = 0; t < candidates; ++t) {
+                    const uint64_t r = coherent::mix64(base + uint64_t(t));
+                    const int tx = lo_x + int((r & 0xFFFFFFFF) % uint64_t(span_x));
+                    const int ty = lo_y + int((r >> 32) % uint64_t(span_y));
+                    const int64_t c = cost(tx, ty, best);
+                    if (c < best) { best = c; move[ri] = {tx, ty}; }
+                }
+            }
+        });
+        for (std::size_t ri = 0; ri < roots.size(); ++ri) {
+            if (move[ri].first == 0 && move[ri].second == 0) continue;
+            const uint32_t first = roots[ri];
+            for (uint32_t q = start[first]; q < start[first + 1]; ++q) {
+                uint32_t& p = pos[order[q]];
+                p = pack_position(position_x(p) + move[ri].first, position_y(p) + move[ri].second);
+            }
+        }
+        return;
+    }
     // Copies one by one, by their first pixel; each sees the ones before it
     // where they were moved. A copy done is labelled kDone.
     constexpr uint32_t kDone = UINT32_MAX;
@@ -216,17 +299,36 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
                     best_y = ty;
                 }
             }
-        } else
-        for (int t = 0; t < tried; ++t) {
-            const uint64_t r = coherent::mix64(base + uint64_t(t));
-            const int tx = lo_x + int((r & 0xFFFFFFFF) % uint64_t(span_x));
-            const int ty = lo_y + int((r >> 32) % uint64_t(span_y));
-            const int64_t c = cost(tx, ty, best);
-            if (c < best) {
-                best = c;
-                best_x = tx;
-                best_y = ty;
-            }
+        } else {
+            // The positions in chunks, one per thread when the copy has
+            // links enough to pay for it: each chunk keeps its first
+            // lowest cost under the unmoved copy's, and the chunks are
+            // merged in order, so the first lowest over all positions wins,
+            // as one thread would find it.
+            const int chunks = threads > 1 && links.size() * std::size_t(tried) >= 4096 ? threads : 1;
+            std::vector<int64_t> chunk_best(std::size_t(chunks), best);
+            std::vector<int> chunk_x(std::size_t(chunks), 0), chunk_y(std::size_t(chunks), 0);
+            const int per = (tried + chunks - 1) / chunks;
+            parallel_for(chunks, std::size_t(chunks), 1, [&](std::size_t c0, std::size_t c1) {
+                for (std::size_t ci = c0; ci < c1; ++ci)
+                    for (int t = int(ci) * per; t < std::min(tried, int(ci + 1) * per); ++t) {
+                        const uint64_t r = coherent::mix64(base + uint64_t(t));
+                        const int tx = lo_x + int((r & 0xFFFFFFFF) % uint64_t(span_x));
+                        const int ty = lo_y + int((r >> 32) % uint64_t(span_y));
+                        const int64_t c = cost(tx, ty, chunk_best[ci]);
+                        if (c < chunk_best[ci]) {
+                            chunk_best[ci] = c;
+                            chunk_x[ci] = tx;
+                            chunk_y[ci] = ty;
+                        }
+                    }
+            });
+            for (int ci = 0; ci < chunks; ++ci)
+                if (chunk_best[std::size_t(ci)] < best) {
+                    best = chunk_best[std::size_t(ci)];
+                    best_x = chunk_x[std::size_t(ci)];
+                    best_y = chunk_y[std::size_t(ci)];
+                }
         }
         if (best_x != 0 || best_y != 0)
             for (uint32_t i : pixels)
