@@ -25,9 +25,9 @@ namespace vqtex {
 // Relocates the copies of `map`, level `level` of the synthesis (its
 // positions `space.levels[level].spacing` apart; that level's appearance
 // vectors must be present). Integer, and the same map for any thread
-// count: copies go one after another, and a copy's positions are scored
-// on up to `threads` threads. Does nothing for a tileable example (its
-// copies wrap).
+// count: every copy is scored against the map as it is, on up to
+// `threads` threads, and all are moved afterwards. Does nothing for a
+// tileable example (its copies wrap).
 void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, int candidates, uint64_t seed,
                      int threads = 1);
 
