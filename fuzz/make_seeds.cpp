@@ -1,9 +1,9 @@
 // make_seeds.cpp - writes the fuzzers' seed corpora from the project's own
 // corpus/ images, with the public API: valid .vqt files covering every
 // format feature (keyed and keyless entries, noise and parent init, seam
-// closing on and off, 1 to 4 channels, every precision; format v5 atlas
-// files as the encoder writes them, the same as v3 and v4, and v5 files
-// with a stored exemplar size and stored parameters), and encoder inputs
+// closing on and off, 1 to 4 channels, every precision; format v6 atlas
+// files as the encoder writes them, the same as v3, v4 and v5, and v6
+// files with a stored exemplar size and stored parameters), and encoder inputs
 // in fuzz_encode.cpp's layout. Small crops keep the seeds small, which is
 // what mutation works best on. Usage: make_seeds CORPUS_DIR OUT_DIR
 #include <cstdio>
@@ -118,9 +118,9 @@ int main(int argc, char** argv) {
         }
     }
     // Atlas files: each channel count, a preset and a target size, as the
-    // encoder writes them (v5), as v3 (ATLS and SYNP sections) and as v4
-    // (no blend), so the fuzzers reach every reader and dav1d; every other
-    // one also as a v5
+    // encoder writes them (v6), as v3 (ATLS and SYNP sections), as v4 (no
+    // blend) and as v5 (no relocation), so the fuzzers reach every reader
+    // and dav1d; every other one also as a v6
     // file with the packed byte's optional fields, an exemplar size that
     // is not the atlas's and parameters that are not the defaults.
     for (size_t i = 0; i < std::size(images); ++i) {
@@ -149,16 +149,18 @@ int main(int argc, char** argv) {
                 vqtex::encode_atlas_file_v3(f.header, f.atlas.width, f.atlas.height, bits, f.params);
             write(out / "decode" / (name + "_v3.vqt"), v3.data(), v3.size());
             ++files;
-            if (f.parameter_bytes == 0) {
-                // Version 4: the same bytes with the version 4 and the
-                // checksum made again (its default parameters have no blend).
-                std::vector<uint8_t> v4(data, data + size);
-                v4[8] = 4;
-                const uint32_t crc = vqtex::crc32(v4.data(), v4.size() - 4);
-                for (int k = 0; k < 4; ++k) v4[v4.size() - 4 + std::size_t(k)] = uint8_t(crc >> (8 * k));
-                write(out / "decode" / (name + "_v4.vqt"), v4.data(), v4.size());
-                ++files;
-            }
+            if (f.parameter_bytes == 0)
+                for (uint8_t version : {uint8_t(4), uint8_t(5)}) {
+                    // Versions 4 and 5: the same bytes with the version and
+                    // the checksum made again (their default parameters
+                    // have no blend, no relocation).
+                    std::vector<uint8_t> old(data, data + size);
+                    old[8] = version;
+                    const uint32_t crc = vqtex::crc32(old.data(), old.size() - 4);
+                    for (int k = 0; k < 4; ++k) old[old.size() - 4 + std::size_t(k)] = uint8_t(crc >> (8 * k));
+                    write(out / "decode" / (name + "_v" + std::to_string(version) + ".vqt"), old.data(), old.size());
+                    ++files;
+                }
             if (i % 2 == 0) {
                 vqtex::FileHeader h = f.header;
                 h.exemplar_width += 5;
@@ -169,8 +171,9 @@ int main(int argc, char** argv) {
                 sp.coherence = 2;
                 sp.jitter = 30;
                 sp.blend = 3;
-                const std::vector<uint8_t> v5 = vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, sp);
-                write(out / "decode" / (name + "_fields.vqt"), v5.data(), v5.size());
+                sp.relocate = 16;
+                const std::vector<uint8_t> v6 = vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, sp);
+                write(out / "decode" / (name + "_fields.vqt"), v6.data(), v6.size());
                 ++files;
             }
         } catch (const std::exception& e) {

@@ -93,13 +93,14 @@ std::size_t atlas_payload_offset(const std::vector<uint8_t>& file) {
     return 0;
 }
 
-// The atlas bitstream of a v5 file, and the same content as a v3 file
-// (the encoder writes v5; v3 must go on decoding), which has no blend.
-std::vector<uint8_t> bitstream_of(const std::vector<uint8_t>& v5) {
-    const vqtex::AtlasFile f = vqtex::decode_atlas_file(v5.data(), v5.size(), 1u << 30);
-    EXPECT_EQ(f.header.version, 5);
-    return std::vector<uint8_t>(v5.begin() + std::ptrdiff_t(f.bitstream_offset),
-                                v5.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
+// The atlas bitstream of a v6 file, and the same content as a v3 file
+// (the encoder writes v6; v3 must go on decoding), which has no blend and
+// no relocation.
+std::vector<uint8_t> bitstream_of(const std::vector<uint8_t>& file) {
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(file.data(), file.size(), 1u << 30);
+    EXPECT_EQ(f.header.version, 6);
+    return std::vector<uint8_t>(file.begin() + std::ptrdiff_t(f.bitstream_offset),
+                                file.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
 }
 
 std::vector<uint8_t> as_v3(const std::vector<uint8_t>& v5) {
@@ -118,7 +119,7 @@ std::vector<uint8_t> varints(std::initializer_list<uint64_t> values) {
 // them (the bitstream), with a correct checksum: what a hostile writer can
 // make (docs/FORMAT.md 8.7).
 std::vector<uint8_t> compact_file(uint8_t packed, const std::vector<uint8_t>& fields,
-                                  const std::vector<uint8_t>& tail, uint16_t version = 5) {
+                                  const std::vector<uint8_t>& tail, uint16_t version = 6) {
     vqtex::ByteWriter w;
     w.bytes(vqtex::kMagic, sizeof vqtex::kMagic);
     w.u16(version);
@@ -225,7 +226,7 @@ TEST(AtlasFile, RoundTripDecodesAtAnySizeAndInspects) {
     EXPECT_EQ(stats.bytes, file.size());
     EXPECT_EQ(stats.levels, 6u);
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
-    EXPECT_EQ(info.format_version, 5u);
+    EXPECT_EQ(info.format_version, 6u);
     EXPECT_EQ(info.exemplar_width, 128u);
     EXPECT_EQ(info.levels, 6u);
     EXPECT_EQ(info.atlas_width, 128u);
@@ -416,10 +417,10 @@ TEST(AtlasFile, HostileSectionsAreCorruptOrOverTheLimitNeverACrash) {
     expect_over_limit_and_not_an_animation(file, p);
 }
 
-// Format v5 holds what v3 holds behind a smaller header, plus the blend: from the same
-// bitstream, header fields and parameters (blend 0), the two decode to the
-// same pixels, at the default size and seed and at others; with the default
-// blend they differ. The cases cover each
+// Format v6 holds what v3 holds behind a smaller header, plus the blend and
+// the relocation: from the same bitstream, header fields and parameters
+// (blend 0, relocation 0), the two decode to the same pixels, at the
+// default size and seed and at others; with the defaults they differ. The cases cover each
 // channel count, a crop (the exemplar size stored), non-default parameters
 // with a wrapping atlas, and a seed that needs six varint bytes.
 TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
@@ -428,13 +429,13 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         uint32_t ew, eh;
         uint64_t seed;
         bool parameters;
-        std::size_t overhead;  // of the v5 file: everything but the bitstream
+        std::size_t overhead;  // of the v6 file: everything but the bitstream
     };
     const Case cases[] = {
         {3, 64, 64, 64, 64, 1, false, 18},  // 10 + packed + 64 + 64 + seed + CRC
         {1, 16, 16, 16, 16, 0, false, 18},
-        {2, 12, 16, 64, 64, 300, true, 30},               // + 64, 64; seed 2 bytes; parameters 9 (bias 300 takes 2)
-        {4, 40, 24, 64, 64, (1ull << 40) + 3, true, 34},  // seed of 41 bits: 6 bytes
+        {2, 12, 16, 64, 64, 300, true, 31},               // + 64, 64; seed 2 bytes; parameters 10 (bias 300 takes 2)
+        {4, 40, 24, 64, 64, (1ull << 40) + 3, true, 35},  // seed of 41 bits: 6 bytes
     };
     const vqtex::Image rgba = load_corpus("leaves_rgba_64.png");
     for (const Case& c : cases) {
@@ -457,6 +458,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
             sp.roll = false;
             sp.jitter = 40;
             sp.blend = 0;  // version 3's, so that their decodes compare
+            sp.relocate = 0;
         }
         const std::vector<uint8_t> v4 = vqtex::encode_atlas_file(h, c.aw, c.ah, bits, sp);
         const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(h, c.aw, c.ah, bits, sp);
@@ -466,10 +468,12 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         EXPECT_EQ(bitstream_of(v4), bits) << what;
         const vqtex::AtlasFile f4 = vqtex::decode_atlas_file(v4.data(), v4.size(), 1u << 30);
         const vqtex::AtlasFile f3 = vqtex::decode_atlas_file(v3.data(), v3.size(), 1u << 30);
-        EXPECT_EQ(f4.header.version, 5);
+        EXPECT_EQ(f4.header.version, 6);
         EXPECT_EQ(f3.header.version, 3);
         EXPECT_EQ(f4.params.blend, sp.blend) << what;
         EXPECT_EQ(f3.params.blend, 0) << what;
+        EXPECT_EQ(f4.params.relocate, sp.relocate) << what;
+        EXPECT_EQ(f3.params.relocate, 0) << what;
         EXPECT_EQ(f4.header.exemplar_width, c.ew) << what;
         EXPECT_EQ(f4.header.exemplar_height, c.eh) << what;
         EXPECT_EQ(f4.header.channels, f3.header.channels) << what;
@@ -483,7 +487,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         EXPECT_EQ(f4.params.coherence, sp.coherence) << what;
         EXPECT_EQ(f4.params.roll, sp.roll) << what;
         EXPECT_EQ(f4.params.jitter, sp.jitter) << what;
-        EXPECT_EQ(f4.parameter_bytes, c.parameters ? 9u : 0u) << what;
+        EXPECT_EQ(f4.parameter_bytes, c.parameters ? 10u : 0u) << what;
         EXPECT_EQ(f4.atlas.pixels, f3.atlas.pixels) << what;
         EXPECT_EQ(f4.atlas.pixels,
                   vqtex::decode_atlas(bits.data(), bits.size(), c.aw, c.ah, c.channels, "atlas").pixels);
@@ -491,7 +495,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
             const vqtex::Image a = decode(v4, p), b = decode(v3, p);
             EXPECT_EQ(a.width, p.width ? int(p.width) : int(c.ew)) << what;
             // The same positions; the default blend mixes the copies at seams.
-            if (sp.blend == 0)
+            if (sp.blend == 0 && sp.relocate == 0)
                 EXPECT_EQ(a.pixels, b.pixels) << what << ", output " << p.width << "x" << p.height;
             else
                 EXPECT_NE(a.pixels, b.pixels) << what << ", output " << p.width << "x" << p.height;
@@ -505,14 +509,14 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
 TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
     const vqtex::Image ex = load_corpus("checks_p16_64.png");
     const std::vector<uint8_t> file = encode(ex, atlas_params(600));
-    ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 5u);
+    ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 6u);
     const vqtex_decode_params p = decode_params(24, 20);
     for (std::size_t n = 0; n < file.size(); ++n) {
         const std::vector<uint8_t> cut(file.begin(), file.begin() + std::ptrdiff_t(n));
         vqtex_status st = VQTEX_OK;
         decode(cut, p, &st);
         // Under 18 bytes (signature, version, packed byte, three one-byte
-        // varints, CRC) a file cannot be version 5; beyond, the last four
+        // varints, CRC) a file cannot be version 4 to 6; beyond, the last four
         // bytes are not the checksum of the rest.
         EXPECT_EQ(st, n < 18 ? VQTEX_ERROR_TRUNCATED : VQTEX_ERROR_CHECKSUM) << "prefix of " << n << " bytes";
     }
@@ -522,15 +526,15 @@ TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
             bad[i] ^= uint8_t(1 << bit);
             vqtex_status st = VQTEX_OK;
             decode(bad, p, &st);
-            // The version, 5, flips to 4 (a version the checksum then
-            // rejects), to 1 (whose header's checksum is elsewhere: any
-            // error) or to 7, 13, 21, ... (unknown).
+            // The version, 6, flips to 4 (a version the checksum then
+            // rejects), to 2 (an animation's, whose header's checksum is
+            // elsewhere: any error) or to 7, 14, 22, ... (unknown).
             if (i == 8 && bit == 2) {
-                EXPECT_NE(st, VQTEX_OK) << "version 1";
+                EXPECT_NE(st, VQTEX_OK) << "version 2";
                 continue;
             }
             const vqtex_status expected = i < 8                    ? VQTEX_ERROR_BAD_MAGIC
-                                          : i == 8 && bit == 0    ? VQTEX_ERROR_CHECKSUM
+                                          : i == 8 && bit == 1    ? VQTEX_ERROR_CHECKSUM
                                           : i < 10                ? VQTEX_ERROR_UNSUPPORTED_VERSION
                                                                   : VQTEX_ERROR_CHECKSUM;
             EXPECT_EQ(st, expected) << "byte " << i << " bit " << bit;
@@ -590,6 +594,22 @@ TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
     EXPECT_EQ(status_of(v5_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0}))), corrupt) << "no blend: the bitstream's first byte, an OBU header (10), read as it";
     EXPECT_EQ(status_of(v5_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 0}))), VQTEX_OK) << "blend 0";
     EXPECT_EQ(status_of(v5_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 16, 3}))), VQTEX_OK);
+    // Version 6 ends them with the relocation (default 64, at most 1024).
+    const auto v6_file = [&](const std::vector<uint8_t>& fields) {
+        return compact_file(packed | 1 << 6, fields, bits, 6);
+    };
+    EXPECT_EQ(status_of(v6_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64}))), corrupt) << "v6 defaults";
+    EXPECT_EQ(status_of(v6_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 1025}))), corrupt)
+        << "relocation 1025";
+    EXPECT_EQ(status_of(v6_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 4, 64}))), corrupt) << "blend 4";
+    EXPECT_EQ(status_of(v6_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2}))), corrupt)
+        << "no relocation: the bitstream's first byte, an OBU header (10), read as it";
+    EXPECT_EQ(status_of(v6_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 0}))), VQTEX_OK) << "relocation 0";
+    EXPECT_EQ(status_of(v6_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 1024}))), VQTEX_OK);
+    // A version 5 file with no parameters decodes without relocation: the
+    // pixels of a version 6 file that stores relocation 0.
+    EXPECT_EQ(decode(compact_file(packed, varints({128, 128, 1}), bits, 5), p).pixels,
+              decode(v6_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 0})), p).pixels);
     // A version 4 file with no parameters decodes without a blend: the
     // pixels of a version 5 file that stores blend 0.
     EXPECT_EQ(decode(compact_file(packed, varints({128, 128, 1}), bits, 4), p).pixels,
@@ -669,6 +689,29 @@ TEST(AtlasFile, GoldenBlendFileDecodesToKnownPixels) {
     // images may be turned against each other; Coherent.BlendIsThe-
     // FormatsWeightedMeanAndChangesOnlySeams checks the blend itself.)
     EXPECT_NE(img.pixels, unblended.pixels);
+}
+
+// Pins format version 6 and its decoder, the copy relocation included
+// (tests/golden/README.md): vqtex-encode corpus/cellular_128.png
+// cellular_v6.vqt --target-size 1500, decoded at 96x80 with seed 5. The file
+// is cellular_v5.vqt with the version 6 (the same atlas), so the two
+// decodes differ by the relocation alone.
+TEST(AtlasFile, GoldenRelocationFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes = read_file(std::string(VQTEX_GOLDEN_DIR) + "/cellular_v6.vqt");
+    ASSERT_FALSE(bytes.empty()) << "missing tests/golden/cellular_v6.vqt";
+    EXPECT_EQ(bytes.size(), 1480u);
+    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).format_version, 6u);
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
+    EXPECT_EQ(f.params.blend, 2);
+    EXPECT_EQ(f.params.relocate, 64);
+    const vqtex::Image img = decode(bytes, decode_params(96, 80, 5));
+    const uint64_t hash = fnv1a(img.pixels.data(), img.pixels.size());
+    EXPECT_EQ(hash, 0x6ce570a9bfe0beccull) << std::hex << "decoded hash 0x" << hash;
+    std::vector<uint8_t> as_v5 = bytes;
+    as_v5[8] = 5;
+    fix_crc(as_v5);
+    const vqtex::Image unmoved = decode(as_v5, decode_params(96, 80, 5));
+    EXPECT_EQ(fnv1a(unmoved.pixels.data(), unmoved.pixels.size()), 0x8f940d3240fdfd76ull) << "the v5 golden's";
 }
 
 TEST(AtlasFile, ParametersOutsideTheAtlasPathAreRefused) {

@@ -13,6 +13,7 @@
 #include "engine/appearance.hpp"
 #include "engine/coherence_sets.hpp"
 #include "engine/coherent_synthesis.hpp"
+#include "engine/copy_relocation.hpp"
 #include "engine/pyramid.hpp"
 #include "engine/seam_blend.hpp"
 #include "test_support.hpp"
@@ -253,6 +254,62 @@ TEST(Coherent, CoherenceSetsEqualBruteForce) {
     }
 }
 
+// The copy relocation (copy_relocation.hpp) moves each copy whole: every
+// pixel of a copy by the same translation, inside the example; a copy
+// covering half the level stays; no positions tried, nothing moves; and
+// the map is the same for any thread count.
+TEST(Coherent, RelocationMovesWholeCopiesInsideTheExample) {
+    const Image ex = textured(48, 40, 3);
+    const AppearanceSpace space = build_appearance_space(ex, 3, false, 1);
+    const int level = 1, s = space.levels[level].spacing;
+    ASSERT_EQ(s, 2);
+    // Three copies that do not continue one another: A, the left 14
+    // columns (more than half the map), and B and C, the top and bottom
+    // halves of the rest.
+    PositionMap map{24, 20, std::vector<uint32_t>(24 * 20)};
+    std::vector<int> copy_of(map.positions.size());
+    for (int y = 0; y < 20; ++y)
+        for (int x = 0; x < 24; ++x) {
+            const std::size_t i = std::size_t(y) * 24 + std::size_t(x);
+            copy_of[i] = x < 14 ? 0 : y < 10 ? 1 : 2;
+            map.positions[i] = copy_of[i] == 0   ? pack_position(1 + x * s, y * s)
+                               : copy_of[i] == 1 ? pack_position(5 + (x - 14) * s, 3 + y * s)
+                                                 : pack_position(20 + (x - 14) * s, 7 + (y - 10) * s);
+        }
+    PositionMap none = map;
+    relocate_copies(space, level, none, 0, 7, 1);
+    EXPECT_EQ(none.positions, map.positions);
+    PositionMap one = map, three = map;
+    relocate_copies(space, level, one, 64, 7, 1);
+    relocate_copies(space, level, three, 64, 7, 3);
+    EXPECT_EQ(one.positions, three.positions);
+    int moved_copies = 0;
+    for (int c = 0; c < 3; ++c) {
+        bool first = true;
+        int dx = 0, dy = 0;
+        for (std::size_t i = 0; i < map.positions.size(); ++i) {
+            if (copy_of[i] != c) continue;
+            const uint32_t after = one.positions[i];
+            ASSERT_LT(position_x(after), ex.width);
+            ASSERT_LT(position_y(after), ex.height);
+            const int ddx = position_x(after) - position_x(map.positions[i]);
+            const int ddy = position_y(after) - position_y(map.positions[i]);
+            if (first) {
+                dx = ddx;
+                dy = ddy;
+                first = false;
+            }
+            ASSERT_EQ(ddx, dx) << "copy " << c << " pixel " << i;
+            ASSERT_EQ(ddy, dy) << "copy " << c << " pixel " << i;
+        }
+        if (c == 0) {
+            EXPECT_TRUE(dx == 0 && dy == 0) << "the copy covering half the map moved";
+        }
+        moved_copies += dx != 0 || dy != 0;
+    }
+    EXPECT_GT(moved_copies, 0) << "no copy found a better place among 64";
+}
+
 TEST(Coherent, UpsampledChildrenAreCoherentBlocksInsideTheExample) {
     const Image ex = textured(40, 33, 2);
     const AppearanceSpace space = build_appearance_space(ex, 3, false, 1);
@@ -365,19 +422,23 @@ TEST(Coherent, GoldenHash) {
     // The engine's bytes pinned across builds, compilers and kernel sets
     // (the simd_whole_decode test forces each set): a change of this hash
     // is a change of every output, to be made on purpose and noted.
-    // Without the blend, the positions' pixels as before it existed; with
-    // the default blend, what the engine gives now.
+    // Without the blend and the relocation, the positions' pixels as before
+    // either existed; with the blend alone, as before the relocation; with
+    // the defaults, what the engine gives now.
     const Image ex = brick_wall(96, 96, 7);
-    const auto hash_of = [&](uint32_t blend) {
+    const auto hash_of = [&](uint32_t blend, uint32_t relocate) {
         vqtex_synth_params p = coherent_params(150, 110, 9);
         p.blend = blend;
+        p.relocate = relocate;
         uint64_t h = 0xcbf29ce484222325ull;
         for (uint8_t v : vqtex_test::synthesize(ex, p).pixels) h = (h ^ v) * 0x100000001b3ull;
         return h;
     };
-    EXPECT_EQ(hash_of(0), 0x217a760a4b8cbd8dull) << std::hex << hash_of(0);
+    EXPECT_EQ(hash_of(0, 0), 0x217a760a4b8cbd8dull) << std::hex << hash_of(0, 0);
+    EXPECT_EQ(hash_of(2, 0), 0xe57f22f79c9296b9ull) << std::hex << hash_of(2, 0);
     EXPECT_EQ(coherent_params(1, 1, 1).blend, 2u);
-    EXPECT_EQ(hash_of(2), 0xe57f22f79c9296b9ull) << std::hex << hash_of(2);
+    EXPECT_EQ(coherent_params(1, 1, 1).relocate, 64u);
+    EXPECT_EQ(hash_of(2, 64), 0x83b06954069c3180ull) << std::hex << hash_of(2, 64);
 }
 
 // docs/FORMAT.md 8.8's blend, as written there, for pixel (x, y) of a map.
@@ -593,6 +654,9 @@ TEST(Coherent, TileableExampleKeepsItsPeriod) {
     auto agreement = [&](bool tileable) {
         vqtex_synth_params p = coherent_params(160, 144, 5);
         p.model.example_tileable = tileable ? 1 : 0;
+        // The copy relocation leaves a tileable example's copies alone (they
+        // wrap); off for both, the two engines compared are the same one.
+        p.relocate = 0;
         const Image out = vqtex_test::synthesize(ex, p);
         std::size_t same = 0;
         for (int y = 0; y < out.height; ++y)

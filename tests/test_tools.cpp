@@ -145,11 +145,13 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     r = info_tool(vqt);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("checksum OK"), std::string::npos) << r.output;
-    // A still texture is an atlas by default (format 5, whose parts inspect
+    // A still texture is an atlas by default (format 6, whose parts inspect
     // names as format 3's sections); --trees stores the paper's codebooks
     // (format 1).
-    EXPECT_NE(r.output.find("format 5"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("seams blended over 2 pixels"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("format 6"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("seams blended over 2 pixels, copies relocated (64 positions tried each)"),
+              std::string::npos)
+        << r.output;
     EXPECT_NE(r.output.find("ATLS"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("atlas     128x128, coded as AV1"), std::string::npos) << r.output;
     const std::string trees = (dir / "t.vqt").string();

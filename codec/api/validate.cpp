@@ -8,6 +8,7 @@
 #include "api/api_support.hpp"
 #include "common/error.hpp"
 #include "engine/neighborhood.hpp"
+#include "engine/copy_relocation.hpp"
 #include "engine/seam_blend.hpp"
 #include "tsvq/tsvq_search.hpp"
 
@@ -88,6 +89,10 @@ void validate(const vqtex_synth_params* p) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "blend must be 0 to " + std::to_string(kMaxBlendRadius) +
                                                " (the radius of the blend at seams, in pixels; got " +
                                                std::to_string(p->blend) + ")");
+    if (p->relocate > uint32_t(kMaxRelocationPositions))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "relocate must be 0 to " + std::to_string(kMaxRelocationPositions) +
+                                               " (positions tried per copy by the copy relocation; got " +
+                                               std::to_string(p->relocate) + ")");
     validate(p->model);
     check_search(p->search);
     check_backtrack(p->backtrack, kNoLimit, "");

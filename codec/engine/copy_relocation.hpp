@@ -22,6 +22,11 @@
 
 namespace vqtex {
 
+// vqtex_synthesize's positions per copy (format version 6 has its own,
+// fixed, default of the same value), and the most it accepts.
+inline constexpr int kDefaultRelocationPositions = 64;
+inline constexpr int kMaxRelocationPositions = 1024;
+
 // Relocates the copies of `map`, level `level` of the synthesis (its
 // positions `space.levels[level].spacing` apart; that level's appearance
 // vectors must be present). Integer, and the same map for any thread

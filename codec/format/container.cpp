@@ -81,7 +81,8 @@ uint16_t read_format_version(const uint8_t* data, std::size_t size) {
              "file is format version " + std::to_string(version) + "; this library reads versions " +
                  std::to_string(kFormatVersion) + " (still textures), " + std::to_string(kVolumeFormatVersion) +
                  " (animations), " + std::to_string(kAtlasFormatVersion) + ", " +
-                 std::to_string(kCompactAtlasFormatVersion) + " and " + std::to_string(kBlendAtlasFormatVersion) +
+                 std::to_string(kCompactAtlasFormatVersion) + ", " + std::to_string(kBlendAtlasFormatVersion) +
+                 " and " + std::to_string(kRelocationAtlasFormatVersion) +
                  " (atlas textures): use a matching vqtex release");
     return version;
 }

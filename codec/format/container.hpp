@@ -29,10 +29,15 @@ inline constexpr uint16_t kAtlasFormatVersion = 3;
 inline constexpr uint16_t kCompactAtlasFormatVersion = 4;
 // Version 5 (docs/FORMAT.md section 8.8): version 4's layout with one more
 // parameter, the radius of the blend at the output's seams, which version 4
-// files decode without, as they always have. The encoder writes version 5.
+// files decode without, as they always have.
 inline constexpr uint16_t kBlendAtlasFormatVersion = 5;
+// Version 6 (docs/FORMAT.md section 8.9): version 5's layout with one more
+// parameter, the positions tried per copy by the copy relocation, which
+// versions 4 and 5 decode without. The encoder writes version 6.
+inline constexpr uint16_t kRelocationAtlasFormatVersion = 6;
 inline bool is_compact_atlas_version(uint16_t version) {
-    return version == kCompactAtlasFormatVersion || version == kBlendAtlasFormatVersion;
+    return version == kCompactAtlasFormatVersion || version == kBlendAtlasFormatVersion ||
+           version == kRelocationAtlasFormatVersion;
 }
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;

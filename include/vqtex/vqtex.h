@@ -165,6 +165,9 @@ typedef struct vqtex_synth_params {
                                   1/256 of the level's spacing, 0 to 1024 [--jitter] */
     uint32_t blend;            /* still textures: radius of the blend of the copies that meet at the
                                   output's seams, 0 (none) to 3; default 2 [--blend] */
+    uint32_t relocate;         /* still textures: positions tried per copy by the copy relocation,
+                                  which moves whole copies to where they fit the copies around
+                                  them; 0 (none) to 1024, default 64 [--relocate] */
     /* Paper engine (the coherent one reads model.levels and
      * model.example_tileable only). */
     vqtex_model_params model;
@@ -322,8 +325,9 @@ typedef struct vqtex_file_info {
     vqtex_section_info sections[VQTEX_MAX_SECTIONS];
     uint32_t exemplar_frames;                      /* animated texture: frames of the example; 0 for a still one */
     uint8_t window_frames[VQTEX_MAX_LEVELS];       /* animated texture: D of each level's {RxCxD,k} */
-    uint32_t atlas_width, atlas_height;            /* atlas texture (format 3 to 5): the atlas's size; 0 otherwise */
-    uint32_t blend;                                /* atlas texture: radius of the blend at seams (format 5); 0 otherwise */
+    uint32_t atlas_width, atlas_height;            /* atlas texture (format 3 to 6): the atlas's size; 0 otherwise */
+    uint32_t blend;                                /* atlas texture: radius of the blend at seams (format 5, 6); 0 otherwise */
+    uint32_t relocate;                             /* atlas texture: positions tried per copy by the copy relocation (format 6); 0 otherwise */
 } vqtex_file_info;
 
 /* Verifies and describes a file (everything the decoder checks). */
