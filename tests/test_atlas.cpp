@@ -666,52 +666,53 @@ TEST(AtlasFile, GoldenCompactFileDecodesToKnownPixels) {
     EXPECT_EQ(hash, 0x2eda1c7bb1a70f4bull) << std::hex << "decoded hash 0x" << hash;
 }
 
-// Pins format version 5 and its decoder, the blend at seams included
-// (tests/golden/README.md): vqtex-encode corpus/cellular_128.png
-// cellular_v5.vqt --target-size 1500, decoded at 96x80 with seed 5. The file
-// is cellular_v4.vqt with the version 5 (the same atlas), so the two
-// decodes differ by the blend alone.
-TEST(AtlasFile, GoldenBlendFileDecodesToKnownPixels) {
-    const std::vector<uint8_t> bytes = read_file(std::string(VQTEX_GOLDEN_DIR) + "/cellular_v5.vqt");
-    ASSERT_FALSE(bytes.empty()) << "missing tests/golden/cellular_v5.vqt";
-    EXPECT_EQ(bytes.size(), 1480u);
-    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).format_version, 5u);
-    EXPECT_EQ(vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30).params.blend, 2);
+// A golden compact file (tests/golden/README.md), 1480 bytes: its version
+// and the hash of its decode at 96x80 with seed 5, then the same bytes as
+// the version before it (the same atlas), whose decode must be that
+// version's golden hash and differ from this one's by what the newer
+// version adds. Returns the file.
+std::vector<uint8_t> check_golden_compact(const char* name, unsigned version, uint64_t hash, uint64_t previous_hash) {
+    const std::vector<uint8_t> bytes = read_file(std::string(VQTEX_GOLDEN_DIR) + "/" + name);
+    EXPECT_EQ(bytes.size(), 1480u) << "tests/golden/" << name;
+    if (bytes.size() < 16) return bytes;
+    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).format_version, version);
     const vqtex::Image img = decode(bytes, decode_params(96, 80, 5));
-    const uint64_t hash = fnv1a(img.pixels.data(), img.pixels.size());
-    EXPECT_EQ(hash, 0x8f940d3240fdfd76ull) << std::hex << "decoded hash 0x" << hash;
-    std::vector<uint8_t> as_v4 = bytes;
-    as_v4[8] = 4;
-    fix_crc(as_v4);
-    const vqtex::Image unblended = decode(as_v4, decode_params(96, 80, 5));
-    EXPECT_EQ(fnv1a(unblended.pixels.data(), unblended.pixels.size()), 0x2eda1c7bb1a70f4bull) << "the v4 golden's";
-    // (Where the torus is cut open follows the blended pixels, so the two
-    // images may be turned against each other; Coherent.BlendIsThe-
-    // FormatsWeightedMeanAndChangesOnlySeams checks the blend itself.)
-    EXPECT_NE(img.pixels, unblended.pixels);
+    const uint64_t got = fnv1a(img.pixels.data(), img.pixels.size());
+    EXPECT_EQ(got, hash) << std::hex << name << " decoded hash 0x" << got;
+    std::vector<uint8_t> previous = bytes;
+    previous[8] = uint8_t(version - 1);
+    fix_crc(previous);
+    const vqtex::Image before = decode(previous, decode_params(96, 80, 5));
+    EXPECT_EQ(fnv1a(before.pixels.data(), before.pixels.size()), previous_hash) << "the v" << version - 1 << " golden's";
+    // (Where the torus is cut open follows the final pixels, so the two
+    // images may be turned against each other; other tests check the blend
+    // and the relocation themselves.)
+    EXPECT_NE(img.pixels, before.pixels);
+    return bytes;
 }
 
-// Pins format version 6 and its decoder, the copy relocation included
-// (tests/golden/README.md): vqtex-encode corpus/cellular_128.png
-// cellular_v6.vqt --target-size 1500, decoded at 96x80 with seed 5. The file
-// is cellular_v5.vqt with the version 6 (the same atlas), so the two
-// decodes differ by the relocation alone.
+// Pins format version 5 and its decoder, the blend at seams included:
+// vqtex-encode corpus/cellular_128.png cellular_v5.vqt --target-size 1500.
+// The file is cellular_v4.vqt with the version 5 (the same atlas), so the
+// two decodes differ by the blend alone.
+TEST(AtlasFile, GoldenBlendFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes =
+        check_golden_compact("cellular_v5.vqt", 5, 0x8f940d3240fdfd76ull, 0x2eda1c7bb1a70f4bull);
+    if (bytes.empty()) return;
+    EXPECT_EQ(vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30).params.blend, 2);
+}
+
+// Pins format version 6 and its decoder, the copy relocation included:
+// vqtex-encode corpus/cellular_128.png cellular_v6.vqt --target-size 1500.
+// The file is cellular_v5.vqt with the version 6 (the same atlas), so the
+// two decodes differ by the relocation alone.
 TEST(AtlasFile, GoldenRelocationFileDecodesToKnownPixels) {
-    const std::vector<uint8_t> bytes = read_file(std::string(VQTEX_GOLDEN_DIR) + "/cellular_v6.vqt");
-    ASSERT_FALSE(bytes.empty()) << "missing tests/golden/cellular_v6.vqt";
-    EXPECT_EQ(bytes.size(), 1480u);
-    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).format_version, 6u);
+    const std::vector<uint8_t> bytes =
+        check_golden_compact("cellular_v6.vqt", 6, 0x6ce570a9bfe0beccull, 0x8f940d3240fdfd76ull);
+    if (bytes.empty()) return;
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
     EXPECT_EQ(f.params.blend, 2);
     EXPECT_EQ(f.params.relocate, 64);
-    const vqtex::Image img = decode(bytes, decode_params(96, 80, 5));
-    const uint64_t hash = fnv1a(img.pixels.data(), img.pixels.size());
-    EXPECT_EQ(hash, 0x6ce570a9bfe0beccull) << std::hex << "decoded hash 0x" << hash;
-    std::vector<uint8_t> as_v5 = bytes;
-    as_v5[8] = 5;
-    fix_crc(as_v5);
-    const vqtex::Image unmoved = decode(as_v5, decode_params(96, 80, 5));
-    EXPECT_EQ(fnv1a(unmoved.pixels.data(), unmoved.pixels.size()), 0x8f940d3240fdfd76ull) << "the v5 golden's";
 }
 
 TEST(AtlasFile, ParametersOutsideTheAtlasPathAreRefused) {
