@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# decode_memory.sh - peak memory of decoding atlas files (format v5, what
-# `vqtex-encode --atlas` writes; v3 and v4 decode the same way, without the
-# blend at seams) against issue 17's
+# decode_memory.sh - peak memory of decoding atlas files (format v6, what
+# `vqtex-encode --atlas` writes; v3 to v5 decode the same way with less: no
+# copy relocation, and before v5 no blend at seams) against issue 17's
 # budget: at most twice the output (W x H x channels bytes) plus 16 MB.
 #
 #   bash bench/decode_memory.sh [BUILD_DIR] [SIDES] [THREADS]
