@@ -134,8 +134,9 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
             if (links.empty()) continue;
             // A term that cannot be read (off the example) costs the copy's
             // mean term where it is, so that the sums of two translations
-            // compare.
-            int64_t penalty = 0;
+            // compare. Where it is, its cost is then the terms read plus
+            // the penalty for each of the others (a sum in any order).
+            int64_t penalty = 0, best = 0;
             {
                 int64_t sum = 0, terms = 0;
                 for (const Link& link : links) {
@@ -144,6 +145,7 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
                     if (moved(link.mine, link.dx * s, link.dy * s, onto)) sum += distance(onto, link.there), ++terms;
                 }
                 penalty = terms ? sum / terms : 0;
+                best = sum + (2 * int64_t(links.size()) - terms) * penalty;
             }
             // The mismatch of the copy moved by (tx, ty): across each link,
             // the copy's content against what the neighbour's copy would put
@@ -163,7 +165,6 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
             // Translations that keep the copy inside the example, drawn from
             // the copy's own seeded stream; the first lowest cost wins, the
             // copy where it is on a tie.
-            int64_t best = cost(0, 0, INT64_MAX);
             const int lo_x = -min_x, span_x = ew - (max_x - min_x);
             const int lo_y = -min_y, span_y = eh - (max_y - min_y);
             const uint64_t base = coherent::pixel_hash(seed, level, kRelocationPurpose, int(first % uint32_t(w)),

@@ -156,7 +156,8 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
         p.roll = r.varint_in("roll flag", 0, 1) != 0;
         p.jitter = int(r.varint_in("jitter", 0, 256));
         if (version >= kBlendAtlasFormatVersion) p.blend = int(r.varint_in("blend", 0, kMaxBlendRadius));
-        if (version >= kRelocationAtlasFormatVersion) p.relocate = int(r.varint_in("relocation", 0, kMaxRelocation));
+        if (version >= kRelocationAtlasFormatVersion)
+            p.relocate = int(r.varint_in("relocation", 0, kMaxRelocationPositions));
         if (are_compact_defaults(p, version))
             r.corrupt("the parameters are stored but are the defaults (packed bit 6 must then be 0)");
         f.parameter_bytes = r.position() - at;
@@ -256,7 +257,7 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
     if (header.channels < 1 || header.channels > 4 || header.levels < 1 || header.levels > 8 ||
         atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide || atlas_width > kMaxAtlasSide ||
         atlas_height > kMaxAtlasSide || atlas_bitstream.empty() || params.blend < 0 || params.blend > kMaxBlendRadius ||
-        params.relocate < 0 || params.relocate > kMaxRelocation)
+        params.relocate < 0 || params.relocate > kMaxRelocationPositions)
         fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 6 can hold");
     const bool exemplar_size =
         header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);

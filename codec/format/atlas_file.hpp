@@ -16,6 +16,7 @@
 
 #include "common/image.hpp"
 #include "engine/coherent_synthesis.hpp"
+#include "engine/copy_relocation.hpp"
 #include "format/container.hpp"
 
 namespace vqtex {
@@ -37,10 +38,10 @@ inline constexpr int kMinAtlasSide = 8;
 inline constexpr int kV5DefaultBlend = 2;
 // Format version 6's positions tried per copy by the copy relocation when
 // its parameters are not stored (docs/FORMAT.md 8.9), and what the encoder
-// writes; versions 3 to 5 have no relocation. kMaxRelocation bounds the
-// stored value.
+// writes; versions 3 to 5 have no relocation. The stored value is at most
+// kMaxRelocationPositions (copy_relocation.hpp), as the blend's is
+// kMaxBlendRadius.
 inline constexpr int kV6DefaultRelocation = 64;
-inline constexpr int kMaxRelocation = 1024;
 
 struct AtlasSynthesisParams {
     bool example_tileable = false;  // the atlas wraps (positions wrap instead of reflecting)
@@ -54,7 +55,7 @@ struct AtlasSynthesisParams {
     // Radius of the blend at the output's seams, 0..kMaxBlendRadius (version
     // 5; files of versions 3 and 4 have none, 0).
     int blend = kV5DefaultBlend;
-    // Positions tried per copy by the copy relocation, 0..kMaxRelocation
+    // Positions tried per copy by the copy relocation, 0..kMaxRelocationPositions
     // (version 6; files of versions 3 to 5 have none, 0).
     int relocate = kV6DefaultRelocation;
 };
