@@ -1,9 +1,9 @@
 // make_seeds.cpp - writes the fuzzers' seed corpora from the project's own
 // corpus/ images, with the public API: valid .vqt files covering every
 // format feature (keyed and keyless entries, noise and parent init, seam
-// closing on and off, 1 to 4 channels, every precision; format v6 atlas
-// files as the encoder writes them, the same as v3, v4 and v5, and v6
-// files with a stored exemplar size and stored parameters), and encoder inputs
+// closing on and off, 1 to 4 channels, every precision; format v7 atlas
+// files as the encoder writes them, the same as v3 to v6, and v7 files
+// with a stored exemplar size and stored parameters), and encoder inputs
 // in fuzz_encode.cpp's layout. Small crops keep the seeds small, which is
 // what mutation works best on. Usage: make_seeds CORPUS_DIR OUT_DIR
 #include <cstdio>
@@ -118,9 +118,9 @@ int main(int argc, char** argv) {
         }
     }
     // Atlas files: each channel count, a preset and a target size, as the
-    // encoder writes them (v6), as v3 (ATLS and SYNP sections), as v4 (no
-    // blend) and as v5 (no relocation), so the fuzzers reach every reader
-    // and dav1d; every other one also as a v6
+    // encoder writes them (v7), as v3 (ATLS and SYNP sections), as v4 (no
+    // blend), as v5 (no relocation) and as v6 (no edge guard), so the
+    // fuzzers reach every reader and dav1d; every other one also as a v7
     // file with the packed byte's optional fields, an exemplar size that
     // is not the atlas's and parameters that are not the defaults.
     for (size_t i = 0; i < std::size(images); ++i) {
@@ -150,10 +150,10 @@ int main(int argc, char** argv) {
             write(out / "decode" / (name + "_v3.vqt"), v3.data(), v3.size());
             ++files;
             if (f.parameter_bytes == 0)
-                for (uint8_t version : {uint8_t(4), uint8_t(5)}) {
-                    // Versions 4 and 5: the same bytes with the version and
+                for (uint8_t version : {uint8_t(4), uint8_t(5), uint8_t(6)}) {
+                    // Versions 4 to 6: the same bytes with the version and
                     // the checksum made again (their default parameters
-                    // have no blend, no relocation).
+                    // have no blend, no relocation or no edge guard).
                     std::vector<uint8_t> old(data, data + size);
                     old[8] = version;
                     const uint32_t crc = vqtex::crc32(old.data(), old.size() - 4);
@@ -172,8 +172,9 @@ int main(int argc, char** argv) {
                 sp.jitter = 30;
                 sp.blend = 3;
                 sp.relocate = 16;
-                const std::vector<uint8_t> v6 = vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, sp);
-                write(out / "decode" / (name + "_fields.vqt"), v6.data(), v6.size());
+                sp.edge_guard = 3;
+                const std::vector<uint8_t> v7 = vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, sp);
+                write(out / "decode" / (name + "_fields.vqt"), v7.data(), v7.size());
                 ++files;
             }
         } catch (const std::exception& e) {

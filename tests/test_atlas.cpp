@@ -93,12 +93,12 @@ std::size_t atlas_payload_offset(const std::vector<uint8_t>& file) {
     return 0;
 }
 
-// The atlas bitstream of a v6 file, and the same content as a v3 file
-// (the encoder writes v6; v3 must go on decoding), which has no blend and
-// no relocation.
+// The atlas bitstream of a v7 file, and the same content as a v3 file
+// (the encoder writes v7; v3 must go on decoding), which has no blend, no
+// relocation and no edge guard.
 std::vector<uint8_t> bitstream_of(const std::vector<uint8_t>& file) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(file.data(), file.size(), 1u << 30);
-    EXPECT_EQ(f.header.version, 6);
+    EXPECT_EQ(f.header.version, 7);
     return std::vector<uint8_t>(file.begin() + std::ptrdiff_t(f.bitstream_offset),
                                 file.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
 }
@@ -119,7 +119,7 @@ std::vector<uint8_t> varints(std::initializer_list<uint64_t> values) {
 // them (the bitstream), with a correct checksum: what a hostile writer can
 // make (docs/FORMAT.md 8.7).
 std::vector<uint8_t> compact_file(uint8_t packed, const std::vector<uint8_t>& fields,
-                                  const std::vector<uint8_t>& tail, uint16_t version = 6) {
+                                  const std::vector<uint8_t>& tail, uint16_t version = 7) {
     vqtex::ByteWriter w;
     w.bytes(vqtex::kMagic, sizeof vqtex::kMagic);
     w.u16(version);
@@ -226,7 +226,7 @@ TEST(AtlasFile, RoundTripDecodesAtAnySizeAndInspects) {
     EXPECT_EQ(stats.bytes, file.size());
     EXPECT_EQ(stats.levels, 6u);
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
-    EXPECT_EQ(info.format_version, 6u);
+    EXPECT_EQ(info.format_version, 7u);
     EXPECT_EQ(info.exemplar_width, 128u);
     EXPECT_EQ(info.levels, 6u);
     EXPECT_EQ(info.atlas_width, 128u);
@@ -417,9 +417,9 @@ TEST(AtlasFile, HostileSectionsAreCorruptOrOverTheLimitNeverACrash) {
     expect_over_limit_and_not_an_animation(file, p);
 }
 
-// Format v6 holds what v3 holds behind a smaller header, plus the blend and
-// the relocation: from the same bitstream, header fields and parameters
-// (blend 0, relocation 0), the two decode to the same pixels, at the
+// Format v7 holds what v3 holds behind a smaller header, plus the blend, the
+// relocation and the edge guard: from the same bitstream, header fields and
+// parameters (blend 0, relocation 0, edge guard 0), the two decode to the same pixels, at the
 // default size and seed and at others; with the defaults they differ. The cases cover each
 // channel count, a crop (the exemplar size stored), non-default parameters
 // with a wrapping atlas, and a seed that needs six varint bytes.
@@ -429,13 +429,13 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         uint32_t ew, eh;
         uint64_t seed;
         bool parameters;
-        std::size_t overhead;  // of the v6 file: everything but the bitstream
+        std::size_t overhead;  // of the v7 file: everything but the bitstream
     };
     const Case cases[] = {
         {3, 64, 64, 64, 64, 1, false, 18},  // 10 + packed + 64 + 64 + seed + CRC
         {1, 16, 16, 16, 16, 0, false, 18},
-        {2, 12, 16, 64, 64, 300, true, 31},               // + 64, 64; seed 2 bytes; parameters 10 (bias 300 takes 2)
-        {4, 40, 24, 64, 64, (1ull << 40) + 3, true, 35},  // seed of 41 bits: 6 bytes
+        {2, 12, 16, 64, 64, 300, true, 32},               // + 64, 64; seed 2 bytes; parameters 11 (bias 300 takes 2)
+        {4, 40, 24, 64, 64, (1ull << 40) + 3, true, 36},  // seed of 41 bits: 6 bytes
     };
     const vqtex::Image rgba = load_corpus("leaves_rgba_64.png");
     for (const Case& c : cases) {
@@ -459,6 +459,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
             sp.jitter = 40;
             sp.blend = 0;  // version 3's, so that their decodes compare
             sp.relocate = 0;
+            sp.edge_guard = 0;
         }
         const std::vector<uint8_t> v4 = vqtex::encode_atlas_file(h, c.aw, c.ah, bits, sp);
         const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(h, c.aw, c.ah, bits, sp);
@@ -468,12 +469,14 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         EXPECT_EQ(bitstream_of(v4), bits) << what;
         const vqtex::AtlasFile f4 = vqtex::decode_atlas_file(v4.data(), v4.size(), 1u << 30);
         const vqtex::AtlasFile f3 = vqtex::decode_atlas_file(v3.data(), v3.size(), 1u << 30);
-        EXPECT_EQ(f4.header.version, 6);
+        EXPECT_EQ(f4.header.version, 7);
         EXPECT_EQ(f3.header.version, 3);
         EXPECT_EQ(f4.params.blend, sp.blend) << what;
         EXPECT_EQ(f3.params.blend, 0) << what;
         EXPECT_EQ(f4.params.relocate, sp.relocate) << what;
         EXPECT_EQ(f3.params.relocate, 0) << what;
+        EXPECT_EQ(f4.params.edge_guard, sp.edge_guard) << what;
+        EXPECT_EQ(f3.params.edge_guard, 0) << what;
         EXPECT_EQ(f4.header.exemplar_width, c.ew) << what;
         EXPECT_EQ(f4.header.exemplar_height, c.eh) << what;
         EXPECT_EQ(f4.header.channels, f3.header.channels) << what;
@@ -487,7 +490,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         EXPECT_EQ(f4.params.coherence, sp.coherence) << what;
         EXPECT_EQ(f4.params.roll, sp.roll) << what;
         EXPECT_EQ(f4.params.jitter, sp.jitter) << what;
-        EXPECT_EQ(f4.parameter_bytes, c.parameters ? 10u : 0u) << what;
+        EXPECT_EQ(f4.parameter_bytes, c.parameters ? 11u : 0u) << what;
         EXPECT_EQ(f4.atlas.pixels, f3.atlas.pixels) << what;
         EXPECT_EQ(f4.atlas.pixels,
                   vqtex::decode_atlas(bits.data(), bits.size(), c.aw, c.ah, c.channels, "atlas").pixels);
@@ -495,7 +498,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
             const vqtex::Image a = decode(v4, p), b = decode(v3, p);
             EXPECT_EQ(a.width, p.width ? int(p.width) : int(c.ew)) << what;
             // The same positions; the default blend mixes the copies at seams.
-            if (sp.blend == 0 && sp.relocate == 0)
+            if (sp.blend == 0 && sp.relocate == 0 && sp.edge_guard == 0)
                 EXPECT_EQ(a.pixels, b.pixels) << what << ", output " << p.width << "x" << p.height;
             else
                 EXPECT_NE(a.pixels, b.pixels) << what << ", output " << p.width << "x" << p.height;
@@ -509,14 +512,14 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
 TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
     const vqtex::Image ex = load_corpus("checks_p16_64.png");
     const std::vector<uint8_t> file = encode(ex, atlas_params(600));
-    ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 6u);
+    ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 7u);
     const vqtex_decode_params p = decode_params(24, 20);
     for (std::size_t n = 0; n < file.size(); ++n) {
         const std::vector<uint8_t> cut(file.begin(), file.begin() + std::ptrdiff_t(n));
         vqtex_status st = VQTEX_OK;
         decode(cut, p, &st);
         // Under 18 bytes (signature, version, packed byte, three one-byte
-        // varints, CRC) a file cannot be version 4 to 6; beyond, the last four
+        // varints, CRC) a file cannot be version 4 to 7; beyond, the last four
         // bytes are not the checksum of the rest.
         EXPECT_EQ(st, n < 18 ? VQTEX_ERROR_TRUNCATED : VQTEX_ERROR_CHECKSUM) << "prefix of " << n << " bytes";
     }
@@ -526,15 +529,15 @@ TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
             bad[i] ^= uint8_t(1 << bit);
             vqtex_status st = VQTEX_OK;
             decode(bad, p, &st);
-            // The version, 6, flips to 4 (a version the checksum then
-            // rejects), to 2 (an animation's, whose header's checksum is
-            // elsewhere: any error) or to 7, 14, 22, ... (unknown).
+            // The version, 7, flips to 6 or 5 (versions the checksum then
+            // rejects), to 3 (the container's, whose header's checksum is
+            // elsewhere: any error) or to 15, 23, ... (unknown).
             if (i == 8 && bit == 2) {
-                EXPECT_NE(st, VQTEX_OK) << "version 2";
+                EXPECT_NE(st, VQTEX_OK) << "version 3";
                 continue;
             }
             const vqtex_status expected = i < 8                    ? VQTEX_ERROR_BAD_MAGIC
-                                          : i == 8 && bit == 1    ? VQTEX_ERROR_CHECKSUM
+                                          : i == 8 && bit < 2     ? VQTEX_ERROR_CHECKSUM
                                           : i < 10                ? VQTEX_ERROR_UNSUPPORTED_VERSION
                                                                   : VQTEX_ERROR_CHECKSUM;
             EXPECT_EQ(st, expected) << "byte " << i << " bit " << bit;
@@ -606,6 +609,23 @@ TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
         << "no relocation: the bitstream's first byte, an OBU header (10), read as it";
     EXPECT_EQ(status_of(v6_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 0}))), VQTEX_OK) << "relocation 0";
     EXPECT_EQ(status_of(v6_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 1024}))), VQTEX_OK);
+    // Version 7 ends them with the edge guard (default 8, at most 64).
+    const auto v7_file = [&](const std::vector<uint8_t>& fields) {
+        return compact_file(packed | 1 << 6, fields, bits, 7);
+    };
+    EXPECT_EQ(status_of(v7_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8}))), corrupt) << "v7 defaults";
+    EXPECT_EQ(status_of(v7_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 65}))), corrupt)
+        << "edge guard 65";
+    EXPECT_EQ(status_of(v7_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 1025, 8}))), corrupt)
+        << "relocation 1025";
+    EXPECT_EQ(status_of(v7_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64}))), corrupt)
+        << "no edge guard: the bitstream's first byte, an OBU header (10), read as it";
+    EXPECT_EQ(status_of(v7_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 0}))), VQTEX_OK) << "guard 0";
+    EXPECT_EQ(status_of(v7_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 64}))), VQTEX_OK);
+    // A version 6 file with no parameters decodes without the edge guard:
+    // the pixels of a version 7 file that stores edge guard 0.
+    EXPECT_EQ(decode(compact_file(packed, varints({128, 128, 1}), bits, 6), p).pixels,
+              decode(v7_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 0})), p).pixels);
     // A version 5 file with no parameters decodes without relocation: the
     // pixels of a version 6 file that stores relocation 0.
     EXPECT_EQ(decode(compact_file(packed, varints({128, 128, 1}), bits, 5), p).pixels,
@@ -667,22 +687,24 @@ TEST(AtlasFile, GoldenCompactFileDecodesToKnownPixels) {
 }
 
 // A golden compact file (tests/golden/README.md), 1480 bytes: its version
-// and the hash of its decode at 96x80 with seed 5, then the same bytes as
+// and the hash of its decode at width x height (96x80 unless the version's
+// change shows only in a larger output) with seed 5, then the same bytes as
 // the version before it (the same atlas), whose decode must be that
 // version's golden hash and differ from this one's by what the newer
 // version adds. Returns the file.
-std::vector<uint8_t> check_golden_compact(const char* name, unsigned version, uint64_t hash, uint64_t previous_hash) {
+std::vector<uint8_t> check_golden_compact(const char* name, unsigned version, uint64_t hash, uint64_t previous_hash,
+                                          uint32_t width = 96, uint32_t height = 80) {
     const std::vector<uint8_t> bytes = read_file(std::string(VQTEX_GOLDEN_DIR) + "/" + name);
     EXPECT_EQ(bytes.size(), 1480u) << "tests/golden/" << name;
     if (bytes.size() < 16) return bytes;
     EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).format_version, version);
-    const vqtex::Image img = decode(bytes, decode_params(96, 80, 5));
+    const vqtex::Image img = decode(bytes, decode_params(width, height, 5));
     const uint64_t got = fnv1a(img.pixels.data(), img.pixels.size());
     EXPECT_EQ(got, hash) << std::hex << name << " decoded hash 0x" << got;
     std::vector<uint8_t> previous = bytes;
     previous[8] = uint8_t(version - 1);
     fix_crc(previous);
-    const vqtex::Image before = decode(previous, decode_params(96, 80, 5));
+    const vqtex::Image before = decode(previous, decode_params(width, height, 5));
     EXPECT_EQ(fnv1a(before.pixels.data(), before.pixels.size()), previous_hash) << "the v" << version - 1 << " golden's";
     // (Where the torus is cut open follows the final pixels, so the two
     // images may be turned against each other; other tests check the blend
@@ -713,6 +735,22 @@ TEST(AtlasFile, GoldenRelocationFileDecodesToKnownPixels) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
     EXPECT_EQ(f.params.blend, 2);
     EXPECT_EQ(f.params.relocate, 64);
+}
+
+// Pins format version 7 and its decoder, the edge guard included:
+// vqtex-encode corpus/cellular_128.png cellular_v7.vqt --target-size 1500.
+// The file is cellular_v6.vqt with the version 7 (the same atlas), so the
+// two decodes differ by the edge guard alone; at 96x80 no copy reaches the
+// atlas's edge and they are the same, so this one is decoded at 128x128.
+TEST(AtlasFile, GoldenEdgeGuardFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes =
+        check_golden_compact("cellular_v7.vqt", 7, 0x2eb67c14203b6d55ull, 0x4e2e82b33f7189ddull, 128, 128);
+    // (0x4e2e82b33f7189dd: cellular_v6.vqt's decode at 128x128, seed 5.)
+    if (bytes.empty()) return;
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
+    EXPECT_EQ(f.params.blend, 2);
+    EXPECT_EQ(f.params.relocate, 64);
+    EXPECT_EQ(f.params.edge_guard, 8);
 }
 
 TEST(AtlasFile, ParametersOutsideTheAtlasPathAreRefused) {

@@ -310,6 +310,49 @@ TEST(Coherent, RelocationMovesWholeCopiesInsideTheExample) {
     EXPECT_GT(moved_copies, 0) << "no copy found a better place among 64";
 }
 
+// Format 7's edge guard (docs/SYNTHESIS.md "Session 12"): where a copy
+// runs into the example's edge, the pixel beside it must not show the same
+// columns or rows again a few pixels back (a stutter): the finest level's
+// pairs of neighbours where one's copy would go on past the edge and the
+// other sits within 8 pixels of where it would have gone. Without the
+// guard this example has such pairs; with it, a small fraction of them,
+// and the map is the same for any thread count.
+TEST(Coherent, EdgeGuardEndsCopiesCutOffByTheEdgeInSeams) {
+    const Image ex = textured(48, 40, 3);
+    const AppearanceSpace space = build_appearance_space(ex, 4, false, 1);
+    const CoherenceSets sets = build_coherence_sets(space, 1, kCoherenceExclusion, 1);
+    const auto stutters = [&](const PositionMap& m) {
+        int count = 0;
+        for (int y = 0; y < m.height; ++y)
+            for (int x = 0; x < m.width; ++x)
+                for (int d = 0; d < 4; ++d) {
+                    const int dx = d == 0 ? 1 : d == 1 ? -1 : 0, dy = d == 2 ? 1 : d == 3 ? -1 : 0;
+                    const uint32_t p = m.positions[std::size_t(y) * m.width + x];
+                    const uint32_t q = m.positions[std::size_t(Image::wrap(y + dy, m.height)) * m.width +
+                                                   std::size_t(Image::wrap(x + dx, m.width))];
+                    const int cx = position_x(p) + dx, cy = position_y(p) + dy;
+                    if (cx >= 0 && cy >= 0 && cx < ex.width && cy < ex.height) continue;
+                    count += std::abs(position_x(q) - cx) < 8 && std::abs(position_y(q) - cy) < 8;
+                }
+        return count;
+    };
+    const auto map_with = [&](int guard, int threads) {
+        CoherentOptions o;
+        o.width = 150;
+        o.height = 130;
+        o.seed = 3;
+        o.threads = threads;
+        o.relocate = 64;
+        o.edge_guard = guard;
+        return synthesize_positions(space, sets, o);
+    };
+    const PositionMap without = map_with(0, 1), with = map_with(8, 1);
+    const int before = stutters(without), after = stutters(with);
+    EXPECT_GT(before, 10) << "the example should stutter at its edges without the guard";
+    EXPECT_LT(4 * after, before) << "with the guard: " << after << ", without: " << before;
+    EXPECT_EQ(map_with(8, 3).positions, with.positions);
+}
+
 TEST(Coherent, UpsampledChildrenAreCoherentBlocksInsideTheExample) {
     const Image ex = textured(40, 33, 2);
     const AppearanceSpace space = build_appearance_space(ex, 3, false, 1);
@@ -422,14 +465,16 @@ TEST(Coherent, GoldenHash) {
     // The engine's bytes pinned across builds, compilers and kernel sets
     // (the simd_whole_decode test forces each set): a change of this hash
     // is a change of every output, to be made on purpose and noted.
-    // Without the blend and the relocation, the positions' pixels as before
-    // either existed; with the blend alone, as before the relocation; with
-    // the defaults, what the engine gives now.
+    // Without the blend, the relocation and the edge guard, the positions'
+    // pixels as before either existed; with the blend alone, as before the
+    // relocation; with the blend and the relocation, as before the edge
+    // guard; with the defaults, what the engine gives now.
     const Image ex = brick_wall(96, 96, 7);
-    const auto hash_of = [&](uint32_t blend, uint32_t relocate) {
+    const auto hash_of = [&](uint32_t blend, uint32_t relocate, uint32_t edge_guard = 0) {
         vqtex_synth_params p = coherent_params(150, 110, 9);
         p.blend = blend;
         p.relocate = relocate;
+        p.edge_guard = edge_guard;
         uint64_t h = 0xcbf29ce484222325ull;
         for (uint8_t v : vqtex_test::synthesize(ex, p).pixels) h = (h ^ v) * 0x100000001b3ull;
         return h;
@@ -439,6 +484,8 @@ TEST(Coherent, GoldenHash) {
     EXPECT_EQ(coherent_params(1, 1, 1).blend, 2u);
     EXPECT_EQ(coherent_params(1, 1, 1).relocate, 64u);
     EXPECT_EQ(hash_of(2, 64), 0x83b06954069c3180ull) << std::hex << hash_of(2, 64);
+    EXPECT_EQ(coherent_params(1, 1, 1).edge_guard, 8u);
+    EXPECT_EQ(hash_of(2, 64, 8), 0xc49dfaedd9457d81ull) << std::hex << hash_of(2, 64, 8);
 }
 
 // docs/FORMAT.md 8.8's blend, as written there, for pixel (x, y) of a map.

@@ -41,8 +41,8 @@ FileReport info_one(const std::string& input) {
     // Formats 3 to 5 hold an atlas and the engine's parameters instead;
     // formats 4 and 5 have no sections, and inspect lists their two parts
     // under the same tags (vqtex.h).
-    const bool atlas = info.format_version >= 3 && info.format_version <= 6;
-    const bool compact = info.format_version >= 4 && info.format_version <= 6;
+    const bool atlas = info.format_version >= 3 && info.format_version <= 7;
+    const bool compact = info.format_version >= 4 && info.format_version <= 7;
     const char* tree_kinds[] = {"LEVL", "HIST", "TOPO", "CODE", "ENTR"};
     const char* tree_meaning[] = {"level parameters", "noise histograms", "tree topology + leaf weights",
                                   "leaf codewords", "leaf entries (pixels + keys)"};
@@ -74,9 +74,10 @@ FileReport info_one(const std::string& input) {
     if (atlas) {
         j["atlas_width"] = info.atlas_width;
         j["atlas_height"] = info.atlas_height;
-        j["coder"] = "AV1";  // the only atlas coder of formats 3 to 6
+        j["coder"] = "AV1";  // the only atlas coder of formats 3 to 7
         j["blend"] = info.blend;
         j["relocate"] = info.relocate;
+        j["edge_guard"] = info.edge_guard;
     }
     j["codewords"] = nlohmann::ordered_json::array();
     for (uint32_t l = 0; l < info.levels; ++l) j["codewords"].push_back(info.codewords[l]);
@@ -110,8 +111,10 @@ FileReport info_one(const std::string& input) {
         const std::string copies = info.relocate ? ", copies relocated (" + std::to_string(info.relocate) +
                                                        " positions tried each)"
                                                  : std::string();
-        add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s%s\n", info.levels, info.codewords[0],
-            seams.c_str(), copies.c_str());
+        const std::string edges = info.edge_guard ? ", edge guard " + std::to_string(info.edge_guard) + " pixels"
+                                                  : std::string();
+        add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s%s%s\n", info.levels, info.codewords[0],
+            seams.c_str(), copies.c_str(), edges.c_str());
     } else
         add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
             info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",

@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
     double train_fraction = 1.0;
     bool exhaustive = false, tsvq = false, tileable = false, json = false, quiet = false, paper = false;
     std::string engine = "coherent";
-    uint32_t coherence = 0, passes = 0, jitter = 0, blend = 0, relocate = 0;
+    uint32_t coherence = 0, passes = 0, jitter = 0, blend = 0, relocate = 0, edge_guard = 0;
     app.add_option("files", files,
                    "EXAMPLE OUTPUT (any format OpenImageIO reads and writes, from the extension), or with -o: "
                    "examples and folders of them")
@@ -185,6 +185,11 @@ int main(int argc, char** argv) {
                                         "copies around them, trying this many positions each, 0 (none) to 1024 "
                                         "(default 64)")
                              ->check(CLI::Range(0, 1024));
+    auto* edge_guard_opt = app.add_option("--edge-guard", edge_guard,
+                                          "coherent engine, still textures: a copy cut off by the example's edge "
+                                          "ends in a seam, no position within this many pixels of where it would "
+                                          "go on being taken beside it; 0 (formats 3 to 6's edges) to 64 (default 8)")
+                               ->check(CLI::Range(0, 64));
     app.add_option("--levels", levels, "pyramid levels (default: automatic, 4 for 128x128)");
     app.add_option("--shapes", shapes,
                    "neighbourhood per level, finest first, RxC:k (default for 4 levels 9x9:2,7x7:2,5x5:2,5x5:1)");
@@ -219,7 +224,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     if (paper) engine = "paper";
     if (engine == "paper") {
-        for (const auto* o : {coherence_opt, passes_opt, jitter_opt, blend_opt, relocate_opt})
+        for (const auto* o : {coherence_opt, passes_opt, jitter_opt, blend_opt, relocate_opt, edge_guard_opt})
             if (o->count()) {
                 std::fprintf(stderr, "vqtex-synth: error: %s applies to the coherent engine, not to --engine paper\n",
                              o->get_name().c_str());
@@ -247,6 +252,7 @@ int main(int argc, char** argv) {
         if (jitter_opt->count()) params.jitter = jitter;
         if (blend_opt->count()) params.blend = blend;
         if (relocate_opt->count()) params.relocate = relocate;
+        if (edge_guard_opt->count()) params.edge_guard = edge_guard;
         if (paper) {
             init = "noise";
             no_seam_closing = true;
@@ -278,6 +284,8 @@ int main(int argc, char** argv) {
                 throw std::invalid_argument("--blend applies to still textures: animations are not blended at seams");
             if (animated && relocate_opt->count())
                 throw std::invalid_argument("--relocate applies to still textures: animations do not relocate copies");
+            if (animated && edge_guard_opt->count())
+                throw std::invalid_argument("--edge-guard applies to still textures: animations keep their edges");
             ProgressBar bar(!quiet && !json);
             const FileReport r =
                 animated ? synthesize_animation(params, frames, quiet, files[0], files[1], threads, &bar)

@@ -7,8 +7,9 @@
 
 #include "api/api_support.hpp"
 #include "common/error.hpp"
-#include "engine/neighborhood.hpp"
+#include "engine/coherent_synthesis.hpp"
 #include "engine/copy_relocation.hpp"
+#include "engine/neighborhood.hpp"
 #include "engine/seam_blend.hpp"
 #include "tsvq/tsvq_search.hpp"
 
@@ -93,6 +94,10 @@ void validate(const vqtex_synth_params* p) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "relocate must be 0 to " + std::to_string(kMaxRelocationPositions) +
                                                " (positions tried per copy by the copy relocation; got " +
                                                std::to_string(p->relocate) + ")");
+    if (p->edge_guard > uint32_t(kMaxEdgeGuard))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "edge_guard must be 0 to " + std::to_string(kMaxEdgeGuard) +
+                                               " (example pixels kept free beside a copy cut off by the edge; got " +
+                                               std::to_string(p->edge_guard) + ")");
     validate(p->model);
     check_search(p->search);
     check_backtrack(p->backtrack, kNoLimit, "");

@@ -71,13 +71,19 @@ inline uint32_t window_distance(const dsp::Kernels& kernels, const AppearanceSpa
     return kernels.window_ssd(query, window, kAppearanceDims, std::ptrdiff_t(kSide) * kAppearanceDims, kSide, bound);
 }
 
-// A child's coordinate from its parent's. A parent whose second child
-// would fall past the example's edge has its block of children moved inside
-// whole, so the block stays a coherent copy; folding the child back (a
-// mirror) repeated the same rows over several levels and drew streaks.
-inline int child_coordinate(int size, bool wraps, int parent, int offset, int spacing) {
+// A child's coordinate from its parent's. Formats 3 to 6 (`clamp` false):
+// a parent whose second child would fall past the example's edge has its
+// block of children moved inside whole, so the block stays a coherent copy;
+// folding the child back (a mirror) repeated the same rows over several
+// levels and drew streaks. But the moved block repeats a few columns of the
+// copy beside it, and over the levels those repeats became stutters: strips
+// of the example's last columns shown twice or three times side by side
+// (caustics' bright blips). Format 7 (`clamp` true): the child past the edge
+// is clamped to it, a repeat of its neighbour that its correction replaces
+// (docs/SYNTHESIS.md "Session 12").
+inline int child_coordinate(int size, bool wraps, int parent, int offset, int spacing, bool clamp) {
     if (wraps) return Image::wrap(parent + offset * spacing, size);
-    const int base = parent + spacing < size ? parent : std::max(0, size - 1 - spacing);
+    const int base = clamp || parent + spacing < size ? parent : std::max(0, size - 1 - spacing);
     return std::min(base + offset * spacing, size - 1);
 }
 

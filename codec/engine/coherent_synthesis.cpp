@@ -63,7 +63,7 @@ struct LevelView {
 // the wrapped columns and rows of its window): the best of its neighbours'
 // coherent candidates.
 uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int* xs, const int* ys, int bias,
-                       int link_bias) {
+                       int link_bias, int edge_guard) {
     uint32_t sources[kTaps];
     for (int r = 0, t = 0; r < kSide; ++r) {
         const uint32_t* row = cur + std::size_t(ys[r]) * w;
@@ -91,9 +91,31 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     // pixel: it is not offered (k = 1). Without this rule, 1.4% of the
     // adjacent pixel pairs of a gravel output were repeats, against 0.07%
     // in its example.
+    // Where a nearest neighbour's copy would go on past the example's edge
+    // (format 7's edge guard): a position just inside it would show that
+    // copy's last columns or rows again beside themselves, a stutter, so
+    // it is not offered either.
+    int cut_x[4], cut_y[4], cuts = 0;
+    if (edge_guard > 0 && !v.space.wraps) {
+        const int at[4] = {kTaps / 2 - kSide, kTaps / 2 - 1, kTaps / 2 + 1, kTaps / 2 + kSide};
+        const int step_x[4] = {0, -1, 1, 0}, step_y[4] = {-1, 0, 0, 1};
+        for (int k = 0; k < 4; ++k) {
+            const int cx = position_x(sources[at[k]]) - step_x[k] * v.spacing;
+            const int cy = position_y(sources[at[k]]) - step_y[k] * v.spacing;
+            if (cx < 0 || cy < 0 || cx >= v.space.width || cy >= v.space.height) {
+                cut_x[cuts] = cx;
+                cut_y[cuts++] = cy;
+            }
+        }
+    }
     const auto held_next_door = [&](uint32_t c) {
-        return c == sources[kTaps / 2 - kSide] || c == sources[kTaps / 2 - 1] || c == sources[kTaps / 2 + 1] ||
-               c == sources[kTaps / 2 + kSide];
+        if (c == sources[kTaps / 2 - kSide] || c == sources[kTaps / 2 - 1] || c == sources[kTaps / 2 + 1] ||
+            c == sources[kTaps / 2 + kSide])
+            return true;
+        for (int i = 0; i < cuts; ++i)
+            if (std::abs(position_x(c) - cut_x[i]) < edge_guard && std::abs(position_y(c) - cut_y[i]) < edge_guard)
+                return true;
+        return false;
     };
     CandidateList<kMaxCandidates> candidates;
     const int ex_w = v.space.width, ex_h = v.space.height;
@@ -227,7 +249,8 @@ void correction_pass(const LevelView& view, PositionMap& map, const CoherentOpti
     coherent::interleaved_pass(
         options.threads, map.width, map.height, map.positions,
         [&](int, int, const int* xs, const int* ys) {
-            return correct_pixel(view, map.positions.data(), w, xs, ys, options.coherence_bias, options.link_bias);
+            return correct_pixel(view, map.positions.data(), w, xs, ys, options.coherence_bias, options.link_bias,
+                                 options.edge_guard);
         },
         revisit, band);
 }
@@ -250,8 +273,10 @@ void start_rows(const AppearanceSpace& space, ParentAt&& parent_at, int parent_w
             uint32_t* row = out + std::size_t(r) * std::size_t(width);
             for (int x = 0; x < width; ++x) {
                 const uint32_t p = parent_at(std::size_t(y >> 1) * std::size_t(parent_width) + std::size_t(x >> 1));
-                row[x] = pack_position(coherent::child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing),
-                                       coherent::child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing));
+                const bool clamp = options.edge_guard > 0;
+                row[x] = pack_position(
+                    coherent::child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing, clamp),
+                    coherent::child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing, clamp));
                 if (reach > 0) {
                     const uint64_t hash = pixel_hash(options.seed, level, 1, x, y);
                     const int64_t jx = ((int64_t(hash & 0xFFFF) - 32768) * reach) / (32768 * 256);

@@ -42,6 +42,14 @@ struct CoherentOptions {
     // passes of each level from kRelocationMinLevel up (copy_relocation.hpp);
     // 0: none.
     int relocate = 0;
+    // How copies end at the example's edge (format 7; 0: formats 3 to 6).
+    // Above 0, a child whose parent's block runs past the edge is clamped
+    // to it instead of the block moving inside (child_coordinate), and a
+    // correction takes no position within this many example pixels, in x
+    // and in y, of where a neighbour's copy would go on past the edge: a
+    // copy cut off by the edge ends in a seam, not in a stutter of its last
+    // columns (docs/SYNTHESIS.md "Session 12").
+    int edge_guard = 0;
     bool roll = true;            // cut the torus open where the pixels change least
     // Distance surcharge, in 1/256, of a candidate that continues no
     // neighbour's source (a k-coherence alternative) over one that does:
@@ -69,6 +77,11 @@ struct CoherentOptions {
 // large output are many and small, and moving them cost 130 ms of a 512x512
 // synthesis for little (docs/SYNTHESIS.md "Session 11").
 inline constexpr int kRelocationMinLevel = 2;
+
+// vqtex_synthesize's edge guard (format version 7 fixes its own default of
+// the same value), and the most the API and the format accept.
+inline constexpr int kDefaultEdgeGuard = 8;
+inline constexpr int kMaxEdgeGuard = 64;
 
 // Positions into the example, (y << 16) | x, for a width x height output.
 struct PositionMap {

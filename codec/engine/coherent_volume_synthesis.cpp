@@ -171,8 +171,8 @@ VoxelMap upsample(const AppearanceSpace& space, const VoxelMap& parent, int widt
         for (int x = 0; x < width; ++x) {
             const uint64_t p = parent.voxels[std::size_t(y >> 1) * parent.width + (x >> 1)];
             out.voxels[std::size_t(y) * width + x] =
-                pack_voxel(coherent::child_coordinate(space.width, space.wraps, voxel_x(p), x & 1, spacing),
-                           coherent::child_coordinate(space.height, space.wraps, voxel_y(p), y & 1, spacing),
+                pack_voxel(coherent::child_coordinate(space.width, space.wraps, voxel_x(p), x & 1, spacing, false),
+                           coherent::child_coordinate(space.height, space.wraps, voxel_y(p), y & 1, spacing, false),
                            voxel_t(p));
         }
     return out;

@@ -1,12 +1,13 @@
-// atlas_file.cpp - reading and writing format versions 3 to 6
+// atlas_file.cpp - reading and writing format versions 3 to 7
 // (docs/FORMAT.md section 8). Version 3: the container of sections 2.1-2.4
 // holding exactly two sections, ATLS (the coded atlas) and SYNP (the
 // engine's parameters). Version 4 (section 8.7): the same content behind a
 // compact header, signature and version, one packed byte, varints, the
 // parameters only when they are not the defaults, the bitstream, CRC-32.
 // Version 5 (section 8.8): version 4 with the seam blend's radius. Version
-// 6 (section 8.9): version 5 with the copy relocation's positions, the one
-// the encoder writes.
+// 6 (section 8.9): version 5 with the copy relocation's positions. Version
+// 7 (section 8.10): version 6 with the edge guard, the one the encoder
+// writes.
 #include "format/atlas_file.hpp"
 
 #include <string>
@@ -58,6 +59,7 @@ AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {
     p.jitter = in(r.u16("jitter"), 0, 256, "jitter");
     p.blend = 0;
     p.relocate = 0;
+    p.edge_guard = 0;
     r.expect_end();
     return p;
 }
@@ -69,11 +71,11 @@ constexpr uint8_t kPackedExemplarSize = 1u << 5;  // the exemplar size is stored
 constexpr uint8_t kPackedParameters = 1u << 6;    // the parameters are stored (they are not the defaults)
 constexpr uint8_t kPackedTileable = 1u << 7;      // the atlas wraps
 // Signature, version, packed byte, one-byte atlas width, height and seed,
-// CRC-32: no version 4, 5 or 6 file is shorter.
+// CRC-32: no version 4 to 7 file is shorter.
 constexpr std::size_t kCompactMinSize = sizeof kMagic + 2 + 1 + 3 + kTrailerSize;
 
-// The parameters a version 4, 5 or 6 file leaves out. These are the values of
-// the format, fixed by docs/FORMAT.md 8.7 to 8.9, not whatever the
+// The parameters a version 4 to 7 file leaves out. These are the values of
+// the format, fixed by docs/FORMAT.md 8.7 to 8.10, not whatever the
 // engine's defaults become: a file written with them decodes the same
 // forever.
 // The blend when it is not stored: version 4 has none, version 5's default.
@@ -82,11 +84,15 @@ constexpr int default_blend(uint16_t version) { return version >= kBlendAtlasFor
 constexpr int default_relocation(uint16_t version) {
     return version >= kRelocationAtlasFormatVersion ? kV6DefaultRelocation : 0;
 }
+// The edge guard when it is not stored: version 7's default, none before.
+constexpr int default_edge_guard(uint16_t version) {
+    return version >= kEdgeGuardAtlasFormatVersion ? kV7DefaultEdgeGuard : 0;
+}
 
 bool are_compact_defaults(const AtlasSynthesisParams& p, uint16_t version) {
     return p.passes == 2 && p.coarse_passes == 4 && p.polish_passes == 1 && p.coherence_bias == 256 &&
            p.coherence == 1 && p.roll && p.jitter == 0 && p.blend == default_blend(version) &&
-           p.relocate == default_relocation(version);
+           p.relocate == default_relocation(version) && p.edge_guard == default_edge_guard(version);
 }
 
 // The checks both versions make once the header's fields are read: the
@@ -105,7 +111,7 @@ void check_atlas(int aw, int ah, int levels, int channels, std::size_t input_byt
                  std::to_string(memory_limit >> 20) + " MiB: raise memory_limit (--memory-limit)");
 }
 
-// Versions 4 to 6: the CRC first (the file has no sizes to walk), then the fields
+// Versions 4 to 7: the CRC first (the file has no sizes to walk), then the fields
 // in their order, each checked as it is read.
 AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     const uint16_t version = read_format_version(data, size);
@@ -146,6 +152,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
     p.example_tileable = (packed & kPackedTileable) != 0;
     p.blend = default_blend(version);
     p.relocate = default_relocation(version);
+    p.edge_guard = default_edge_guard(version);
     if (packed & kPackedParameters) {
         const std::size_t at = r.position();
         p.passes = int(r.varint_in("passes", 1, 16));
@@ -158,6 +165,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
         if (version >= kBlendAtlasFormatVersion) p.blend = int(r.varint_in("blend", 0, kMaxBlendRadius));
         if (version >= kRelocationAtlasFormatVersion)
             p.relocate = int(r.varint_in("relocation", 0, kMaxRelocationPositions));
+        if (version >= kEdgeGuardAtlasFormatVersion) p.edge_guard = int(r.varint_in("edge guard", 0, kMaxEdgeGuard));
         if (are_compact_defaults(p, version))
             r.corrupt("the parameters are stored but are the defaults (packed bit 6 must then be 0)");
         f.parameter_bytes = r.position() - at;
@@ -196,6 +204,7 @@ CoherentOptions coherent_options(const AtlasSynthesisParams& params, int width, 
     opt.jitter = params.jitter;
     opt.blend = params.blend;
     opt.relocate = params.relocate;
+    opt.edge_guard = params.edge_guard;
     return opt;
 }
 
@@ -257,14 +266,15 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
     if (header.channels < 1 || header.channels > 4 || header.levels < 1 || header.levels > 8 ||
         atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide || atlas_width > kMaxAtlasSide ||
         atlas_height > kMaxAtlasSide || atlas_bitstream.empty() || params.blend < 0 || params.blend > kMaxBlendRadius ||
-        params.relocate < 0 || params.relocate > kMaxRelocationPositions)
-        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 6 can hold");
+        params.relocate < 0 || params.relocate > kMaxRelocationPositions || params.edge_guard < 0 ||
+        params.edge_guard > kMaxEdgeGuard)
+        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 7 can hold");
     const bool exemplar_size =
         header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
-    const bool parameters = !are_compact_defaults(params, kRelocationAtlasFormatVersion);
+    const bool parameters = !are_compact_defaults(params, kEdgeGuardAtlasFormatVersion);
     ByteWriter w;
     w.bytes(kMagic, sizeof kMagic);
-    w.u16(kRelocationAtlasFormatVersion);
+    w.u16(kEdgeGuardAtlasFormatVersion);
     w.u8(uint8_t((header.channels - 1) | (header.levels - 1) << kPackedLevelsShift |
                  (exemplar_size ? kPackedExemplarSize : 0) | (parameters ? kPackedParameters : 0) |
                  (params.example_tileable ? kPackedTileable : 0)));
@@ -285,6 +295,7 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
         w.varint(uint64_t(params.jitter));
         w.varint(uint64_t(params.blend));
         w.varint(uint64_t(params.relocate));
+        w.varint(uint64_t(params.edge_guard));
     }
     w.bytes(atlas_bitstream);
     w.u32(crc32(w.data().data(), w.size()));

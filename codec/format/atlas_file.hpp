@@ -1,12 +1,12 @@
-// atlas_file.hpp - format versions 3 to 6 (issue 17, docs/FORMAT.md
+// atlas_file.hpp - format versions 3 to 7 (issue 17, docs/FORMAT.md
 // section 8): a still texture stored as an atlas, an image whose windows are the
 // coherent engine's codebook (in this first version the exemplar or a crop
 // of it), coded as AV1 (atlas_coder.hpp), plus the engine's parameters.
 // Version 3 holds them in the container's sections (ATLS, SYNP); version 4
 // behind a compact header (section 8.7); version 5 adds the blend at seams
-// to version 4 (section 8.8), version 6, which the encoder writes, the copy
-// relocation to version 5 (section 8.9). The
-// decoder rebuilds the appearance space from the decoded atlas and
+// to version 4 (section 8.8), version 6 the copy relocation to version 5
+// (section 8.9), version 7, which the encoder writes, the edge guard to
+// version 6 (section 8.10). The decoder rebuilds the appearance space from the decoded atlas and
 // synthesises with codec/engine/coherent_synthesis.hpp.
 #pragma once
 
@@ -42,6 +42,11 @@ inline constexpr int kV5DefaultBlend = 2;
 // kMaxRelocationPositions (copy_relocation.hpp), as the blend's is
 // kMaxBlendRadius.
 inline constexpr int kV6DefaultRelocation = 64;
+// Format version 7's edge guard, in atlas pixels, when its parameters are
+// not stored (docs/FORMAT.md 8.10), and what the encoder writes; versions 3
+// to 6 have none (0: their edge handling). The stored value is at most
+// kMaxEdgeGuard (coherent_synthesis.hpp).
+inline constexpr int kV7DefaultEdgeGuard = 8;
 
 struct AtlasSynthesisParams {
     bool example_tileable = false;  // the atlas wraps (positions wrap instead of reflecting)
@@ -58,6 +63,9 @@ struct AtlasSynthesisParams {
     // Positions tried per copy by the copy relocation, 0..kMaxRelocationPositions
     // (version 6; files of versions 3 to 5 have none, 0).
     int relocate = kV6DefaultRelocation;
+    // How copies end at the atlas's edge (CoherentOptions::edge_guard),
+    // 0..kMaxEdgeGuard (version 7; files of versions 3 to 6: 0).
+    int edge_guard = kV7DefaultEdgeGuard;
 };
 
 // The engine's options for a file's parameters, at an output size and seed
@@ -73,18 +81,18 @@ struct AtlasFile {
     AtlasSynthesisParams params;
     Image atlas;                       // decoded
     std::size_t atlas_bytes = 0;       // the coded atlas bitstream
-    std::size_t bitstream_offset = 0;  // versions 4-6: where that bitstream starts in the file
-    std::size_t parameter_bytes = 0;   // versions 4-6: the parameter varints (0 for the defaults)
+    std::size_t bitstream_offset = 0;  // versions 4-7: where that bitstream starts in the file
+    std::size_t parameter_bytes = 0;   // versions 4-7: the parameter varints (0 for the defaults)
     // What the memory limit counts for the input beside the atlas and the
-    // engine: the sections' raw sizes (version 3) or the file (versions 4-6).
+    // engine: the sections' raw sizes (version 3) or the file (versions 4-7).
     std::size_t input_bytes = 0;
 };
 
-// True when the file's signature reads and its version is 3 to 6 (any
+// True when the file's signature reads and its version is 3 to 7 (any
 // damage is left to decode_atlas_file to report).
 bool is_atlas_file(const uint8_t* data, std::size_t size);
 
-// Reads and checks a version 3 to 6 file and decodes its atlas. The memory
+// Reads and checks a version 3 to 7 file and decodes its atlas. The memory
 // limit covers the input (AtlasFile::input_bytes), dav1d's frame and the
 // decoded atlas; the engine's own memory is checked by the caller with
 // atlas_decode_memory.
@@ -97,7 +105,7 @@ AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t m
 uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
                              uint64_t width, uint64_t height);
 
-// A version 6 file (what the encoder writes): the exemplar size, channels,
+// A version 7 file (what the encoder writes): the exemplar size, channels,
 // levels and seed of `header` (its other fields are not stored), the coded
 // atlas and the parameters. The exemplar size is stored only when it is
 // not the atlas's, the parameters only when they are not the defaults.
@@ -106,9 +114,9 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
 
 // The same content as a version 3 file (the header fields of `header`
 // other than version, flags and section count). Kept for the tests and the
-// fuzzers' seeds: version 3 must go on decoding. Version 3 has no blend
-// and no relocation: params.blend and params.relocate are not stored, and
-// the file decodes without them.
+// fuzzers' seeds: version 3 must go on decoding. Version 3 has no blend,
+// no relocation and no edge guard: params.blend, params.relocate and
+// params.edge_guard are not stored, and the file decodes without them.
 std::vector<uint8_t> encode_atlas_file_v3(const FileHeader& header, int atlas_width, int atlas_height,
                                           const std::vector<uint8_t>& atlas_bitstream,
                                           const AtlasSynthesisParams& params);

@@ -33,11 +33,14 @@ inline constexpr uint16_t kCompactAtlasFormatVersion = 4;
 inline constexpr uint16_t kBlendAtlasFormatVersion = 5;
 // Version 6 (docs/FORMAT.md section 8.9): version 5's layout with one more
 // parameter, the positions tried per copy by the copy relocation, which
-// versions 4 and 5 decode without. The encoder writes version 6.
+// versions 4 and 5 decode without.
 inline constexpr uint16_t kRelocationAtlasFormatVersion = 6;
+// Version 7 (docs/FORMAT.md section 8.10): version 6's layout with one more
+// parameter, the edge guard (how copies end at the atlas's edge), which
+// versions 3 to 6 decode without. The encoder writes version 7.
+inline constexpr uint16_t kEdgeGuardAtlasFormatVersion = 7;
 inline bool is_compact_atlas_version(uint16_t version) {
-    return version == kCompactAtlasFormatVersion || version == kBlendAtlasFormatVersion ||
-           version == kRelocationAtlasFormatVersion;
+    return version >= kCompactAtlasFormatVersion && version <= kEdgeGuardAtlasFormatVersion;
 }
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;

@@ -168,6 +168,10 @@ typedef struct vqtex_synth_params {
     uint32_t relocate;         /* still textures: positions tried per copy by the copy relocation,
                                   which moves whole copies to where they fit the copies around
                                   them; 0 (none) to 1024, default 64 [--relocate] */
+    uint32_t edge_guard;       /* still textures: a copy cut off by the example's edge ends in a seam:
+                                  no position within this many example pixels of where it would go
+                                  on is taken beside it; 0 (formats 3 to 6's edges) to 64, default 8
+                                  [--edge-guard] */
     /* Paper engine (the coherent one reads model.levels and
      * model.example_tileable only). */
     vqtex_model_params model;
@@ -325,9 +329,10 @@ typedef struct vqtex_file_info {
     vqtex_section_info sections[VQTEX_MAX_SECTIONS];
     uint32_t exemplar_frames;                      /* animated texture: frames of the example; 0 for a still one */
     uint8_t window_frames[VQTEX_MAX_LEVELS];       /* animated texture: D of each level's {RxCxD,k} */
-    uint32_t atlas_width, atlas_height;            /* atlas texture (format 3 to 6): the atlas's size; 0 otherwise */
-    uint32_t blend;                                /* atlas texture: radius of the blend at seams (format 5, 6); 0 otherwise */
-    uint32_t relocate;                             /* atlas texture: positions tried per copy by the copy relocation (format 6); 0 otherwise */
+    uint32_t atlas_width, atlas_height;            /* atlas texture (format 3 to 7): the atlas's size; 0 otherwise */
+    uint32_t blend;                                /* atlas texture: radius of the blend at seams (format 5 to 7); 0 otherwise */
+    uint32_t relocate;                             /* atlas texture: positions tried per copy by the copy relocation (format 6, 7); 0 otherwise */
+    uint32_t edge_guard;                           /* atlas texture: the edge guard in atlas pixels (format 7); 0 otherwise */
 } vqtex_file_info;
 
 /* Verifies and describes a file (everything the decoder checks). */
