@@ -419,10 +419,11 @@ TEST(AtlasFile, HostileSectionsAreCorruptOrOverTheLimitNeverACrash) {
 
 // Format v7 holds what v3 holds behind a smaller header, plus the blend, the
 // relocation and the edge guard: from the same bitstream, header fields and
-// parameters (blend 0, relocation 0, edge guard 0), the two decode to the same pixels, at the
-// default size and seed and at others; with the defaults they differ. The cases cover each
-// channel count, a crop (the exemplar size stored), non-default parameters
-// with a wrapping atlas, and a seed that needs six varint bytes.
+// parameters (blend 0, relocation 0, edge guard 0), the two decode to the
+// same pixels, at the default size and seed and at others; with the
+// defaults they differ. The cases cover each channel count, a crop (the
+// exemplar size stored), non-default parameters with a wrapping atlas, and
+// a seed that needs six varint bytes.
 TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
     struct Case {
         int channels, aw, ah;

@@ -441,7 +441,8 @@ TEST(Coherent, InvalidParametersRefused) {
     for (auto tweak :
          {+[](vqtex_synth_params& p) { p.coherence = 0; }, +[](vqtex_synth_params& p) { p.coherence = 17; },
           +[](vqtex_synth_params& p) { p.passes = 0; }, +[](vqtex_synth_params& p) { p.jitter = 1025; },
-          +[](vqtex_synth_params& p) { p.blend = 4; },
+          +[](vqtex_synth_params& p) { p.blend = 4; }, +[](vqtex_synth_params& p) { p.relocate = 1025; },
+          +[](vqtex_synth_params& p) { p.edge_guard = 65; },
           +[](vqtex_synth_params& p) { p.engine = vqtex_engine(7); }}) {
         vqtex_synth_params p = coherent_params(32, 32, 1);
         tweak(p);
@@ -612,19 +613,21 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
     // A large output's finest level runs in bands of rows with margins
     // (issue 17's memory budget); any band height, odd heights among them
     // (the subsets' parity across the torus's wrap), 1 to 3 channels, jitter,
-    // more passes, no polish, no roll, k > 1, a tileable example, and any
-    // thread count must give the bytes of the whole level.
+    // more passes, no polish, no roll, k > 1, a tileable example, the edge
+    // guard, and any thread count must give the bytes of the whole level.
     struct Case {
         int w, h, channels, passes, polish, jitter, coherence;
         bool roll, tileable;
         int blend;
         int example_w = 40, example_h = 36;
+        int edge_guard = 8;
     };
     // The last example has more than 65536 pixels: the coarser level's
     // positions are kept as 3-byte indices.
     const Case cases[] = {{61, 97, 1, 2, 1, 0, 1, true, false, 0},  {40, 121, 2, 2, 1, 0, 1, true, false, 2},
                           {33, 80, 3, 2, 1, 64, 1, true, false, 3}, {50, 99, 1, 3, 2, 0, 3, false, false, 1},
-                          {47, 60, 3, 1, 0, 0, 1, true, true, 2},   {45, 70, 1, 2, 1, 0, 1, true, false, 2, 300, 230}};
+                          {47, 60, 3, 1, 0, 0, 1, true, true, 2},   {45, 70, 1, 2, 1, 0, 1, true, false, 2, 300, 230},
+                          {52, 90, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 0}};
     for (const Case& c : cases) {
         const Image ex = textured(c.example_w, c.example_h, 3, c.channels);
         CoherentOptions options;
@@ -636,8 +639,9 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
         options.jitter = c.jitter;
         options.roll = c.roll;
         options.blend = c.blend;
+        options.edge_guard = c.edge_guard;
         const std::string what = std::to_string(c.w) + "x" + std::to_string(c.h) + "x" + std::to_string(c.channels) +
-                                 " blend " + std::to_string(c.blend);
+                                 " blend " + std::to_string(c.blend) + " edge guard " + std::to_string(c.edge_guard);
         const Image whole = synthesize_coherent(ex, 4, c.tileable, c.coherence, options).image;
         for (int band : {1, 2, 7, 16}) {
             options.band_rows = band;
@@ -722,8 +726,11 @@ namespace {
 // neighbours, each neighbour's source shifted back by its offset (when that
 // stays inside the example); the winner has the least full distance between
 // the 5x5 windows of appearance vectors, weighed by its broken links, the
-// earliest candidate on ties.
-uint32_t reference_correction(const AppearanceSpace& space, int level, const PositionMap& map, int x, int y) {
+// earliest candidate on ties. With an edge guard (format 7), a position
+// closer than `guard` in x and y to where a nearest neighbour's copy would
+// go on past the example's edge is barred as a repeat is.
+uint32_t reference_correction(const AppearanceSpace& space, int level, const PositionMap& map, int x, int y,
+                              int guard = 0) {
     const int s = space.levels[std::size_t(level)].spacing;
     auto source = [&](int dx, int dy) {
         return map.positions[std::size_t(Image::wrap(y + dy, map.height)) * map.width + Image::wrap(x + dx, map.width)];
@@ -743,10 +750,17 @@ uint32_t reference_correction(const AppearanceSpace& space, int level, const Pos
     // A position one of the four nearest neighbours holds would repeat a
     // pixel: never a candidate, and the pixel's own loses to any other.
     auto next_door = [&](uint32_t c) {
-        return c == source(0, -1) || c == source(-1, 0) || c == source(1, 0) || c == source(0, 1);
+        if (c == source(0, -1) || c == source(-1, 0) || c == source(1, 0) || c == source(0, 1)) return true;
+        for (const auto& [dx, dy] : {std::pair{0, -1}, std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, 1}}) {
+            const int cx = position_x(source(dx, dy)) - dx * s, cy = position_y(source(dx, dy)) - dy * s;
+            const bool past_the_edge = cx < 0 || cy < 0 || cx >= space.width || cy >= space.height;
+            if (past_the_edge && std::abs(position_x(c) - cx) < guard && std::abs(position_y(c) - cy) < guard)
+                return true;
+        }
+        return false;
     };
     const uint32_t own = source(0, 0);
-    std::vector<uint32_t> candidates{own};
+    std::vector<uint32_t> candidates;
     for (int dy = -2; dy <= 2; ++dy)
         for (int dx = -2; dx <= 2; ++dx) {
             const uint32_t q = source(dx, dy);
@@ -766,6 +780,7 @@ uint32_t reference_correction(const AppearanceSpace& space, int level, const Pos
         broken += source(1, 0) != pack_position(cx + s, cy);
         return distance(c) * (1 + broken);
     };
+    // The pixel's own position first; barred, it loses to any candidate.
     uint32_t best = own;
     int64_t best_d = next_door(own) ? INT64_MAX : weighed(own);
     for (uint32_t c : candidates)
@@ -780,26 +795,30 @@ TEST(Coherent, CorrectionEqualsItsDefinition) {
     // small example and an odd-sized torus: one correction pass of the engine
     // (four interleaved subsets, each reading the state before it) against
     // the definition applied subset by subset.
+    // With the edge guard off (formats 3 to 6) and on (format 7: random
+    // positions put many beside the edge).
     const Image ex = textured(30, 26, 6);
     const AppearanceSpace space = build_appearance_space(ex, 3, false, 1);
     const CoherenceSets sets = build_coherence_sets(space, 1, 2, 1);
-    for (int level = 0; level < 3; ++level) {
-        PositionMap map{13, 11, {}};
-        Rng rng{uint64_t(level + 1)};
-        for (int i = 0; i < 13 * 11; ++i)
-            map.positions.push_back(pack_position(int(rng.below(30)), int(rng.below(26))));
-        PositionMap expected = map;
-        static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
-        for (const auto& [sx, sy] : kOrder) {
-            const PositionMap before = expected;
-            for (int y = sy; y < map.height; y += 2)
-                for (int x = sx; x < map.width; x += 2)
-                    expected.positions[std::size_t(y) * map.width + x] =
-                        reference_correction(space, level, before, x, y);
+    for (int guard : {0, 3, 8})
+        for (int level = 0; level < 3; ++level) {
+            PositionMap map{13, 11, {}};
+            Rng rng{uint64_t(level + 1)};
+            for (int i = 0; i < 13 * 11; ++i)
+                map.positions.push_back(pack_position(int(rng.below(30)), int(rng.below(26))));
+            PositionMap expected = map;
+            static constexpr int kOrder[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+            for (const auto& [sx, sy] : kOrder) {
+                const PositionMap before = expected;
+                for (int y = sy; y < map.height; y += 2)
+                    for (int x = sx; x < map.width; x += 2)
+                        expected.positions[std::size_t(y) * map.width + x] =
+                            reference_correction(space, level, before, x, y, guard);
+            }
+            CoherentOptions options;
+            options.threads = 2;
+            options.edge_guard = guard;
+            correct_positions(space, sets, level, map, options);
+            EXPECT_EQ(map.positions, expected.positions) << "level " << level << ", edge guard " << guard;
         }
-        CoherentOptions options;
-        options.threads = 2;
-        correct_positions(space, sets, level, map, options);
-        EXPECT_EQ(map.positions, expected.positions) << "level " << level;
-    }
 }

@@ -160,7 +160,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 100))->capture_default_str();
     app.add_option("--target-size", target_size, "largest file in bytes: the best atlas (or trees preset) that fits");
     auto* atlas_flag = app.add_flag("--atlas", atlas,
-                                    "store the example as an AV1 atlas decoded by the coherent engine (format v4, "
+                                    "store the example as an AV1 atlas decoded by the coherent engine (format v7, "
                                     "the default for still textures; uses --quality or --target-size, --seed, "
                                     "--levels, --tileable-example)");
     app.add_flag("--trees", trees,

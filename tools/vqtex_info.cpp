@@ -38,8 +38,8 @@ FileReport info_one(const std::string& input) {
     if (vqtex_inspect(bytes.data(), bytes.size(), 0, &info, &err) != VQTEX_OK)
         throw std::runtime_error(input + ": " + err.detail);
     // Bytes per kind of section, all levels together.
-    // Formats 3 to 5 hold an atlas and the engine's parameters instead;
-    // formats 4 and 5 have no sections, and inspect lists their two parts
+    // Formats 3 to 7 hold an atlas and the engine's parameters instead;
+    // formats 4 to 7 have no sections, and inspect lists their two parts
     // under the same tags (vqtex.h).
     const bool atlas = info.format_version >= 3 && info.format_version <= 7;
     const bool compact = info.format_version >= 4 && info.format_version <= 7;

@@ -187,8 +187,9 @@ int main(int argc, char** argv) {
                              ->check(CLI::Range(0, 1024));
     auto* edge_guard_opt = app.add_option("--edge-guard", edge_guard,
                                           "coherent engine, still textures: a copy cut off by the example's edge "
-                                          "ends in a seam, no position within this many pixels of where it would "
-                                          "go on being taken beside it; 0 (formats 3 to 6's edges) to 64 (default 8)")
+                                          "ends in a seam; the pixels beside it take no position within this many "
+                                          "pixels of where it would have gone on; 0 (formats 3 to 6's edges) to 64 "
+                                          "(default 8)")
                                ->check(CLI::Range(0, 64));
     app.add_option("--levels", levels, "pyramid levels (default: automatic, 4 for 128x128)");
     app.add_option("--shapes", shapes,

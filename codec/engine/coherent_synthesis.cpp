@@ -86,37 +86,40 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
             if (proposing == 0 && v.k == 1) return own_position;
         }
     }
+    // The four nearest neighbours: their taps, and the step to each.
+    static constexpr int kNearest[4] = {kTaps / 2 - kSide, kTaps / 2 - 1, kTaps / 2 + 1, kTaps / 2 + kSide};
+    static constexpr int kNearestX[4] = {0, -1, 1, 0}, kNearestY[4] = {-1, 0, 0, 1};
     // No two adjacent pixels of the example share a position, so a
     // candidate that one of the four nearest neighbours holds would repeat a
     // pixel: it is not offered (k = 1). Without this rule, 1.4% of the
     // adjacent pixel pairs of a gravel output were repeats, against 0.07%
     // in its example.
+    const auto repeats_a_neighbour = [&](uint32_t c) {
+        for (int n : kNearest)
+            if (c == sources[n]) return true;
+        return false;
+    };
     // Where a nearest neighbour's copy would go on past the example's edge
-    // (format 7's edge guard): a position just inside it would show that
-    // copy's last columns or rows again beside themselves, a stutter, so
-    // it is not offered either.
+    // (format 7's edge guard), a position just inside that point would show
+    // the copy's last columns or rows again beside themselves, a stutter:
+    // it is not offered either (any k), so that the copy ends in a seam.
     int cut_x[4], cut_y[4], cuts = 0;
-    if (edge_guard > 0 && !v.space.wraps) {
-        const int at[4] = {kTaps / 2 - kSide, kTaps / 2 - 1, kTaps / 2 + 1, kTaps / 2 + kSide};
-        const int step_x[4] = {0, -1, 1, 0}, step_y[4] = {-1, 0, 0, 1};
-        for (int k = 0; k < 4; ++k) {
-            const int cx = position_x(sources[at[k]]) - step_x[k] * v.spacing;
-            const int cy = position_y(sources[at[k]]) - step_y[k] * v.spacing;
+    if (edge_guard > 0 && !v.space.wraps)
+        for (int n = 0; n < 4; ++n) {
+            const int cx = position_x(sources[kNearest[n]]) - kNearestX[n] * v.spacing;
+            const int cy = position_y(sources[kNearest[n]]) - kNearestY[n] * v.spacing;
             if (cx < 0 || cy < 0 || cx >= v.space.width || cy >= v.space.height) {
                 cut_x[cuts] = cx;
                 cut_y[cuts++] = cy;
             }
         }
-    }
-    const auto held_next_door = [&](uint32_t c) {
-        if (c == sources[kTaps / 2 - kSide] || c == sources[kTaps / 2 - 1] || c == sources[kTaps / 2 + 1] ||
-            c == sources[kTaps / 2 + kSide])
-            return true;
+    const auto beside_a_cut = [&](uint32_t c) {
         for (int i = 0; i < cuts; ++i)
             if (std::abs(position_x(c) - cut_x[i]) < edge_guard && std::abs(position_y(c) - cut_y[i]) < edge_guard)
                 return true;
         return false;
     };
+    const auto barred = [&](uint32_t c) { return repeats_a_neighbour(c) || beside_a_cut(c); };
     CandidateList<kMaxCandidates> candidates;
     const int ex_w = v.space.width, ex_h = v.space.height;
     const int k = std::min(v.k, kMaxCandidates / kTaps);
@@ -136,12 +139,14 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
         }
         if (k == 1) {
             const uint32_t c = pack_position(ux, uy);
-            if (c != own_position && !held_next_door(c)) candidates.add(c, true);
+            if (c != own_position && !barred(c)) candidates.add(c, true);
             continue;
         }
         const uint32_t* set = v.sets.of(v.level, uint32_t(uy) * uint32_t(ex_w) + uint32_t(ux));
-        for (int i = 0; i < k; ++i)
-            candidates.add(pack_position(int(set[i] % uint32_t(ex_w)), int(set[i] / uint32_t(ex_w))), i == 0);
+        for (int i = 0; i < k; ++i) {
+            const uint32_t c = pack_position(int(set[i] % uint32_t(ex_w)), int(set[i] / uint32_t(ex_w)));
+            if (!beside_a_cut(c)) candidates.add(c, i == 0);
+        }
     }
     const int count = candidates.size();
     // Inside a coherent copy every neighbour proposes the pixel's own
@@ -151,8 +156,9 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     for (int t = 0; t < kTaps; ++t)
         std::memcpy(query + t * kAppearanceDims, v.feature(sources[t]), sizeof(int16_t) * kAppearanceDims);
     // The pixel's own position competes too, first and unbiased (its source
-    // may be off the example's edge for every neighbour); unless it repeats
-    // a neighbour's, when any candidate takes its place.
+    // may be off the example's edge for every neighbour); unless it is
+    // barred (it repeats a neighbour's, or lies beside a cut), when any
+    // candidate takes its place; with none, it stays.
     // Each of the four nearest neighbours that does not continue a
     // candidate's copy surcharges its distance by `link_bias`: a position
     // that sits inside one copy with its neighbours beats one that a
@@ -161,15 +167,14 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     // pixel sees its own copy on two sides and the other on two.
     const auto surcharge = [&](uint32_t c) {
         const int cx = position_x(c), cy = position_y(c), s = v.spacing;
-        const int links = int(sources[kTaps / 2 - kSide] == pack_position(cx, cy - s)) +
-                          int(sources[kTaps / 2 + kSide] == pack_position(cx, cy + s)) +
-                          int(sources[kTaps / 2 - 1] == pack_position(cx - s, cy)) +
-                          int(sources[kTaps / 2 + 1] == pack_position(cx + s, cy));
+        int links = 0;
+        for (int n = 0; n < 4; ++n)
+            links += int(sources[kNearest[n]] == pack_position(cx + kNearestX[n] * s, cy + kNearestY[n] * s));
         return uint64_t(256) + uint64_t(link_bias) * uint64_t(4 - links);
     };
     const auto scaled = [](uint64_t d, uint64_t factor) { return uint32_t(std::min<uint64_t>(UINT32_MAX, d * factor / 256)); };
     uint32_t best = own_position;
-    uint32_t best_d = held_next_door(own_position)
+    uint32_t best_d = barred(own_position)
                           ? UINT32_MAX
                           : scaled(v.distance(query, position_x(best), position_y(best), UINT32_MAX), surcharge(best));
     for (int i = 0; i < count; ++i) {
@@ -267,13 +272,14 @@ void start_rows(const AppearanceSpace& space, ParentAt&& parent_at, int parent_w
                 uint32_t* out) {
     // Jitter of up to jitter/256 of the spacing in x and y.
     const int64_t reach = jitter ? int64_t(spacing) * options.jitter : 0;
+    // Format 7: children past the example's edge clamped (child_coordinate).
+    const bool clamp = options.edge_guard > 0;
     parallel_for(options.threads, std::size_t(count), 16, [&](std::size_t r0, std::size_t r1) {
         for (int r = int(r0); r < int(r1); ++r) {
             const int y = (first + r) % height;
             uint32_t* row = out + std::size_t(r) * std::size_t(width);
             for (int x = 0; x < width; ++x) {
                 const uint32_t p = parent_at(std::size_t(y >> 1) * std::size_t(parent_width) + std::size_t(x >> 1));
-                const bool clamp = options.edge_guard > 0;
                 row[x] = pack_position(
                     coherent::child_coordinate(space.width, space.wraps, position_x(p), x & 1, spacing, clamp),
                     coherent::child_coordinate(space.height, space.wraps, position_y(p), y & 1, spacing, clamp));

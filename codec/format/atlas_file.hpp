@@ -1,13 +1,13 @@
 // atlas_file.hpp - format versions 3 to 7 (issue 17, docs/FORMAT.md
-// section 8): a still texture stored as an atlas, an image whose windows are the
-// coherent engine's codebook (in this first version the exemplar or a crop
-// of it), coded as AV1 (atlas_coder.hpp), plus the engine's parameters.
-// Version 3 holds them in the container's sections (ATLS, SYNP); version 4
-// behind a compact header (section 8.7); version 5 adds the blend at seams
-// to version 4 (section 8.8), version 6 the copy relocation to version 5
+// section 8): a still texture stored as an atlas, an image whose windows
+// are the coherent engine's codebook (the exemplar or a crop of it), coded
+// as AV1 (atlas_coder.hpp), plus the engine's parameters. Version 3 holds
+// them in the container's sections (ATLS, SYNP); version 4 behind a
+// compact header (section 8.7); version 5 adds the blend at seams to
+// version 4 (section 8.8), version 6 the copy relocation to version 5
 // (section 8.9), version 7, which the encoder writes, the edge guard to
-// version 6 (section 8.10). The decoder rebuilds the appearance space from the decoded atlas and
-// synthesises with codec/engine/coherent_synthesis.hpp.
+// version 6 (section 8.10). The decoder rebuilds the appearance space from
+// the decoded atlas and synthesises with codec/engine/coherent_synthesis.hpp.
 #pragma once
 
 #include <cstddef>

@@ -221,7 +221,7 @@ typedef enum vqtex_codebook {
      * Animations (vqtex_encode_volume) always store trees (format 2). */
     VQTEX_CODEBOOK_TREES = 0,
     /* An atlas: the example (or a crop of it) as an AV1 image, format
-     * version 4 (version 3 files still decode), decoded by the coherent
+     * version 7 (versions 3 to 6 still decode), decoded by the coherent
      * engine, which keeps the example's structure (default for still
      * textures). Uses quality (a byte budget:
      * 4 KB per 128x128 pixels at 50, doubling every 25 points) or
@@ -309,7 +309,7 @@ typedef struct vqtex_section_info {
     uint64_t raw_bytes;
     uint64_t stored_bytes;   /* in the file, including the 16-byte section header */
 } vqtex_section_info;
-/* A format 4 file (a compact atlas texture) has no sections: vqtex_inspect
+/* A format 4 to 7 file (a compact atlas texture) has no sections: vqtex_inspect
  * lists its two parts as "ATLS" (the AV1 bitstream) and "SYNP" (the stored
  * synthesis parameters, 0 bytes when they are the defaults), with
  * raw_bytes = stored_bytes = their bytes in the file and no section header;
@@ -330,9 +330,12 @@ typedef struct vqtex_file_info {
     uint32_t exemplar_frames;                      /* animated texture: frames of the example; 0 for a still one */
     uint8_t window_frames[VQTEX_MAX_LEVELS];       /* animated texture: D of each level's {RxCxD,k} */
     uint32_t atlas_width, atlas_height;            /* atlas texture (format 3 to 7): the atlas's size; 0 otherwise */
-    uint32_t blend;                                /* atlas texture: radius of the blend at seams (format 5 to 7); 0 otherwise */
-    uint32_t relocate;                             /* atlas texture: positions tried per copy by the copy relocation (format 6, 7); 0 otherwise */
-    uint32_t edge_guard;                           /* atlas texture: the edge guard in atlas pixels (format 7); 0 otherwise */
+    uint32_t blend;                                /* atlas texture: radius of the blend at seams (format 5 to
+                                                      7); 0 otherwise */
+    uint32_t relocate;                             /* atlas texture: positions tried per copy by the copy
+                                                      relocation (format 6, 7); 0 otherwise */
+    uint32_t edge_guard;                           /* atlas texture: the edge guard in atlas pixels
+                                                      (format 7); 0 otherwise */
 } vqtex_file_info;
 
 /* Verifies and describes a file (everything the decoder checks). */
