@@ -79,8 +79,8 @@ inline uint32_t window_distance(const dsp::Kernels& kernels, const AppearanceSpa
 // copy beside it, and over the levels those repeats became stutters: strips
 // of the example's last columns shown twice or three times side by side
 // (caustics' bright blips). Format 7 (`clamp` true): the child past the edge
-// is clamped to it, a repeat of its neighbour that its correction replaces
-// (docs/SYNTHESIS.md "Session 12").
+// is clamped to it, so its copy breaks there and the correction passes
+// decide what it shows (docs/SYNTHESIS.md "Session 12").
 inline int child_coordinate(int size, bool wraps, int parent, int offset, int spacing, bool clamp) {
     if (wraps) return Image::wrap(parent + offset * spacing, size);
     const int base = clamp || parent + spacing < size ? parent : std::max(0, size - 1 - spacing);
