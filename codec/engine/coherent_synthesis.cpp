@@ -86,9 +86,9 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
             if (proposing == 0 && v.k == 1) return own_position;
         }
     }
-    // The four nearest neighbours: their taps, and the step to each.
+    // The four nearest neighbours' taps (tap t is at offset t % kSide -
+    // kRadius, t / kSide - kRadius from the pixel).
     static constexpr int kNearest[4] = {kTaps / 2 - kSide, kTaps / 2 - 1, kTaps / 2 + 1, kTaps / 2 + kSide};
-    static constexpr int kNearestX[4] = {0, -1, 1, 0}, kNearestY[4] = {-1, 0, 0, 1};
     // No two adjacent pixels of the example share a position, so a
     // candidate that one of the four nearest neighbours holds would repeat a
     // pixel: it is not offered (k = 1). Without this rule, 1.4% of the
@@ -105,12 +105,12 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     // it is not offered either (any k), so that the copy ends in a seam.
     int cut_x[4], cut_y[4], cuts = 0;
     if (edge_guard > 0 && !v.space.wraps)
-        for (int n = 0; n < 4; ++n) {
-            const int cx = position_x(sources[kNearest[n]]) - kNearestX[n] * v.spacing;
-            const int cy = position_y(sources[kNearest[n]]) - kNearestY[n] * v.spacing;
-            if (cx < 0 || cy < 0 || cx >= v.space.width || cy >= v.space.height) {
-                cut_x[cuts] = cx;
-                cut_y[cuts++] = cy;
+        for (int t : kNearest) {
+            const ShiftedSource c = shifted_source(position_x(sources[t]), position_y(sources[t]), t % kSide - kRadius,
+                                                   t / kSide - kRadius, v.spacing);
+            if (c.x < 0 || c.y < 0 || c.x >= v.space.width || c.y >= v.space.height) {
+                cut_x[cuts] = c.x;
+                cut_y[cuts++] = c.y;
             }
         }
     const auto beside_a_cut = [&](uint32_t c) {
@@ -168,8 +168,8 @@ uint32_t correct_pixel(const LevelView& v, const uint32_t* cur, int w, const int
     const auto surcharge = [&](uint32_t c) {
         const int cx = position_x(c), cy = position_y(c), s = v.spacing;
         int links = 0;
-        for (int n = 0; n < 4; ++n)
-            links += int(sources[kNearest[n]] == pack_position(cx + kNearestX[n] * s, cy + kNearestY[n] * s));
+        for (int t : kNearest)
+            links += int(sources[t] == pack_position(cx + (t % kSide - kRadius) * s, cy + (t / kSide - kRadius) * s));
         return uint64_t(256) + uint64_t(link_bias) * uint64_t(4 - links);
     };
     const auto scaled = [](uint64_t d, uint64_t factor) { return uint32_t(std::min<uint64_t>(UINT32_MAX, d * factor / 256)); };
