@@ -128,6 +128,17 @@ def main():
             means = averaged(textures)
             line = " ".join(f"{sum(s[m] for s in means.values()) / len(means):.2f}" for m in range(len(METRICS)))
             print(f"{'':>6} {name} (over its {len(means)} textures): {line}")
+            # The same test with the ceiling in vqtex's place: what a file
+            # that decoded as the lossless exemplar does would score.
+            # (docs/ATLAS.md "Session 13": it fails most count tests.)
+            verdicts = []
+            for m, (label, _) in enumerate(METRICS):
+                result = best_peer(means, peers, m)
+                if result is not None:
+                    _, n, below, _, _, needed, ok = result
+                    verdicts.append(f"{label} {below}/{n} {'PASS' if ok else 'FAIL'}")
+            if verdicts:
+                print(f"{'':>6}   the same test on it: {', '.join(verdicts)}")
     print("runs per vqtex texture row:", dict(sorted(runs_per_row.items())))
 
 
