@@ -18,6 +18,10 @@ it prints the bench's own verdicts (a check of this script), up to the
 CSV's four decimals: two scores that differ only beyond them tie here
 (at or below) where the bench may not.
 
+Under each rate it also applies the same test to the ceiling row (the
+synthesis from the lossless exemplar) in vqtex's place: what a file that
+decoded exactly as the exemplar does would score against the same peers.
+
 Usage: bench/acceptance.py RUN.csv [RUN.csv ...] [--kind +synth|+gmic]
 """
 import argparse
