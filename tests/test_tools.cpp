@@ -85,12 +85,62 @@ TEST(Tools, UnreadableImageIsAnError) {
 
 TEST(Tools, BadArgumentsAreRejected) {
     const fs::path out = scratch_dir() / "never3.png";
-    for (const char* args : {" --size 0x5", " --size banana", " --shapes 4x4:2", " --codewords -3",
-                             " --leaf mean", " --edge-guard 65", " --relocate 1025"}) {
+    // Each refused for its own value: the paper engine's options with
+    // --paper, since the coherent engine refuses them whatever they hold.
+    const std::pair<const char*, const char*> cases[] = {
+        {" --size 0x5", "out of range"},
+        {" --size banana", "is not WIDTHxHEIGHT"},
+        {" --paper --shapes 4x4:2", "is not RxC:k"},
+        {" --paper --codewords -3", "must be a positive integer"},
+        {" --paper --leaf mean", "mean not in"},
+        {" --edge-guard 65", "not in range 0 to 64"},
+        {" --relocate 1025", "not in range 0 to 1024"}};
+    for (const auto& [args, why] : cases) {
         const ToolRun r = run_tool(corpus + "/weave_128.png " + out.string() + args);
         EXPECT_NE(r.status, 0) << args;
+        EXPECT_NE(r.output.find(why), std::string::npos) << args << ": " << r.output;
         EXPECT_FALSE(fs::exists(out)) << args;
     }
+}
+
+TEST(Tools, AnOutputThatIsTheInputIsRefusedAndTheInputKept) {
+    const fs::path example = scratch_dir() / "self.png";
+    fs::copy_file(corpus + "/weave_128.png", example, fs::copy_options::overwrite_existing);
+    const auto before = vqtex_tools::load_bytes(example.string());
+    for (const ToolRun& r : {encode_tool(example.string() + " " + example.string() + " --quiet"),
+                             run_tool(example.string() + " " + example.string() + " --quiet")}) {
+        EXPECT_NE(r.status, 0);
+        EXPECT_NE(r.output.find("is the input itself"), std::string::npos) << r.output;
+    }
+    const fs::path file = scratch_dir() / "self.vqt";
+    ASSERT_EQ(encode_tool(example.string() + " " + file.string() + " -q 0 --quiet").status, 0);
+    const auto file_before = vqtex_tools::load_bytes(file.string());
+    const ToolRun d = decode_tool(file.string() + " " + file.string() + " --quiet");
+    EXPECT_NE(d.status, 0);
+    EXPECT_NE(d.output.find("is the input itself"), std::string::npos) << d.output;
+    EXPECT_EQ(vqtex_tools::load_bytes(example.string()), before);
+    EXPECT_EQ(vqtex_tools::load_bytes(file.string()), file_before);
+}
+
+TEST(Tools, AFileLargerThanTheMemoryLimitIsRefusedBeforeItIsRead) {
+    const fs::path big = scratch_dir() / "big.vqt";
+    {
+        std::ofstream f(big, std::ios::binary);
+        const std::string chunk(1 << 20, 'v');
+        for (int i = 0; i < 3; ++i) f << chunk;  // 3 MiB
+    }
+    const fs::path out = scratch_dir() / "never_big.png";
+    const ToolRun r = decode_tool(big.string() + " " + out.string() + " --memory-limit 2");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("holds more than 2097152 bytes"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_THROW(vqtex_tools::load_bytes(big.string(), (3u << 20) - 1), std::runtime_error);
+    EXPECT_EQ(vqtex_tools::load_bytes(big.string(), 3u << 20).size(), 3u << 20);
+    // A device has no size to check first: reading stops at the limit.
+    EXPECT_THROW(vqtex_tools::load_bytes("/dev/zero", 1 << 20), std::runtime_error);
+    const ToolRun zero = decode_tool(std::string("/dev/zero ") + out.string() + " --memory-limit 1");
+    EXPECT_NE(zero.status, 0);
+    EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(Tools, TooSmallExampleFailsWithoutOutput) {
@@ -183,6 +233,20 @@ TEST(Tools, DecodeWritesAMipChain) {
     r = decode_tool(vqt + " " + (dir / "m.tif").string() + " --size 64x32 --mips --quiet");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(fs::exists(dir / "m.tif"));
+    // A folder in the place of one level: refused before any level replaces
+    // its file, so the chain of the run above is left whole.
+    const auto first = vqtex_tools::load_bytes((dir / "m.png").string());
+    fs::remove(dir / "m_mip3.png");
+    fs::create_directory(dir / "m_mip3.png");
+    r = decode_tool(vqt + " " + (dir / "m.png").string() + " --size 64x32 --mips --seed 9 --quiet");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("m_mip3.png': it is a folder"), std::string::npos) << r.output;
+    EXPECT_EQ(vqtex_tools::load_bytes((dir / "m.png").string()), first);
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();  // no level's temporary left
+        EXPECT_FALSE(name.rfind(".m", 0) == 0 && name.find(".tmp") != std::string::npos) << name;
+    }
+    fs::remove(dir / "m_mip3.png");
 }
 
 TEST(Tools, CorruptFileFailsWithoutOutput) {

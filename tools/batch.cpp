@@ -227,6 +227,12 @@ void require_single_pair(const std::vector<std::string>& files, const std::strin
         throw std::invalid_argument("give an " + output + " after '" + files[0] + "', or -o DIR to " + verb +
                                     " into a folder");
     if (files.size() > 2) throw std::invalid_argument("several " + inputs + " need -o DIR for their outputs");
+    // Writing the output would replace the input (the write is atomic, so
+    // nothing would be left of it).
+    std::error_code ec;
+    if (fs::exists(files[1], ec) && fs::equivalent(files[0], files[1], ec))
+        throw std::invalid_argument("'" + files[1] + "' is the input itself: give another " + output +
+                                    ", or the input would be replaced");
 }
 
 }  // namespace vqtex_tools

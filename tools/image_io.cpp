@@ -247,15 +247,35 @@ void save_image(const std::string& path, uint32_t width, uint32_t height, uint32
     commit_temporary(write_temporary(path, &level, 1), path, true, "");
 }
 
-std::vector<uint8_t> load_bytes(const std::string& path) {
+std::vector<uint8_t> load_bytes(const std::string& path, uint64_t max_bytes, const std::string& raise) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw std::runtime_error("cannot read '" + path + "': it is a folder");
+    const auto too_large_error = [&] {
+        return std::runtime_error("cannot read '" + path + "': it holds more than " + std::to_string(max_bytes) +
+                                  " bytes, the most this tool reads" + (raise.empty() ? "" : " (" + raise + ")"));
+    };
+    if (fs::is_regular_file(path, ec)) {
+        const uintmax_t size = fs::file_size(path, ec);
+        if (!ec && size > max_bytes) throw too_large_error();
+    }
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) throw std::runtime_error("cannot read '" + path + "': " + (fs::exists(path) ? "permission denied" : "no such file"));
     std::vector<uint8_t> bytes;
     uint8_t buf[65536];
     std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) bytes.insert(bytes.end(), buf, buf + n);
+    // Read in pieces and stop past the limit: a size from stat() is no
+    // bound for pipes and devices.
+    bool too_large = false;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
+        if (uint64_t(bytes.size()) + n > max_bytes) {
+            too_large = true;
+            break;
+        }
+        bytes.insert(bytes.end(), buf, buf + n);
+    }
     const bool failed = std::ferror(f) != 0;
     std::fclose(f);
+    if (too_large) throw too_large_error();
     if (failed) throw std::runtime_error("cannot read '" + path + "': read error");
     return bytes;
 }
@@ -285,6 +305,12 @@ std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_ima
             temporaries.push_back(write_temporary(name, &level, 1));
             written.push_back(name);
         }
+        // A target that is a folder would fail its rename after earlier
+        // levels had replaced theirs: refuse it before renaming any.
+        for (const std::string& name : written) {
+            std::error_code ec;
+            if (fs::is_directory(name, ec)) throw std::runtime_error("cannot write '" + name + "': it is a folder");
+        }
         for (std::size_t i = 0; i < written.size(); ++i) {
             commit_temporary(temporaries[i], written[i], true, "");
             temporaries[i].clear();
@@ -292,7 +318,10 @@ std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_ima
     } catch (...) {
         std::error_code ec;
         for (const auto& t : temporaries)
-            if (!t.empty()) fs::remove(t, ec);
+            if (!t.empty()) {
+                fs::remove(t, ec);
+                untrack(t);
+            }
         throw;
     }
     return written;

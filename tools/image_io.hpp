@@ -60,8 +60,16 @@ LoadedImage load_image(const std::string& path);
 void save_image(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
                 const uint8_t* pixels);
 
-// Reads a whole file; throws with a one-line message naming it.
-std::vector<uint8_t> load_bytes(const std::string& path);
+// The largest file load_bytes reads unless told otherwise: 1 GiB, far above
+// any .vqt file (a 4096x4096 atlas coded near losslessly is tens of MB).
+inline constexpr uint64_t kDefaultMaxFileBytes = uint64_t(1) << 30;
+
+// Reads a whole file of at most `max_bytes` bytes, so that a huge file or a
+// device such as /dev/zero is refused instead of filling memory; throws with
+// a one-line message naming it.
+// `raise` says how to read a larger one, if the tool has a way.
+std::vector<uint8_t> load_bytes(const std::string& path, uint64_t max_bytes = kDefaultMaxFileBytes,
+                                const std::string& raise = "");
 
 // Writes a mip chain: one MIP-mapped file when the format supports it
 // (TIFF, OpenEXR), else one file per level named STEM_mipN.EXT (level 0 is

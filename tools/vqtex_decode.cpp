@@ -38,7 +38,9 @@ FileReport decode_one(const Settings& s, const std::string& input, const std::st
         p.progress = ProgressBar::callback;
         p.progress_user = bar;
     }
-    const std::vector<uint8_t> bytes = load_bytes(input);
+    // The file is part of what the decode holds: a file above the limit is
+    // refused before it is read whole.
+    const std::vector<uint8_t> bytes = load_bytes(input, p.memory_limit, "raise --memory-limit if it is a .vqt file");
     FileReport report;
     char line[1024];
     if (s.frames || is_frame_pattern(output)) {
@@ -146,7 +148,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("-j,--threads", threads,
                    "threads (default: all cores), shared between the files of a batch; output is identical");
-    app.add_option("--memory-limit", memory_mib, "MiB the decoder may allocate (per file)")->capture_default_str();
+    app.add_option("--memory-limit", memory_mib, "MiB the decoder may allocate (per file), 1 to 16777216")
+        ->check(CLI::Range(uint64_t(1), uint64_t(1) << 24))
+        ->capture_default_str();
     app.add_flag("--json", json, "print machine-readable statistics on stdout (one JSON line per file)");
     app.add_flag("--quiet", quiet, "print nothing but errors");
     CLI11_PARSE(app, argc, argv);
