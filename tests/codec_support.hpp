@@ -13,7 +13,8 @@
 namespace vqtex_test {
 
 // Small settings that still exercise every section kind of the trees
-// format (v1); the atlas format (v3, the default) has tests/test_atlas.cpp.
+// format (v1); the atlas formats (v3 to v7, v7 the default) have
+// tests/test_atlas.cpp.
 inline vqtex_encode_params fast_encode_params() {
     vqtex_encode_params p;
     vqtex_encode_params_init(&p);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Whole decodes under every kernel set: the golden still, animated and atlas files,
-# and a file encoded here (seam closing, several entries), decoded with
+# and a trees file encoded here (seam closing, several entries), decoded with
 # VQTEX_SIMD forced to each level (dsp/dispatch.cpp takes the best available
 # set not above it) must give the bytes of the default set. test_dsp checks
 # the kernels one by one; this checks that nothing around them depends on
@@ -17,7 +17,7 @@ synth="$5"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-"$encode" "$corpus/leaves_rgba_64.png" "$work/leaves.vqt" -q 80 --quiet
+"$encode" "$corpus/leaves_rgba_64.png" "$work/leaves.vqt" -q 80 --trees --quiet
 
 decode_all() {  # $1 = output directory
   mkdir -p "$1/anim"

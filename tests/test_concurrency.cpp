@@ -45,6 +45,11 @@ struct Results {
     std::vector<vqtex::Image> mips;
     uint32_t inspected_codewords = 0;
     vqtex::Image synthesised;
+    // The default path: an atlas file (libaom, dav1d, the coherent engine)
+    // and the coherent engine on the example itself.
+    std::vector<uint8_t> atlas_file;
+    vqtex::Image atlas_decoded;
+    vqtex::Image coherent;
 };
 
 vqtex::Image from_c(vqtex_image& img) {
@@ -79,6 +84,20 @@ Results run_all(const vqtex::Image& example, uint32_t threads) {
     sp.model.levels = 2;
     sp.model.codeword_fraction = 0.25f;
     r.synthesised = synthesize(example, sp);
+
+    vqtex_encode_params ap;
+    vqtex_encode_params_init(&ap);  // an atlas, the default
+    ap.threads = threads;
+    r.atlas_file = encode(example, ap);
+    r.atlas_decoded = decode(r.atlas_file, decode_params(52, 44, 7, threads));
+
+    vqtex_synth_params cp;
+    vqtex_synth_params_init(&cp);  // the coherent engine, the default
+    cp.width = 60;
+    cp.height = 48;
+    cp.seed = 4;
+    cp.threads = threads;
+    r.coherent = synthesize(example, cp);
     return r;
 }
 
@@ -88,6 +107,9 @@ void expect_same(const Results& got, const Results& want, const std::string& wha
     EXPECT_EQ(got.mips, want.mips) << what;
     EXPECT_EQ(got.inspected_codewords, want.inspected_codewords) << what;
     EXPECT_EQ(got.synthesised, want.synthesised) << what;
+    EXPECT_EQ(got.atlas_file, want.atlas_file) << what;
+    EXPECT_EQ(got.atlas_decoded, want.atlas_decoded) << what;
+    EXPECT_EQ(got.coherent, want.coherent) << what;
 }
 
 }  // namespace

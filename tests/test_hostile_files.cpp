@@ -542,30 +542,31 @@ TEST(HostileFiles, DecodingStaysWithinTheMemoryLimit) {
     expect_limit_is_kept(file);
 }
 
-// Formats v3 and v4 (docs/FORMAT.md section 8): the atlas's announced size
+// Formats v3 to v7 (docs/FORMAT.md section 8): the atlas's announced size
 // is checked against the limit before dav1d or the decoded atlas allocate
 // anything, and a whole decode stays within the limit its check computes.
 // (dav1d allocates with malloc, which the counter does not see: its share
 // is the 8 MiB plus 8 bytes per atlas pixel that the check reserves.) The
-// encoder writes v4; the v3 file is the same content in the container.
+// encoder writes v7 (a compact header, as v4 to v6); the v3 file is the same
+// content in the container.
 TEST(HostileFiles, AtlasFilesStayWithinTheMemoryLimit) {
     vqtex_encode_params ep;
     vqtex_encode_params_init(&ep);
     ep.codebook = VQTEX_CODEBOOK_ATLAS;
     ep.threads = 1;
     ep.target_size = 1500;
-    const std::vector<uint8_t> v5 = encode(load_corpus("cellular_128.png"), ep);
-    const vqtex::AtlasFile f = vqtex::decode_atlas_file(v5.data(), v5.size(), 1u << 30);
+    const std::vector<uint8_t> v7 = encode(load_corpus("cellular_128.png"), ep);
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(v7.data(), v7.size(), 1u << 30);
     ASSERT_EQ(f.header.version, 7);
-    const std::vector<uint8_t> bits(v5.begin() + std::ptrdiff_t(f.bitstream_offset),
-                                    v5.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
+    const std::vector<uint8_t> bits(v7.begin() + std::ptrdiff_t(f.bitstream_offset),
+                                    v7.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
     const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(f.header, 128, 128, bits, f.params);
-    for (const std::vector<uint8_t>* file : {&v5, &v3}) {
-        SCOPED_TRACE(file == &v5 ? "format v5" : "format v3");
+    for (const std::vector<uint8_t>* file : {&v7, &v3}) {
+        SCOPED_TRACE(file == &v7 ? "format v7" : "format v3");
         expect_limit_is_kept(*file);
         // The atlas width and height, 128 each as two-byte varints (80 01),
         // start the ATLS payload (v3) or follow the packed byte at offset 10
-        // (v5); 4096 is 80 20. A 4096x4096 atlas at a 32 MiB limit is
+        // (v7); 4096 is 80 20. A 4096x4096 atlas at a 32 MiB limit is
         // refused before anything of its size is allocated.
         std::vector<uint8_t> big = *file;
         std::size_t at = 11;

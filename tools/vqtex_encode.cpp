@@ -1,5 +1,6 @@
 // vqtex-encode - encode an example texture into a compact .vqt file holding
-// only TSVQ codebooks (paper section 6), through the public API only. One
+// its codebook only (paper section 6): an AV1 atlas by default, TSVQ trees
+// with --trees; through the public API only. One
 // example (`vqtex-encode IN OUT.vqt`) or a batch (`vqtex-encode IN... -o DIR`).
 #include <cstdio>
 #include <filesystem>
@@ -108,6 +109,8 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
     save_bytes(output, std::vector<uint8_t>(file.data(), file.data() + file.size()));
     const double seconds = now_seconds() - t0;
     const double pixels = double(example.width) * example.height;
+    // An atlas found for a target size comes from no preset: no quality to report.
+    const bool preset_free = p.target_size && p.codebook == VQTEX_CODEBOOK_ATLAS;
     const int quality = p.target_size ? int(stats.quality) : s.quality;
     FileReport r;
     char line[2048];
@@ -118,7 +121,7 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
               {"channels", example.channels},
               {"bytes", size},
               {"bpp", 8.0 * double(size) / pixels},
-              {"quality", quality},
+              {"quality", preset_free ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(quality)},
               {"attempts", stats.attempts},
               {"encode_seconds", seconds},
               {"codewords", std::vector<uint32_t>(stats.codewords, stats.codewords + stats.levels)},
@@ -126,8 +129,12 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
     std::snprintf(line, sizeof line, "%s (%ux%u, %u channels) -> %s\n", input.c_str(), example.width,
                   example.height, example.channels, output.c_str());
     r.text = line;
-    std::snprintf(line, sizeof line, "%zu bytes, %.3f bits per example pixel, quality %d%s, %.3f s\n", size,
-                  8.0 * double(size) / pixels, quality, p.target_size ? " (target-size search)" : "", seconds);
+    if (preset_free)
+        std::snprintf(line, sizeof line, "%zu bytes, %.3f bits per example pixel, atlas chosen for the target size, %.3f s\n",
+                      size, 8.0 * double(size) / pixels, seconds);
+    else
+        std::snprintf(line, sizeof line, "%zu bytes, %.3f bits per example pixel, quality %d%s, %.3f s\n", size,
+                      8.0 * double(size) / pixels, quality, p.target_size ? " (target-size search)" : "", seconds);
     r.text += line;
     return r;
 }

@@ -235,7 +235,7 @@ typedef struct vqtex_encode_params {
     vqtex_model_params model;   /* filled by the quality preset; tweak after */
     uint32_t precision;         /* bits per codeword and key sample, 1 to 8 [--precision] */
     uint32_t pixel_precision;   /* bits per output pixel sample, 1 to 8 */
-    uint32_t smoothing;         /* 1 = exact codewords; 2..4 = taps away from the pixel averaged in
+    uint32_t smoothing;         /* 1 = exact codewords; 2..8 = taps away from the pixel averaged in
                                    blocks of that size (smaller file, coarser matching) [--smoothing] */
     uint32_t backtrack;         /* TSVQ leaves the decoder visits per search [--backtrack] */
     vqtex_init init;            /* how decoding starts each level */
@@ -244,7 +244,7 @@ typedef struct vqtex_encode_params {
     uint32_t threads;           /* 0 = all cores [--threads] */
     vqtex_progress_fn progress;
     void* progress_user;
-    vqtex_codebook codebook;    /* what the file stores: an atlas (v4, default) or TSVQ trees (v1) [--trees] */
+    vqtex_codebook codebook;    /* what the file stores: an atlas (v7, default) or TSVQ trees (v1) [--trees] */
     uint32_t quality;           /* the preset last applied, 0..100: the atlas's quality when
                                    target_size is 0 */
 } vqtex_encode_params;
@@ -257,7 +257,9 @@ VQTEX_API vqtex_status vqtex_encode_params_preset(vqtex_encode_params* params, i
 
 typedef struct vqtex_encode_stats {
     uint64_t bytes;
-    uint32_t quality;        /* the preset used (target-size search), or 0 */
+    uint32_t quality;        /* trees: the preset used (with target_size, the one the search chose);
+                                atlas: params->quality, or 0 with target_size (the atlas is then
+                                chosen for the bytes, not from a preset) */
     uint32_t levels;
     uint32_t codewords[VQTEX_MAX_LEVELS];
     uint32_t entries[VQTEX_MAX_LEVELS];
@@ -292,9 +294,10 @@ VQTEX_API vqtex_status vqtex_decode(const vqtex_decode_params* params, const uin
                                     vqtex_image* out, vqtex_error* error);
 
 /* Decodes the whole synthesised pyramid as a mip chain: levels[0] is the
- * texture, each next level half the size (rounded up) down to 1x1. The
- * synthesised pyramid levels come first; below them, levels are the
- * binomial-filtered, toroidal reduction of the one above. `levels` must hold
+ * texture, each next level half the size (rounded up) down to 1x1. For a
+ * trees file the synthesised pyramid levels come first; for an atlas file
+ * (formats 3 to 7) only levels[0] is synthesised. Below those, levels are
+ * the binomial-filtered, toroidal reduction of the one above. `levels` must hold
  * `capacity` images; *count receives how many were written. */
 VQTEX_API vqtex_status vqtex_decode_mips(const vqtex_decode_params* params, const uint8_t* data,
                                          size_t size, vqtex_image* levels, uint32_t capacity,
