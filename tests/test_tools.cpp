@@ -184,6 +184,7 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     const std::string vqt = (dir / "c.vqt").string(), png = (dir / "c.png").string();
     ToolRun r = encode_tool(corpus + "/cellular_128.png " + vqt + " -q 10 --json");
     ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("\"quality\":10,"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bytes\":"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bpp\":"), std::string::npos) << r.output;
     r = decode_tool(vqt + " " + png + " --size 200x120 --seed 3 --json");
@@ -217,6 +218,17 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     const std::string png2 = (dir / "c2.png").string();
     ASSERT_EQ(decode_tool(vqt + " " + png2 + " --size 200x120 --seed 3 -j 1 --quiet").status, 0);
     EXPECT_EQ(vqtex_test::load_file(png2), img);
+}
+
+TEST(Tools, AnAtlasFoundForATargetSizeReportsNoPreset) {
+    const std::string vqt = (scratch_dir() / "t.vqt").string();
+    ToolRun r = encode_tool(corpus + "/cellular_128.png " + vqt + " --target-size 2000 --json");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("\"quality\":null,"), std::string::npos) << r.output;
+    r = encode_tool(corpus + "/cellular_128.png " + vqt + " --target-size 2000");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("atlas chosen for the target size"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("quality 0"), std::string::npos) << r.output;
 }
 
 TEST(Tools, DecodeWritesAMipChain) {
