@@ -280,6 +280,13 @@ std::vector<uint8_t> load_bytes(const std::string& path, uint64_t max_bytes, con
     return bytes;
 }
 
+void refuse_folders(const std::vector<std::string>& names) {
+    for (const std::string& name : names) {
+        std::error_code ec;
+        if (fs::is_directory(name, ec)) throw std::runtime_error("cannot write '" + name + "': it is a folder");
+    }
+}
+
 std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_image* levels, uint32_t count) {
     std::vector<std::string> written;
     if (imageio().supports_mipmap(path)) {
@@ -305,12 +312,7 @@ std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_ima
             temporaries.push_back(write_temporary(name, &level, 1));
             written.push_back(name);
         }
-        // A target that is a folder would fail its rename after earlier
-        // levels had replaced theirs: refuse it before renaming any.
-        for (const std::string& name : written) {
-            std::error_code ec;
-            if (fs::is_directory(name, ec)) throw std::runtime_error("cannot write '" + name + "': it is a folder");
-        }
+        refuse_folders(written);
         for (std::size_t i = 0; i < written.size(); ++i) {
             commit_temporary(temporaries[i], written[i], true, "");
             temporaries[i].clear();

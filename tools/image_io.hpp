@@ -71,6 +71,12 @@ inline constexpr uint64_t kDefaultMaxFileBytes = uint64_t(1) << 30;
 std::vector<uint8_t> load_bytes(const std::string& path, uint64_t max_bytes = kDefaultMaxFileBytes,
                                 const std::string& raise = "");
 
+// Throws "cannot write 'NAME': it is a folder" for the first of `names`
+// that is a folder: a chain of files staged under temporary names checks
+// every target with it before renaming any, so that a failed rename cannot
+// leave part of the chain replaced.
+void refuse_folders(const std::vector<std::string>& names);
+
 // Writes a mip chain: one MIP-mapped file when the format supports it
 // (TIFF, OpenEXR), else one file per level named STEM_mipN.EXT (level 0 is
 // PATH itself). Returns the files written. All or nothing.

@@ -119,12 +119,7 @@ std::vector<std::string> save_sequence(const std::string& pattern, const vqtex_v
             temps.push_back(temporary_name_for(finals.back()));
             save_image(temps.back(), v.width, v.height, v.channels, v.pixels + frame_bytes * t);
         }
-        // A frame that is a folder would fail its rename after earlier
-        // frames had replaced theirs: refuse it before renaming any.
-        for (const std::string& name : finals) {
-            std::error_code ec;
-            if (fs::is_directory(name, ec)) throw std::runtime_error("cannot write '" + name + "': it is a folder");
-        }
+        refuse_folders(finals);
         for (std::size_t i = 0; i < finals.size(); ++i) {
             std::error_code ec;
             fs::rename(temps[i], finals[i], ec);

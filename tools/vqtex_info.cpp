@@ -41,8 +41,10 @@ FileReport info_one(const std::string& input) {
     // Formats 3 to 7 hold an atlas and the engine's parameters instead;
     // formats 4 to 7 have no sections, and inspect lists their two parts
     // under the same tags (vqtex.h).
-    const bool atlas = info.format_version >= 3 && info.format_version <= 7;
-    const bool compact = info.format_version >= 4 && info.format_version <= 7;
+    // An atlas file is one whose atlas has a size (vqtex.h), so a new
+    // format version needs no change here; only version 3 has sections.
+    const bool atlas = info.atlas_width != 0;
+    const bool compact = atlas && info.format_version != 3;
     const char* tree_kinds[] = {"LEVL", "HIST", "TOPO", "CODE", "ENTR"};
     const char* tree_meaning[] = {"level parameters", "noise histograms", "tree topology + leaf weights",
                                   "leaf codewords", "leaf entries (pixels + keys)"};

@@ -167,12 +167,12 @@ void correction_pass(const VolumeLevelView& view, VoxelMap& map, const Neighbour
 
 VoxelMap upsample(const AppearanceSpace& space, const VoxelMap& parent, int width, int height, int spacing) {
     VoxelMap out{width, height, std::vector<uint64_t>(std::size_t(width) * height)};
+    // Animations keep the edges of formats 3 to 6 (no edge guard: the
+    // clamp was measured on still textures only).
+    const bool clamp = false;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             const uint64_t p = parent.voxels[std::size_t(y >> 1) * parent.width + (x >> 1)];
-            // Animations keep the edges of formats 3 to 6 (no edge guard:
-            // the clamp was measured on still textures only).
-            const bool clamp = false;
             out.voxels[std::size_t(y) * width + x] =
                 pack_voxel(coherent::child_coordinate(space.width, space.wraps, voxel_x(p), x & 1, spacing, clamp),
                            coherent::child_coordinate(space.height, space.wraps, voxel_y(p), y & 1, spacing, clamp),
