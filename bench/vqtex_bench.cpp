@@ -211,6 +211,26 @@ bool write_all(const std::string& path, const uint8_t* data, std::size_t n) {
     return bool(f);
 }
 
+// score_all's scores and the two of seam_scores (coherence at half
+// resolution, straight-seam visibility), for an output or the floor.
+struct AllScores : vqtex_metrics::Scores {
+    vqtex_metrics::SeamScores seams;
+};
+
+AllScores score_everything(const Image& output, const Image& held_out, const Image& exemplar, uint64_t seed) {
+    AllScores s;
+    static_cast<vqtex_metrics::Scores&>(s) = vqtex_metrics::score_all(output, held_out, exemplar, seed);
+    s.seams = vqtex_metrics::seam_scores(output, exemplar, seed);
+    return s;
+}
+
+AllScores floor_everything(const Image& held_out, const Image& exemplar, uint64_t seed) {
+    AllScores s;
+    static_cast<vqtex_metrics::Scores&>(s) = vqtex_metrics::floor_scores(held_out, exemplar, seed);
+    s.seams = vqtex_metrics::seam_scores(held_out, exemplar, seed);
+    return s;
+}
+
 struct Row {
     std::string texture, protocol, codec, setting;
     int quality = -1;
@@ -219,7 +239,7 @@ struct Row {
     long encode_peak_kib = 0, decode_peak_kib = 0;
     double wall_s = 0;  // synth protocol: whole synthesis; summary only, not a CSV column
     std::string status = "ok";  // ok, missing, no-fit, failed
-    vqtex_metrics::Scores scores{};
+    AllScores scores{};
 };
 
 class Writer {
@@ -229,7 +249,8 @@ public:
             std::fputs("texture,protocol,codec,quality,setting,status,bytes,bpp_exemplar,bpp_output,swd,swd_floor,"
                        "colour_de,colour_de_floor,colour_dist,colour_dist_floor,completeness,completeness_floor,"
                        "coherence,coherence_floor,copy_exact,copy_exact_floor,copy_neighbour,copy_neighbour_floor,"
-                       "seam_ratio,seam_ratio_floor,straight_seam,straight_seam_floor,encode_s,decode_s,"
+                       "seam_ratio,seam_ratio_floor,straight_seam,straight_seam_floor,coherence_half,coherence_half_floor,"
+                       "seam_visibility,seam_visibility_floor,encode_s,decode_s,"
                        "encode_peak_kib,decode_peak_kib,hard_to_rank\n",
                        f_);
     }
@@ -238,18 +259,19 @@ public:
     static bool hard_to_rank(const vqtex_metrics::Scores& floor) {
         return floor.swd.mean > 8.0 || floor.completeness > 15.0;
     }
-    void add(const Row& r, const vqtex_metrics::Scores& floor) {
+    void add(const Row& r, const AllScores& floor) {
         rows.push_back(r);
         if (!f_) return;
         const auto& s = r.scores;
-        std::fprintf(f_, "%s,%s,%s,%d,%s,%s,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%ld,%ld,%d\n",
+        std::fprintf(f_, "%s,%s,%s,%d,%s,%s,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%ld,%ld,%d\n",
                      r.texture.c_str(), r.protocol.c_str(), r.codec.c_str(), r.quality, r.setting.c_str(),
                      r.status.c_str(), r.bytes, r.bpp_exemplar, r.bpp_output, s.swd.mean, floor.swd.mean,
                      s.colour.mean_delta_e, floor.colour.mean_delta_e, s.colour.distribution,
                      floor.colour.distribution, s.completeness, floor.completeness, s.coherence, floor.coherence,
                      s.copy.exact_share, floor.copy.exact_share, s.copy.neighbour_coherence,
                      floor.copy.neighbour_coherence, s.seam_ratio, floor.seam_ratio, s.straight_seam,
-                     floor.straight_seam, r.encode_s, r.decode_s,
+                     floor.straight_seam, s.seams.coherence_half, floor.seams.coherence_half,
+                     s.seams.seam_visibility, floor.seams.seam_visibility, r.encode_s, r.decode_s,
                      r.encode_peak_kib, r.decode_peak_kib, hard_to_rank(floor) ? 1 : 0);
         std::fflush(f_);
     }
@@ -368,19 +390,20 @@ GmicResult run_gmic(const Image& exemplar, int w, int h, uint64_t seed, const st
 // over the textures it scored (column n; the floor over all of them), then
 // one line per texture with the metrics on which vqtex scores worse than
 // G'MIC, so that a developer sees which textures lose and how.
-void print_synth_summary(const std::vector<Row>& rows, const std::map<std::string, vqtex_metrics::Scores>& floors) {
+void print_synth_summary(const std::vector<Row>& rows, const std::map<std::string, AllScores>& floors) {
     std::map<std::string, std::map<std::string, const Row*>> by_texture;  // texture -> codec -> row
     for (const Row& r : rows)
         if (r.protocol == "synth" && r.status == "ok") by_texture[r.texture][r.codec] = &r;
     const char* codecs[] = {"vqtex", "gmic"};
     struct Mean {
         double swd = 0, de = 0, cdist = 0, compl_ = 0, coh = 0, copy = 0, ncoh = 0, seam = 0, straight = 0,
-               analyse = 0, synth = 0, wall = 0;
+               coh_half = 0, visibility = 0, analyse = 0, synth = 0, wall = 0;
         int n = 0;
-        void add(const vqtex_metrics::Scores& s) {
+        void add(const AllScores& s) {
             swd += s.swd.mean, de += s.colour.mean_delta_e, cdist += s.colour.distribution;
             compl_ += s.completeness, coh += s.coherence, copy += s.copy.exact_share;
             ncoh += s.copy.neighbour_coherence, seam += s.seam_ratio, straight += s.straight_seam;
+            coh_half += s.seams.coherence_half, visibility += s.seams.seam_visibility;
             ++n;
         }
     };
@@ -395,24 +418,26 @@ void print_synth_summary(const std::vector<Row>& rows, const std::map<std::strin
     }
     std::printf("\nsynth protocol (%zu textures; threads %u each; lower is better; floor = exemplar vs held-out)\n",
                 by_texture.size(), kSynthThreads);
-    std::printf("%-6s %3s %7s %7s %7s %7s %7s %6s %6s %7s %7s %8s %8s %8s\n", "codec", "n", "SWD", "dE",
-                "colour", "compl", "coher", "copy", "ncopy", "seamR", "strS", "analyse", "synth", "wall");
+    std::printf("%-6s %3s %7s %7s %7s %7s %7s %6s %6s %7s %7s %7s %7s %8s %8s %8s\n", "codec", "n", "SWD", "dE",
+                "colour", "compl", "coher", "copy", "ncopy", "seamR", "strS", "cohH", "seamV", "analyse", "synth",
+                "wall");
     for (const char* codec : {"floor", "vqtex", "gmic"}) {
         auto it = means.find(codec);
         if (it == means.end()) continue;
         const Mean& m = it->second;
         const double n = m.n;
-        std::printf("%-6s %3d %7.2f %7.2f %7.2f %7.2f %7.2f %6.3f %6.3f %7.2f %7.2f", codec, m.n, m.swd / n,
-                    m.de / n, m.cdist / n, m.compl_ / n, m.coh / n, m.copy / n, m.ncoh / n, m.seam / n,
-                    m.straight / n);
+        std::printf("%-6s %3d %7.2f %7.2f %7.2f %7.2f %7.2f %6.3f %6.3f %7.2f %7.2f %7.2f %7.2f", codec, m.n,
+                    m.swd / n, m.de / n, m.cdist / n, m.compl_ / n, m.coh / n, m.copy / n, m.ncoh / n, m.seam / n,
+                    m.straight / n, m.coh_half / n, m.visibility / n);
         if (std::strcmp(codec, "floor") == 0)
             std::printf("\n");
         else
             std::printf(" %8.3f %8.3f %8.3f\n", m.analyse / n, m.synth / n, m.wall / n);
     }
-    std::printf("\n%-28s %13s | %-34s | %-34s | %s\n", "", "floor", "vqtex", "gmic", "");
+    std::printf("\n%-28s %13s | %-48s | %-48s | %s\n", "", "floor", "vqtex", "gmic", "");
     std::printf("%-28s %6s %6s |", "texture", "compl", "SWD");
-    for (int i = 0; i < 2; ++i) std::printf(" %6s %6s %6s %6s %6s |", "compl", "SWD", "coher", "seamR", "strS");
+    for (int i = 0; i < 2; ++i)
+        std::printf(" %6s %6s %6s %6s %6s %6s %6s |", "compl", "SWD", "coher", "seamR", "strS", "cohH", "seamV");
     std::printf(" vqtex worse on\n");
     for (const auto& [texture, row] : by_texture) {
         const auto f = floors.find(texture);
@@ -421,12 +446,12 @@ void print_synth_summary(const std::vector<Row>& rows, const std::map<std::strin
         for (const char* codec : codecs) {
             auto it = row.find(codec);
             if (it == row.end()) {
-                std::printf(" %34s |", "-");
+                std::printf(" %48s |", "-");
                 continue;
             }
             const auto& s = it->second->scores;
-            std::printf(" %6.2f %6.2f %6.2f %6.2f %6.2f |", s.completeness, s.swd.mean, s.coherence, s.seam_ratio,
-                        s.straight_seam);
+            std::printf(" %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f |", s.completeness, s.swd.mean, s.coherence,
+                        s.seam_ratio, s.straight_seam, s.seams.coherence_half, s.seams.seam_visibility);
         }
         std::string worse;
         if (row.size() == 2) {
@@ -437,7 +462,8 @@ void print_synth_summary(const std::vector<Row>& rows, const std::map<std::strin
             const std::pair<const char*, bool> checks[] = {
                 {"compl", v.completeness > g.completeness}, {"SWD", v.swd.mean > g.swd.mean},
                 {"coher", v.coherence > g.coherence}, {"colour", v.colour.distribution > g.colour.distribution},
-                {"strS", v.straight_seam > g.straight_seam}};
+                {"strS", v.straight_seam > g.straight_seam}, {"cohH", v.seams.coherence_half > g.seams.coherence_half},
+                {"seamV", v.seams.seam_visibility > g.seams.seam_visibility}};
             for (const auto& [label, lost] : checks)
                 if (lost) worse += (worse.empty() ? "" : " ") + std::string(label);
             if (const auto f2 = floors.find(texture); f2 != floors.end() && Writer::hard_to_rank(f2->second))
@@ -669,7 +695,7 @@ int main(int argc, char** argv) {
             if (!tool_available(tool)) std::fprintf(stderr, "vqtex-bench: note: %s not found: its rows say missing (scripts/setup-bench.sh)\n", tool);
     if ((want("synth") || want("large")) && !no_peers && !gmic_available)
         std::fprintf(stderr, "vqtex-bench: note: gmic not found: its rows (synth, large PEER+gmic) say missing\n");
-    std::map<std::string, vqtex_metrics::Scores> floors;  // per texture, for the synth summary
+    std::map<std::string, AllScores> floors;  // per texture, for the synth summary
 
     for (const auto& f : files) {
         LoadedImage img = load_image(f.string());
@@ -677,7 +703,7 @@ int main(int argc, char** argv) {
         // Exemplar: top-left quarter; held-out: bottom-right quarter.
         Image exemplar = crop(img, 0, 0, w, h);
         const Image held_out = crop(img, w, h, w, h);
-        const vqtex_metrics::Scores floor = vqtex_metrics::floor_scores(held_out, exemplar, seed);
+        const AllScores floor = floor_everything(held_out, exemplar, seed);
         const std::string name = f.filename().string();
         const std::string stem = fs::path(name).stem().string();
         const double ex_pixels = double(w) * h;
@@ -694,7 +720,7 @@ int main(int argc, char** argv) {
             r.texture = name;
             r.bpp_exemplar = 8.0 * double(r.bytes) / ex_pixels;
             r.bpp_output = 8.0 * double(r.bytes) / (double(output.width) * output.height);
-            r.scores = vqtex_metrics::score_all(output, held_out, exemplar, seed);
+            r.scores = score_everything(output, held_out, exemplar, seed);
             writer.add(r, floor);
         };
         // A row G'MIC made (or could not make: missing, failed).
@@ -782,6 +808,15 @@ int main(int argc, char** argv) {
             // Both synthesisers start from the lossless exemplar.
             const int sw = synth_size ? int(synth_size) : int(w) * 2, sh = synth_size ? int(synth_size) : int(h) * 2;
             std::vector<Image> synth_panels{exemplar, held_out};
+            // Each output beside its straight-seam map E (docs/METRICS.md):
+            // vqtex | E | G'MIC | E, written next to the contact sheet.
+            std::vector<Image> seam_panels;
+            auto add_seam_panels = [&](const Image& output) {
+                if (sheets.empty()) return;
+                seam_panels.push_back(output);
+                seam_panels.push_back(
+                    vqtex_metrics::seam_error_image(vqtex_metrics::seam_error_map(output, exemplar, false)));
+            };
             Row r;
             r.protocol = "synth";
             r.codec = "vqtex";
@@ -796,6 +831,7 @@ int main(int argc, char** argv) {
                 r.decode_peak_kib = no_times ? 0 : peak;
                 r.wall_s = no_times ? 0 : wall;
                 score(r, syn);
+                add_seam_panels(syn);
                 synth_panels.push_back(std::move(syn));
             } else {
                 r.status = "failed";
@@ -803,6 +839,7 @@ int main(int argc, char** argv) {
                 writer.add(r, floor);
                 // A white panel keeps G'MIC's output in the fourth place.
                 synth_panels.push_back(Image{sw, sh, 3, std::vector<uint8_t>(std::size_t(sw) * sh * 3, 255)});
+                seam_panels.resize(2);
             }
             if (!no_peers) {
                 GmicResult g = run_gmic(exemplar, sw, sh, seed, stem, scratch, synth_cache, gmic_available);
@@ -815,6 +852,7 @@ int main(int argc, char** argv) {
                 gr.decode_peak_kib = no_times ? 0 : g.peak_kib;
                 if (g.status == "ok") {
                     score(gr, g.output);
+                    add_seam_panels(g.output);
                     synth_panels.push_back(std::move(g.output));
                 } else {
                     gr.texture = name;
@@ -824,6 +862,7 @@ int main(int argc, char** argv) {
             if (!sheets.empty()) {
                 fs::create_directories(sheets);
                 write_sheet(fs::path(sheets) / ("synth_" + stem + ".png"), synth_panels);
+                write_sheet(fs::path(sheets) / ("synth_" + stem + "_seams.png"), seam_panels);
             }
         }
         std::vector<int> points = qualities;
@@ -926,7 +965,7 @@ int main(int argc, char** argv) {
 
     // Summary: mean over textures of each codec's scores per protocol and rate.
     struct Sum {
-        double bytes = 0, swd = 0, completeness = 0, copy = 0, seam = 0;
+        double bytes = 0, swd = 0, completeness = 0, copy = 0, seam = 0, coh_half = 0, visibility = 0;
         int n = 0;
     };
     std::map<std::tuple<std::string, int, std::string>, Sum> sums;
@@ -938,15 +977,18 @@ int main(int argc, char** argv) {
         s.completeness += r.scores.completeness;
         s.copy += r.scores.copy.exact_share;
         s.seam += r.scores.straight_seam;
+        s.coh_half += r.scores.seams.coherence_half;
+        s.visibility += r.scores.seams.seam_visibility;
         ++s.n;
     }
     if (rates)
-        std::printf("%-6s %4s %-28s %9s %8s %8s %6s %6s %3s\n", "proto", "q", "codec", "bytes", "SWD", "compl",
-                    "copy", "seam", "n");
+        std::printf("%-6s %4s %-28s %9s %8s %8s %6s %6s %6s %6s %3s\n", "proto", "q", "codec", "bytes", "SWD",
+                    "compl", "copy", "seam", "cohH", "seamV", "n");
     for (const auto& [key, s] : sums) {
         const auto& [protocol, quality, codec] = key;
-        std::printf("%-6s %4d %-28s %9.0f %8.2f %8.2f %6.2f %6.2f %3d\n", protocol.c_str(), quality, codec.c_str(),
-                    s.bytes / s.n, s.swd / s.n, s.completeness / s.n, s.copy / s.n, s.seam / s.n, s.n);
+        std::printf("%-6s %4d %-28s %9.0f %8.2f %8.2f %6.2f %6.2f %6.2f %6.2f %3d\n", protocol.c_str(), quality,
+                    codec.c_str(), s.bytes / s.n, s.swd / s.n, s.completeness / s.n, s.copy / s.n, s.seam / s.n,
+                    s.coh_half / s.n, s.visibility / s.n, s.n);
     }
     if (want("large")) print_large_summary(writer.rows);
     if (want("synth")) print_synth_summary(writer.rows, floors);
