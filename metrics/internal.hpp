@@ -44,6 +44,10 @@ struct Rgb8 {
 };
 Rgb8 to_rgb8(const Image& img, const char* what);
 
+// The image reduced 2x: 2x2 block means per channel, rounded half up in
+// integers; an odd last row or column is dropped.
+Rgb8 half_resolution(const Rgb8& im);
+
 // `count` distinct indices from [0, total), ascending; all of them when
 // total <= count. Seeded (Floyd's algorithm, O(count) memory).
 std::vector<int> sample_indices(int total, int count, SplitMix64& rng);

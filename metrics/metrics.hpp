@@ -198,6 +198,53 @@ SeamLine strongest_straight_seam(const Image& image, bool include_wrap = true);
 double straight_seam_score(const Image& image, bool include_wrap = true);
 
 // ---------------------------------------------------------------------------
+// 5b. Structure at twice the scale, and seams between copies.
+//
+// coherence_half_resolution(output, exemplar): coherence (section 3) of the
+// two images reduced 2x: each 2x2 block averaged per channel with integer
+// rounding, (a + b + c + d + 2) / 4, an odd last row or column dropped. Sees
+// structure twice as large as the full-resolution coherence; fine grain is
+// averaged away. LOWER IS BETTER. Throws when a reduced image is smaller
+// than the patch.
+double coherence_half_resolution(const Image& output, const Image& exemplar, int patch = 7,
+                                 int max_queries = 256, uint64_t seed = kDefaultSeed);
+
+// seam_error_map(output, exemplar): E(p) = RMS distance (over the 75 values,
+// 0..255 scale) from the output's 5x5 window centred on p to its nearest 5x5
+// window of the exemplar, over every exemplar position that fits (not
+// wrapped; exact search). With `wrap` the output's windows wrap around (the
+// outputs of a texture codec tile) and the map has the output's size;
+// without, only windows that fit count and the map is 4 pixels smaller in
+// each direction, its (0, 0) being the output pixel (2, 2). An exemplar of
+// more than 262144 windows (above about 516x516) is searched on a coarser
+// grid, as for coherence. `threads` 0 uses every core; the map does not
+// depend on it.
+//
+// seam_visibility(...): for every straight run of 24 pixels of E along a
+// column and along a row (every line, a run starting every 2 pixels), the
+// run's mean minus the larger of the means of the same run moved 6 pixels
+// sideways, to either side. The result is the 99.9th percentile (linear
+// interpolation between ranks) of these values over both directions. On a
+// wrapped map runs and sideways shifts wrap too; otherwise those that leave
+// the map are skipped. A straight border between copies, a thin line of
+// high E between regions of low E, gives a large value; noise, blur and
+// curved novelty raise E broadly and barely move it. Units grey levels;
+// LOWER IS BETTER; about 0 for the exemplar against itself (not wrapped).
+// The percentile means that a line of about 0.1% of the runs, about 65 of
+// a 256x256 output's 65536, decides the value.
+struct SeamErrorMap {
+  int width = 0, height = 0;
+  bool wrapped = true;
+  std::vector<float> values;  // row-major, width * height
+};
+SeamErrorMap seam_error_map(const Image& output, const Image& exemplar, bool wrap = true, int threads = 0);
+double seam_visibility(const SeamErrorMap& map);
+double seam_visibility(const Image& output, const Image& exemplar, bool wrap = true, int threads = 0);
+// The map as a grey image for a viewer: E / full_scale, clamped to 0..1,
+// times 255 (black: found in the exemplar; white: E at or above full_scale).
+Image seam_error_image(const SeamErrorMap& map, double full_scale = 64.0);
+
+// ---------------------------------------------------------------------------
 // 6. Everything at once.
 struct Scores {
   SwdResult swd;          // sliced_wasserstein(output, reference)
@@ -218,10 +265,24 @@ Scores score_all(const Image& output, const Image& reference_heldout, const Imag
 // texture would score, using the two real crops. Metrics comparing the output
 // with the reference use the exemplar as the output (swd, colour,
 // completeness); metrics comparing the output with the exemplar use the
-// reference as the output (coherence, copy); seam_ratio is 1 by definition
-// and straight_seam is the exemplar's score without its wrap boundaries.
+// reference as the output (coherence, copy); seam_ratio is 1 by definition and straight_seam is the exemplar's
+// score without its wrap boundaries.
 Scores floor_scores(const Image& reference_heldout, const Image& exemplar,
                     uint64_t seed = kDefaultSeed);
+
+// The two measures of section 5b, kept out of score_all because the
+// exhaustive window search of seam_visibility costs seconds where the
+// output holds little that is copied (a noise-like texture, G'MIC's
+// output): coherence_half_resolution(output, exemplar) with its own seed
+// stream, and seam_visibility(output, exemplar) not wrapped (outputs that do
+// not tile would otherwise show their wrap as a border; tileability is
+// seam_ratio's), on `threads` threads (0: every core). The floor is the
+// same call with the held-out crop as the output.
+struct SeamScores {
+  double coherence_half = 0.0;
+  double seam_visibility = 0.0;
+};
+SeamScores seam_scores(const Image& output, const Image& exemplar, uint64_t seed = kDefaultSeed, int threads = 0);
 
 // ---------------------------------------------------------------------------
 // 7. Boundaries of a filled region (hole filling, paper section 5.1).

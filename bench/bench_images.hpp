@@ -1,0 +1,28 @@
+// The images of vqtex-bench: crops of a photograph, tiling to a larger
+// output, and the hand-over between the metrics' images and the library's
+// C API (docs/METRICS.md).
+#pragma once
+
+#include <cstdint>
+
+#include "image_io.hpp"
+#include "metrics.hpp"
+#include "vqtex/vqtex.h"
+
+namespace vqtex_tools {
+
+using Image = vqtex_metrics::Image;
+
+// The w x h crop of `img` at (x0, y0).
+Image crop(const LoadedImage& img, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h);
+
+// `img` repeated to w x h.
+Image tiled(const Image& img, int w, int h);
+
+// Takes the library's image (and releases it).
+Image from_c(vqtex_image& c);
+
+// The library's view of `img` (not a copy: `img` must outlive it).
+vqtex_image view(Image& img);
+
+}  // namespace vqtex_tools

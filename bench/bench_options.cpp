@@ -1,0 +1,51 @@
+// vqtex-bench's command line (see bench_options.hpp).
+#include "bench_options.hpp"
+
+#include <algorithm>
+
+#include <CLI/CLI.hpp>
+
+#include "vqtex/vqtex.h"
+
+namespace vqtex_tools {
+
+bool BenchOptions::want(const std::string& protocol) const {
+    return std::find(protocols.begin(), protocols.end(), protocol) != protocols.end();
+}
+
+int parse_options(int argc, char** argv, BenchOptions& o) {
+    CLI::App app{"vqtex-bench: rate-quality of vqtex and peer codecs against held-out crops (docs/METRICS.md)."};
+    app.add_flag("--atlas", o.atlas, "vqtex rows are format v3 atlas files (vqtex-encode --atlas)");
+    app.add_option("--target-sizes", o.target_sizes,
+                   "rate points as byte targets (vqtex-encode --target-size) instead of -q presets; "
+                   "the summary's q column then holds the target")
+        ->delimiter(',');
+    app.add_option("folder", o.folder, "folder of textures (each cut into exemplar and held-out crops)")
+        ->capture_default_str();
+    app.add_option("--pattern", o.pattern, "only files whose name contains this (e.g. _256.png)")->capture_default_str();
+    app.add_option("-q,--qualities", o.qualities, "vqtex quality presets (the rate points)")->capture_default_str();
+    app.add_option("--csv", o.csv, "write every row here");
+    app.add_option("--limit", o.limit, "at most this many textures");
+    app.add_option("--seed", o.seed, "decoding and synthesis seed")->capture_default_str();
+    app.add_flag("--no-peers", o.no_peers, "vqtex only");
+    app.add_flag("--quick", o.quick, "two textures, one rate");
+    app.add_flag("--no-times", o.no_times, "write 0 for times (for baselines reviewed as diffs)");
+    app.add_option("--sheets", o.sheets, "write contact sheets into this folder (same: exemplar | held-out | vqtex | peers; "
+                   "large: ... | each peer+synth | each peer+gmic; docs/METRICS.md)");
+    app.add_option("--protocols", o.protocols, "protocols to run, comma-separated: same, large, synth")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"same", "large", "synth"}))
+        ->capture_default_str();
+    app.add_option("--synth-size", o.synth_size, "synth protocol: output side (default: 2x the exemplar's width and height)")
+        ->check(CLI::Range(8u, 16384u));
+    app.add_option("--synth-cache", o.synth_cache, "keep G'MIC's outputs here (synth protocol, large protocol's gmic rows), "
+                   "by texture, size, seed and input pixels");
+    CLI11_PARSE(app, argc, argv);
+    if (o.quick) {
+        o.limit = 2;
+        o.qualities = {VQTEX_QUALITY_DEFAULT};
+    }
+    return -1;
+}
+
+}  // namespace vqtex_tools
