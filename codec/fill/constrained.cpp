@@ -531,13 +531,11 @@ void masked_spiral_fill(Image& img, std::vector<uint8_t>& valid, SourceMap& src,
         }
         if (o.tolerance) {
             const uint32_t threshold = tolerance_threshold(best, o.tolerance);
-            const uint64_t salt = pixel_salt(o.seed, level, 0, x, y);
-            uint64_t chosen_rank = candidate_rank(salt, candidates[chosen]);
-            for (std::size_t i = 0; i < candidates.size(); ++i) {
-                if (distance[i] > threshold) continue;
-                const uint64_t rank = candidate_rank(salt, candidates[i]);
-                if (rank < chosen_rank || (rank == chosen_rank && i < chosen)) chosen = i, chosen_rank = rank;
-            }
+            // The candidates are in ascending order (all, or a sorted
+            // subset), so the lowest key is also the lowest index.
+            NearTieChoice choice(pixel_salt(o.seed, level, 0, x, y), candidates[chosen]);
+            for (std::size_t i = 0; i < candidates.size(); ++i)
+                if (distance[i] <= threshold && choice.offer(candidates[i])) chosen = i;
         }
         if (all && o.coherence) {
             // Every example is a candidate here, so the coherent ones'
