@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "common/parallel.hpp"
+#include "dsp/dsp.hpp"
 #include "engine/matcher.hpp"
 #include "engine/pyramid.hpp"
 #include "tsvq/tsvq_train.hpp"
@@ -51,14 +52,16 @@ void masked_spiral_fill(Image& img, std::vector<uint8_t>& valid, SourceMap& src,
     if (!all)
         candidates = choose_training_subset(set.count(), std::max<std::size_t>(kMinFillExamples, std::size_t(kMaskedSearchPairs / order.size())),
                                             o.seed ^ 0x6D61736Bull /* "mask" */);
-    std::vector<uint8_t> query(set.stride);
-    std::vector<uint16_t> offsets;
+    // The distance on the usable taps only is the dsp kernel's on copies
+    // with the other taps zeroed (both sides), which is the same sum.
+    const dsp::Kernels& kernels = dsp::kernels();
+    std::vector<uint8_t> query(set.stride), keep(set.stride), masked(set.stride);
     std::vector<uint32_t> distance(candidates.size());
     std::size_t since = 0;
     for (const uint32_t index : order) {
         const int x = int(index % uint32_t(img.width)), y = int(index / uint32_t(img.width));
         gather_window(pyramid, level, w, x, y, query.data(), set.stride);
-        offsets.clear();
+        std::fill(keep.begin(), keep.end(), uint8_t(0));
         for (std::size_t t = 0; t < w.taps.size(); ++t) {
             const Tap& tap = w.taps[t];
             bool ok = true;
@@ -66,18 +69,15 @@ void masked_spiral_fill(Image& img, std::vector<uint8_t>& valid, SourceMap& src,
                 const int px = reflect_index(x + tap.dx, img.width), py = reflect_index(y + tap.dy, img.height);
                 ok = valid[std::size_t(py) * std::size_t(img.width) + std::size_t(px)] != 0;
             }
-            if (ok)
-                for (int ch = 0; ch < c; ++ch) offsets.push_back(uint16_t(t * std::size_t(c) + std::size_t(ch)));
+            if (ok) std::fill_n(keep.begin() + std::ptrdiff_t(t * std::size_t(c)), c, uint8_t(0xFF));
         }
+        for (std::size_t b = 0; b < query.size(); ++b) query[b] &= keep[b];
         uint32_t best = UINT32_MAX;
         std::size_t chosen = 0;
         for (std::size_t i = 0; i < candidates.size(); ++i) {
             const uint8_t* v = set.vector(candidates[i]);
-            uint32_t d = 0;
-            for (const uint16_t off : offsets) {
-                const int diff = int(query[off]) - int(v[off]);
-                d += uint32_t(diff * diff);
-            }
+            for (std::size_t b = 0; b < masked.size(); ++b) masked[b] = v[b] & keep[b];
+            const uint32_t d = kernels.ssd(query.data(), masked.data(), masked.size());
             distance[i] = d;
             if (d < best) best = d, chosen = i;
         }
