@@ -34,6 +34,7 @@
 #include "common/image.hpp"
 #include "common/parallel.hpp"
 #include "engine/matcher.hpp"
+#include "engine/synthesis.hpp"
 #include "engine/wavefront.hpp"
 
 namespace vqtex {
@@ -50,6 +51,19 @@ struct Band {
     bool in_place = false;
     int reach = 0;     // in place: slices beyond its own that a window reads
 };
+
+// The band of a seam closing: the rows on both sides of an image's (or a
+// frame's) top/bottom wrap, as many as the causal window of `causal_shape`
+// reaches, at most half the rows each side.
+inline Band seam_band(const Shape& causal_shape, int width, int height, int channels) {
+    Band b;
+    b.slices = height;
+    b.band = std::min(closing_band_rows(causal_shape), (height + 1) / 2);
+    b.visits = 2 * b.band;
+    b.width = width;
+    b.channels = channels;
+    return b;
+}
 
 // pick(sweep, slice, row, x, query, scratch) gathers and matches one pixel
 // and returns the bytes to write; slice_data(slice) is the slice's first

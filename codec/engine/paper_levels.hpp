@@ -32,6 +32,7 @@
 
 #include "common/error.hpp"
 #include "common/image.hpp"
+#include "engine/matcher.hpp"
 #include "engine/neighborhood.hpp"
 #include "engine/noise.hpp"
 #include "engine/synthesis.hpp"
@@ -51,6 +52,12 @@ inline void upsample_parent(const Image& parent, int parent_height, Image& stack
     }
 }
 
+// The check every level's matchers pass before the scan.
+inline void require_stride(std::size_t layout_stride, const Matcher* matcher, const char* what, int level) {
+    if (!matcher || layout_stride != matcher->stride())
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " disagree at level " + std::to_string(level));
+}
+
 // What the driver needs of the caller besides the dimension.
 struct PaperRun {
     LevelInit init = LevelInit::Parent;
@@ -63,6 +70,59 @@ struct PaperRun {
     // For tests: per level, the order of the causal scan's visits,
     // indexed (t * height + y) * width + x. Forces one thread.
     std::vector<std::vector<uint32_t>>* trace = nullptr;
+};
+
+// The common run settings of both dimensions' options.
+template <typename Options>
+PaperRun paper_run(const Options& options) {
+    PaperRun run;
+    run.init = options.init;
+    run.seed = options.seed;
+    run.threads = options.threads;
+    run.progress = &options.progress;
+    return run;
+}
+
+// What every dimension reads of its model and options: the levels and their
+// histograms.
+template <typename Model, typename Options>
+class PaperDimension {
+public:
+    PaperDimension(const Model& model, const Options& options) : model_(model), options_(options) {}
+    int levels() const { return int(model_.levels.size()); }
+    const LevelHistogram& histogram(int l) const { return model_.levels[std::size_t(l)].histogram; }
+    const Model& model() const { return model_; }
+    const Options& options() const { return options_; }
+
+private:
+    const Model& model_;
+    const Options& options_;
+};
+
+// What every dimension's level holds: its models, the run's options, the
+// pyramid and the causal layout the scan gathers with (checked against the
+// level's matcher).
+template <typename LevelModelT, typename Options, typename Grid, typename Layout>
+class PaperLevel {
+public:
+    template <typename Dim>
+    PaperLevel(const Dim& dim, int l, std::vector<Grid>& pyramid)
+        : lm_(dim.model().levels[std::size_t(l)]), options_(dim.options()), pyramid_(pyramid), level_(l),
+          layout_(lm_.shape, dim.model().channels, l, dim.levels()) {
+        require_stride(layout_.stride(), lm_.matcher.get(), "matcher and neighbourhood shape", l);
+    }
+    const Shape& shape() const { return layout_.shape(); }
+    std::size_t stride() const { return layout_.stride(); }
+    std::unique_ptr<MatchScratch> make_scratch() const { return lm_.matcher->make_scratch(); }
+
+protected:
+    Grid& grid() const { return pyramid_[std::size_t(level_)]; }
+
+    const LevelModelT& lm_;
+    const Options& options_;
+    std::vector<Grid>& pyramid_;
+    const int level_;
+    const Layout layout_;
 };
 
 template <typename Dim>
@@ -138,12 +198,6 @@ std::vector<typename Dim::Grid> synthesize_levels(const Dim& dim, const PaperRun
         level.close_level(threads);
     }
     return pyramid;
-}
-
-// The check every level's matchers pass before the scan.
-inline void require_stride(std::size_t layout_stride, const Matcher* matcher, const char* what, int level) {
-    if (!matcher || layout_stride != matcher->stride())
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " disagree at level " + std::to_string(level));
 }
 
 }  // namespace vqtex

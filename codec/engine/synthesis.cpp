@@ -28,52 +28,38 @@ int row_start(int y, int lag, int width) {
 namespace {
 
 // Stills for the level driver (paper_levels.hpp): a level is one frame.
-class StillLevels {
+class StillLevels : public PaperDimension<TextureModel, SynthesisOptions> {
 public:
+    using PaperDimension::PaperDimension;
     using Grid = Image;
-    StillLevels(const TextureModel& model, const SynthesisOptions& options) : model_(model), options_(options) {}
-
     static Image& stack(Image& img) { return img; }
     static const Image& stack(const Image& img) { return img; }
     static int frame_height(const Image& img) { return img.height; }
     static int frames(const Image&) { return 1; }
-    int levels() const { return int(model_.levels.size()); }
     Image make_level(int l) const {
-        return Image(pyramid_level_size(options_.width, l), pyramid_level_size(options_.height, l), model_.channels);
+        return Image(pyramid_level_size(options().width, l), pyramid_level_size(options().height, l),
+                     model().channels);
     }
-    const LevelHistogram& histogram(int l) const { return model_.levels[std::size_t(l)].histogram; }
 
-    class Level {
+    class Level : public PaperLevel<LevelModel, SynthesisOptions, Image, NeighborhoodLayout> {
     public:
         Level(const StillLevels& dim, int l, std::vector<Image>& pyramid)
-            : lm_(dim.model_.levels[std::size_t(l)]), options_(dim.options_), pyramid_(pyramid), level_(l),
-              layout_(lm_.shape, dim.model_.channels, l, dim.levels()), gather_(layout_, pyramid) {
-            require_stride(layout_.stride(), lm_.matcher.get(), "matcher and neighbourhood shape", l);
-        }
-        const Shape& shape() const { return layout_.shape(); }
-        std::size_t stride() const { return layout_.stride(); }
-        std::unique_ptr<MatchScratch> make_scratch() const { return lm_.matcher->make_scratch(); }
+            : PaperLevel(dim, l, pyramid), gather_(layout_, pyramid) {}
         void begin_frame(int) {}
         void visit(int x, int y, int, uint8_t* query, MatchScratch* scratch) const {
             gather_.gather(x, y, query);
             const MatchContext context{pixel_salt(options_.seed, level_, 0, x, y), options_.tolerance};
-            Image& img = pyramid_[std::size_t(level_)];
-            copy_pixel(img.at(x, y), lm_.matcher->match(query, context, scratch), img.channels);
+            copy_pixel(grid().at(x, y), lm_.matcher->match(query, context, scratch), grid().channels);
         }
         // Seam closing (band_rematch.hpp): the rows on both sides of the
         // top/bottom wrap, in place, with a symmetric neighbourhood.
         void close_frame(int, int threads) const {
             if (!lm_.closing) return;
-            Image& img = pyramid_[std::size_t(level_)];
+            Image& img = grid();
             const NeighborhoodLayout layout(lm_.closing_shape, img.channels, level_, int(pyramid_.size()));
             require_stride(layout.stride(), lm_.closing.get(), "seam matcher and shape", level_);
             const NeighborhoodGather gather(layout, pyramid_);
-            Band band;
-            band.slices = img.height;
-            band.band = std::min(closing_band_rows(lm_.shape), (img.height + 1) / 2);
-            band.visits = 2 * band.band;
-            band.width = img.width;
-            band.channels = img.channels;
+            Band band = seam_band(lm_.shape, img.width, img.height, img.channels);
             band.in_place = true;
             band.reach = layout.reach(0);
             rematch_band(
@@ -88,17 +74,8 @@ public:
         void close_level(int) const {}
 
     private:
-        const LevelModel& lm_;
-        const SynthesisOptions& options_;
-        std::vector<Image>& pyramid_;
-        int level_;
-        const NeighborhoodLayout layout_;
         const NeighborhoodGather gather_;
     };
-
-private:
-    const TextureModel& model_;
-    const SynthesisOptions& options_;
 };
 
 }  // namespace
@@ -107,11 +84,7 @@ std::vector<Image> synthesize_pyramid(const TextureModel& model, const Synthesis
     if (model.levels.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "texture model has no levels");
     if (options.width < 1 || options.height < 1)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size must be at least 1x1");
-    PaperRun run;
-    run.init = options.init;
-    run.seed = options.seed;
-    run.threads = options.threads;
-    run.progress = &options.progress;
+    PaperRun run = paper_run(options);
     run.progress_per_row = true;
     run.trace = options.trace ? &options.trace->visit_order : nullptr;
     return synthesize_levels(StillLevels(model, options), run);

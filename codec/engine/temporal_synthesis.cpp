@@ -32,68 +32,48 @@ bool still_in_example(const uint8_t* entry, int channels) {
 
 // Animations for the level driver (paper_levels.hpp): a level is a stack of
 // frames, scanned in order.
-class AnimatedLevels {
+class AnimatedLevels : public PaperDimension<VolumeModel, VolumeSynthesisOptions> {
 public:
+    using PaperDimension::PaperDimension;
     using Grid = Volume;
-    AnimatedLevels(const VolumeModel& model, const VolumeSynthesisOptions& options)
-        : model_(model), options_(options) {}
-
     static Image& stack(Volume& v) { return v.stack; }
     static const Image& stack(const Volume& v) { return v.stack; }
     static int frame_height(const Volume& v) { return v.height; }
     static int frames(const Volume& v) { return v.frames; }
-    int levels() const { return int(model_.levels.size()); }
     Volume make_level(int l) const {
-        return Volume(pyramid_level_size(options_.width, l), pyramid_level_size(options_.height, l),
-                      pyramid_level_size(options_.frames, l), model_.channels);
+        return Volume(pyramid_level_size(options().width, l), pyramid_level_size(options().height, l),
+                      pyramid_level_size(options().frames, l), model().channels);
     }
-    const LevelHistogram& histogram(int l) const { return model_.levels[std::size_t(l)].histogram; }
 
-    class Level {
+    class Level : public PaperLevel<VolumeLevelModel, VolumeSynthesisOptions, Volume, NeighborhoodLayout3> {
     public:
-        Level(const AnimatedLevels& dim, int l, std::vector<Volume>& pyramid)
-            : lm_(dim.model_.levels[std::size_t(l)]), options_(dim.options_), pyramid_(pyramid), level_(l),
-              layout_(lm_.shape, dim.model_.channels, l, dim.levels()) {
-            require_stride(layout_.stride(), lm_.matcher.get(), "matcher and neighbourhood shape", l);
-        }
-        const Shape& shape() const { return layout_.shape(); }
-        std::size_t stride() const { return layout_.stride(); }
-        std::unique_ptr<MatchScratch> make_scratch() const { return lm_.matcher->make_scratch(); }
+        using PaperLevel::PaperLevel;
         // The still-pixel rule is off for frame 0, whose previous frame is
         // still an initial value.
         void begin_frame(int t) { keep_still_ = t > 0 && layout_.predecessor_offset() >= 0; }
         void visit(int x, int y, int t, uint8_t* query, MatchScratch* scratch) const {
-            Volume& v = pyramid_[std::size_t(level_)];
             layout_.gather(pyramid_, x, y, t, query);
             const MatchContext context{voxel_salt(options_.seed, level_, 0, x, y), options_.tolerance};
-            const uint8_t* pixel = lm_.matcher->match(query, context, scratch);
-            if (keep_still_ && still_in_example(pixel, v.channels)) pixel = v.wrapped(x, y, t - 1);
-            copy_pixel(v.at(x, y, t), pixel, v.channels);
+            copy_pixel(grid().at(x, y, t), keep_or_match(*lm_.matcher, keep_still_, query, context, scratch, x, y, t),
+                       grid().channels);
         }
         // Frame-seam closing of frame t (temporal_synthesis.hpp): the rows on
-        // both sides of the frame's top/bottom wrap, row by row.
+        // both sides of the frame's top/bottom wrap, row by row. The rows
+        // the band spans are the still engine's (one frame's causal window,
+        // time aside).
         void close_frame(int t, int threads) const {
             if (!lm_.seam) return;
-            Volume& v = pyramid_[std::size_t(level_)];
+            Volume& v = grid();
             const NeighborhoodLayout3 layout(lm_.seam_shape, v.channels, level_, int(pyramid_.size()));
             require_stride(layout.stride(), lm_.seam.get(), "frame-seam matcher and shape", level_);
-            // The rows a frame's seam band spans are the still engine's (one
-            // frame's causal window, time aside).
-            const Shape frame_shape{lm_.shape.rows, lm_.shape.cols, lm_.shape.levels};
             const bool keep_still = keep_still_ && layout.predecessor_offset() >= 0;
-            Band band;
-            band.slices = v.height;
-            band.band = std::min(closing_band_rows(frame_shape), (v.height + 1) / 2);
-            band.visits = 2 * band.band;
-            band.width = v.width;
-            band.channels = v.channels;
+            const Shape frame_shape{lm_.shape.rows, lm_.shape.cols, lm_.shape.levels};
             rematch_band(
-                band, *lm_.seam, layout.stride(), threads,
+                seam_band(frame_shape, v.width, v.height, v.channels), *lm_.seam, layout.stride(), threads,
                 [&](int sweep, int y, int, int x, uint8_t* query, MatchScratch* scratch) {
                     layout.gather(pyramid_, x, y, t, query);
-                    const MatchContext context{
-                        voxel_salt(options_.seed ^ 0x7365616Dull /* "seam" */, level_, 1 + sweep, x, y),
-                        options_.tolerance};
+                    const uint64_t seam_seed = options_.seed ^ 0x7365616Dull /* "seam" */;
+                    const MatchContext context{voxel_salt(seam_seed, level_, 1 + sweep, x, y), options_.tolerance};
                     return keep_or_match(*lm_.seam, keep_still, query, context, scratch, x, y, t);
                 },
                 [&](int y) { return v.at(0, y, t); });
@@ -102,7 +82,7 @@ public:
         // the temporal wrap, frame by frame.
         void close_level(int threads) const {
             if (!lm_.closing) return;
-            Volume& v = pyramid_[std::size_t(level_)];
+            Volume& v = grid();
             const NeighborhoodLayout3 layout(lm_.closing_shape, v.channels, level_, int(pyramid_.size()));
             require_stride(layout.stride(), lm_.closing.get(), "loop-closing matcher and shape", level_);
             const bool keep_still = layout.predecessor_offset() >= 0;
@@ -124,24 +104,16 @@ public:
         }
 
     private:
+        // The matcher's pixel, or the output's own previous value where the
+        // entry shows the example did not change (temporal_synthesis.hpp).
         const uint8_t* keep_or_match(const Matcher& matcher, bool keep_still, const uint8_t* query,
                                      const MatchContext& context, MatchScratch* scratch, int x, int y, int t) const {
-            const Volume& v = pyramid_[std::size_t(level_)];
             const uint8_t* pixel = matcher.match(query, context, scratch);
-            return keep_still && still_in_example(pixel, v.channels) ? v.wrapped(x, y, t - 1) : pixel;
+            return keep_still && still_in_example(pixel, grid().channels) ? grid().wrapped(x, y, t - 1) : pixel;
         }
 
-        const VolumeLevelModel& lm_;
-        const VolumeSynthesisOptions& options_;
-        std::vector<Volume>& pyramid_;
-        int level_;
-        const NeighborhoodLayout3 layout_;
         bool keep_still_ = false;
     };
-
-private:
-    const VolumeModel& model_;
-    const VolumeSynthesisOptions& options_;
 };
 
 }  // namespace
@@ -150,11 +122,7 @@ std::vector<Volume> synthesize_volume_pyramid(const VolumeModel& model, const Vo
     if (model.levels.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "temporal texture model has no levels");
     if (options.width < 1 || options.height < 1 || options.frames < 1)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "output must have at least 1x1 pixels and 1 frame");
-    PaperRun run;
-    run.init = options.init;
-    run.seed = options.seed;
-    run.threads = options.threads;
-    run.progress = &options.progress;
+    PaperRun run = paper_run(options);
     run.trace = options.trace;
     return synthesize_levels(AnimatedLevels(model, options), run);
 }
