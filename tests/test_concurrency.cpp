@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstring>
 #include <stdexcept>
 #include <thread>
@@ -213,4 +214,36 @@ TEST(Concurrency, AnExceptionInALoopReachesItsCallerAndTheThreadsStayUsable) {
         });
         EXPECT_EQ(sum.load(), 999u * 1000u / 2u);
     }
+}
+
+// run_together's jobs wait on one another (the synthesis wavefront's rows
+// do): every job must be running at the same time, on the kept threads or,
+// when they are busy (inside a loop), on threads of the call's own; a
+// failing job's exception reaches the caller.
+TEST(Concurrency, RunTogetherRunsEveryJobAtOnceAndPassesOnAnException) {
+    constexpr int kWorkers = 3;
+    const auto meet = [&] {
+        std::atomic<int> arrived{0};
+        std::atomic<bool> all_met{true};
+        vqtex::run_together(kWorkers, [&](int) {
+            arrived.fetch_add(1);
+            const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+            while (arrived.load() < kWorkers)
+                if (std::chrono::steady_clock::now() > deadline) {
+                    all_met.store(false);
+                    return;
+                }
+        });
+        return all_met.load();
+    };
+    EXPECT_TRUE(meet());  // on the kept threads
+    std::atomic<int> met_inside{0};
+    vqtex::parallel_for(2, 2, 1, [&](std::size_t, std::size_t) { met_inside += meet() ? 1 : 0; });
+    EXPECT_EQ(met_inside.load(), 2);  // at least one of them on threads of its own
+    EXPECT_THROW(vqtex::run_together(kWorkers,
+                                     [](int w) {
+                                         if (w == 2) throw std::runtime_error("job 2");
+                                     }),
+                 std::runtime_error);
+    EXPECT_TRUE(meet());
 }

@@ -6,9 +6,9 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
-#include <thread>
 
 #include "common/error.hpp"
+#include "common/parallel.hpp"
 #include "engine/neighborhood3d.hpp"
 #include "engine/pyramid.hpp"
 #include "tsvq/search_exhaustive.hpp"
@@ -211,10 +211,7 @@ AnalysisResult analyse_example(const Image& example, const vqtex_model_params& p
             done.fetch_add(1);
         }
     };
-    std::vector<std::thread> pool;
-    for (int w = 1; w < workers; ++w) pool.emplace_back(work, false);
-    work(true);
-    for (auto& t : pool) t.join();
+    run_together(workers, [&](int w) { work(w == 0); });
     for (const auto& e : errors)
         if (e) std::rethrow_exception(e);
     if (stop.load() || (progress && !progress(tasks.size(), tasks.size())))

@@ -1,5 +1,5 @@
-// parallel.cpp - the threads parallel_for keeps between calls (see
-// parallel.hpp): a handful of workers that sleep on a condition variable
+// parallel.cpp - the threads parallel_for and run_together keep between
+// calls (see parallel.hpp): a handful of workers that sleep on a condition variable
 // and wake for each loop, instead of threads started and joined per loop.
 #include "common/parallel.hpp"
 
@@ -89,3 +89,31 @@ bool run_on_kept_threads(int workers, const std::function<void(int)>& job) {
 }
 
 }  // namespace vqtex::detail
+
+namespace vqtex {
+
+void run_together(int workers, const std::function<void(int)>& job) {
+    if (workers <= 1) {
+        job(0);
+        return;
+    }
+    if (detail::run_on_kept_threads(workers, job)) return;
+    // The kept threads are busy (a call from another thread, or from inside
+    // a job): threads of this call's own, with the same error rule.
+    std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
+    const auto guarded = [&](int w) {
+        try {
+            job(w);
+        } catch (...) {
+            errors[std::size_t(w)] = std::current_exception();
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int w = 1; w < workers; ++w) pool.emplace_back(guarded, w);
+    guarded(0);
+    for (auto& t : pool) t.join();
+    for (const auto& e : errors)
+        if (e) std::rethrow_exception(e);
+}
+
+}  // namespace vqtex

@@ -1,8 +1,19 @@
-// parallel.hpp - fixed work partitions over threads. Work is split into
-// chunks whose boundaries depend only on the problem size, never on the
-// thread count, and every reduction the codec does over chunks is exact
-// integer arithmetic, so results never depend on how many threads ran nor
-// on which thread ran which chunk.
+// parallel.hpp - the one way the codec runs work on several threads, over
+// one set of threads kept for the life of the process (parallel.cpp).
+//
+// Two entry points over those threads:
+//   parallel_for   independent chunks of a range, taken by whichever thread
+//                  is free. Chunk boundaries depend only on the problem
+//                  size, never on the thread count, and every reduction the
+//                  codec does over chunks is exact integer arithmetic, so
+//                  results never depend on how many threads ran nor on which
+//                  thread ran which chunk.
+//   run_together   a fixed number of jobs that run at the same time, each on
+//                  its own thread, for work whose parts wait on one another
+//                  (the synthesis wavefront, where a row waits for the row
+//                  above it).
+// The kept threads hold no data between calls: they sleep until the next
+// loop. What they run, and every value it reads, belongs to the call.
 #pragma once
 
 #include <algorithm>
@@ -27,6 +38,14 @@ bool run_on_kept_threads(int workers, const std::function<void(int)>& job);
 
 }  // namespace detail
 
+// Runs job(w) for every w in [0, workers) at the same time, job(0) on the
+// calling thread and each other on a thread of its own (kept threads when
+// they are free, started for the call otherwise). An exception thrown by
+// any job is rethrown once every job has returned (the calling thread's
+// first). Jobs that wait on each other must see to it that a failing job
+// releases the others.
+void run_together(int workers, const std::function<void(int)>& job);
+
 // Calls fn(begin, end) for consecutive ranges of [0, n) of at most `grain`
 // items, spread over up to `threads` threads (the caller's thread included).
 // Threads take the next chunk when they finish one, so rows that cost more
@@ -45,11 +64,7 @@ void parallel_for(int threads, std::size_t n, std::size_t grain, Fn&& fn) {
              c = next.fetch_add(1, std::memory_order_relaxed))
             fn(c * grain, std::min(n, (c + 1) * grain));
     };
-    if (detail::run_on_kept_threads(workers, run)) return;
-    std::vector<std::thread> pool;
-    for (int w = 1; w < workers; ++w) pool.emplace_back(run, w);
-    run(0);
-    for (auto& t : pool) t.join();
+    run_together(workers, run);
 }
 
 inline int hardware_threads() {

@@ -31,6 +31,30 @@ inline uint32_t tolerance_threshold(uint32_t best, uint32_t tolerance) {
     return t > UINT32_MAX ? UINT32_MAX : uint32_t(t);
 }
 
+// The near-tie choice every search makes (exhaustive, TSVQ, hole filling):
+// start from the nearest candidate, offer each candidate within the
+// threshold, keep the lowest (rank, key). The winner depends on the set of
+// qualifying keys only, never on the order they are offered in.
+class NearTieChoice {
+public:
+    NearTieChoice(uint64_t salt, uint32_t nearest_key)
+        : salt_(salt), key_(nearest_key), rank_(candidate_rank(salt, nearest_key)) {}
+    // True when `key` beats every candidate offered so far (it is then kept).
+    bool offer(uint32_t key) {
+        const uint64_t rank = candidate_rank(salt_, key);
+        if (rank > rank_ || (rank == rank_ && key >= key_)) return false;
+        key_ = key;
+        rank_ = rank;
+        return true;
+    }
+    uint32_t key() const { return key_; }
+
+private:
+    uint64_t salt_;
+    uint32_t key_;
+    uint64_t rank_;
+};
+
 // Per-thread working memory of a matcher, made once per thread so that the
 // per-pixel search allocates nothing.
 struct MatchScratch {

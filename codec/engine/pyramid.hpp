@@ -18,7 +18,7 @@ enum class EdgeMode {
 };
 
 // The binomial filter of every pyramid, along each axis: still images,
-// frame stacks (volume.cpp) and the masks of hole filling (constrained.cpp).
+// frame stacks (volume.cpp) and the masks of hole filling (fill/known_pyramid.cpp).
 // The weights sum to 16.
 inline constexpr int kPyramidTaps[5] = {1, 4, 6, 4, 1};
 

@@ -1,15 +1,14 @@
 // temporal_synthesis.cpp - frame-by-frame causal synthesis of a volume
 // pyramid, coarse to fine, with loop closing around the temporal wrap (paper
-// section 5.2).
+// section 5.2): the animated dimension of the paper engine's level driver
+// (paper_levels.hpp), its frame-seam and loop closings.
 #include "engine/temporal_synthesis.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <thread>
 
 #include "common/error.hpp"
-#include "common/parallel.hpp"
-#include "engine/wavefront.hpp"
+#include "engine/band_rematch.hpp"
+#include "engine/paper_levels.hpp"
 
 namespace vqtex {
 
@@ -18,18 +17,6 @@ int closing_band_frames(const Shape& causal_shape, int frames) {
 }
 
 namespace {
-
-constexpr int kClosingSweeps = 2;
-
-// Each voxel takes its parent's value (x >> 1, y >> 1, t >> 1), the ancestor
-// the neighbourhoods use.
-void upsample_parent(const Volume& parent, Volume& v) {
-    for (int t = 0; t < v.frames; ++t)
-        for (int y = 0; y < v.height; ++y)
-            for (int x = 0; x < v.width; ++x)
-                std::copy(parent.at(x >> 1, y >> 1, t >> 1), parent.at(x >> 1, y >> 1, t >> 1) + v.channels,
-                          v.at(x, y, t));
-}
 
 uint64_t voxel_salt(uint64_t seed, int level, int pass, int x, int y) {
     // Not a function of t: see temporal_synthesis.hpp.
@@ -43,168 +30,101 @@ bool still_in_example(const uint8_t* entry, int channels) {
     return std::equal(entry, entry + channels, entry + channels);
 }
 
-// Shared state of one frame's wavefront (wavefront.hpp, as a still level's).
-struct FrameRun {
-    WavefrontScan scan;
-    const NeighborhoodLayout3* layout;
-    const Matcher* matcher;
-    std::vector<Volume>* pyramid;
-    bool keep_still;  // the pixel's previous frame is final (not an initial value)
-    int level, t;
-    uint64_t seed;
-    uint32_t tolerance;
-    std::vector<uint32_t>* trace;
-    std::atomic<uint32_t>* trace_counter;
-};
-
-void run_row(const FrameRun& r, int y, std::vector<uint8_t>& query, MatchScratch* scratch) {
-    Volume& v = (*r.pyramid)[std::size_t(r.level)];
-    const int w = v.width;
-    scan_row(r.scan, y, [&](int x) {
-        r.layout->gather(*r.pyramid, x, y, r.t, query.data());
-        const MatchContext context{voxel_salt(r.seed, r.level, 0, x, y), r.tolerance};
-        const uint8_t* pixel = r.matcher->match(query.data(), context, scratch);
-        if (r.keep_still && still_in_example(pixel, v.channels)) pixel = v.wrapped(x, y, r.t - 1);
-        copy_pixel(v.at(x, y, r.t), pixel, v.channels);
-        if (r.trace)
-            (*r.trace)[(std::size_t(r.t) * std::size_t(v.height) + std::size_t(y)) * std::size_t(w) + std::size_t(x)] =
-                r.trace_counter->fetch_add(1);
-    });
-}
-
-// Loop closing at one finished level (see temporal_synthesis.hpp). Each
-// frame's new values are computed from the volume as it was before that
-// frame's update, so rows can run on any number of threads.
-void close_loop(const VolumeLevelModel& lm, std::vector<Volume>& pyramid, int level, int levels, int channels,
-                const VolumeSynthesisOptions& options) {
-    Volume& v = pyramid[std::size_t(level)];
-    const NeighborhoodLayout3 layout(lm.closing_shape, channels, level, levels);
-    if (layout.stride() != lm.closing->stride())
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "loop-closing matcher and shape disagree at level " + std::to_string(level));
-    const int band = closing_band_frames(lm.shape, v.frames);
-    const bool keep_still = layout.predecessor_offset() >= 0;
-    const std::size_t ch = std::size_t(channels), row_bytes = std::size_t(v.width) * ch;
-    std::vector<uint8_t> updated(v.frame_pixels() * ch);
-    for (int sweep = 0; sweep < kClosingSweeps; ++sweep) {
-        for (int k = 0; k < 2 * band && k < v.frames; ++k) {
-            const int t = Image::wrap(v.frames - band + k, v.frames);
-            parallel_for(options.threads, std::size_t(v.height), 4, [&](std::size_t y0, std::size_t y1) {
-                std::vector<uint8_t> query(layout.stride());
-                std::unique_ptr<MatchScratch> scratch = lm.closing->make_scratch();
-                for (std::size_t y = y0; y < y1; ++y)
-                    for (int x = 0; x < v.width; ++x) {
-                        layout.gather(pyramid, x, int(y), t, query.data());
-                        const MatchContext context{voxel_salt(options.seed, level, 1 + sweep, x, int(y)),
-                                                   options.tolerance};
-                        const uint8_t* pixel = lm.closing->match(query.data(), context, scratch.get());
-                        if (keep_still && still_in_example(pixel, channels)) pixel = v.wrapped(x, int(y), t - 1);
-                        std::copy(pixel, pixel + ch, updated.data() + y * row_bytes + std::size_t(x) * ch);
-                    }
-            });
-            std::copy(updated.begin(), updated.end(), v.frame_data(t));
-        }
+// Animations for the level driver (paper_levels.hpp): a level is a stack of
+// frames, scanned in order.
+class AnimatedLevels : public PaperDimension<VolumeModel, VolumeSynthesisOptions> {
+public:
+    using PaperDimension::PaperDimension;
+    using Grid = Volume;
+    static Image& stack(Volume& v) { return v.stack; }
+    static const Image& stack(const Volume& v) { return v.stack; }
+    static int frame_height(const Volume& v) { return v.height; }
+    static int frames(const Volume& v) { return v.frames; }
+    Volume make_level(int l) const {
+        return Volume(pyramid_level_size(options().width, l), pyramid_level_size(options().height, l),
+                      pyramid_level_size(options().frames, l), model().channels);
     }
-}
 
-// Frame-seam closing of frame t (see temporal_synthesis.hpp).
-void close_frame_seam(const VolumeLevelModel& lm, std::vector<Volume>& pyramid, int level, int levels, int channels,
-                      int t, bool keep_still, const VolumeSynthesisOptions& options) {
-    Volume& v = pyramid[std::size_t(level)];
-    const NeighborhoodLayout3 layout(lm.seam_shape, channels, level, levels);
-    if (layout.stride() != lm.seam->stride())
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "frame-seam matcher and shape disagree at level " + std::to_string(level));
-    // The rows a frame's seam band spans are the still engine's (one frame's
-    // causal window, time aside).
-    const Shape frame_shape{lm.shape.rows, lm.shape.cols, lm.shape.levels};
-    const int band = std::min(closing_band_rows(frame_shape), (v.height + 1) / 2);
-    keep_still = keep_still && layout.predecessor_offset() >= 0;
-    std::vector<uint8_t> query(layout.stride());
-    std::vector<uint8_t> row(std::size_t(v.width) * std::size_t(channels));
-    std::unique_ptr<MatchScratch> scratch = lm.seam->make_scratch();
-    // Each row is computed from the frame as it was before that row's
-    // update: no column is visited first, so the closing itself leaves no
-    // trace at x = 0.
-    for (int sweep = 0; sweep < kClosingSweeps; ++sweep)
-        for (int k = 0; k < 2 * band; ++k) {
-            const int y = Image::wrap(v.height - band + k, v.height);
-            for (int x = 0; x < v.width; ++x) {
-                layout.gather(pyramid, x, y, t, query.data());
-                const MatchContext context{voxel_salt(options.seed ^ 0x7365616Dull /* "seam" */, level, 1 + sweep, x, y),
-                                           options.tolerance};
-                const uint8_t* pixel = lm.seam->match(query.data(), context, scratch.get());
-                if (keep_still && still_in_example(pixel, channels)) pixel = v.wrapped(x, y, t - 1);
-                std::copy(pixel, pixel + channels, row.data() + std::size_t(x) * std::size_t(channels));
-            }
-            std::copy(row.begin(), row.end(), v.at(0, y, t));
+    class Level : public PaperLevel<VolumeLevelModel, VolumeSynthesisOptions, Volume, NeighborhoodLayout3> {
+    public:
+        using PaperLevel::PaperLevel;
+        // The still-pixel rule is off for frame 0, whose previous frame is
+        // still an initial value.
+        void begin_frame(int t) { keep_still_ = t > 0 && layout_.predecessor_offset() >= 0; }
+        void visit(int x, int y, int t, uint8_t* query, MatchScratch* scratch) const {
+            layout_.gather(pyramid_, x, y, t, query);
+            const MatchContext context{voxel_salt(options_.seed, level_, 0, x, y), options_.tolerance};
+            copy_pixel(grid().at(x, y, t), keep_or_match(*lm_.matcher, keep_still_, query, context, scratch, x, y, t),
+                       grid().channels);
         }
-}
+        // Frame-seam closing of frame t (temporal_synthesis.hpp): the rows on
+        // both sides of the frame's top/bottom wrap, row by row. The rows
+        // the band spans are the still engine's (one frame's causal window,
+        // time aside).
+        void close_frame(int t, int threads) const {
+            if (!lm_.seam) return;
+            Volume& v = grid();
+            const NeighborhoodLayout3 layout(lm_.seam_shape, v.channels, level_, int(pyramid_.size()));
+            require_stride(layout.stride(), lm_.seam.get(), "frame-seam matcher and shape", level_);
+            const bool keep_still = keep_still_ && layout.predecessor_offset() >= 0;
+            const Shape frame_shape{lm_.shape.rows, lm_.shape.cols, lm_.shape.levels};
+            rematch_band(
+                seam_band(frame_shape, v.width, v.height, v.channels), *lm_.seam, layout.stride(), threads,
+                [&](int sweep, int y, int, int x, uint8_t* query, MatchScratch* scratch) {
+                    layout.gather(pyramid_, x, y, t, query);
+                    const uint64_t seam_seed = options_.seed ^ 0x7365616Dull /* "seam" */;
+                    const MatchContext context{voxel_salt(seam_seed, level_, 1 + sweep, x, y), options_.tolerance};
+                    return keep_or_match(*lm_.seam, keep_still, query, context, scratch, x, y, t);
+                },
+                [&](int y) { return v.at(0, y, t); });
+        }
+        // Loop closing (temporal_synthesis.hpp): the frames on both sides of
+        // the temporal wrap, frame by frame.
+        void close_level(int threads) const {
+            if (!lm_.closing) return;
+            Volume& v = grid();
+            const NeighborhoodLayout3 layout(lm_.closing_shape, v.channels, level_, int(pyramid_.size()));
+            require_stride(layout.stride(), lm_.closing.get(), "loop-closing matcher and shape", level_);
+            const bool keep_still = layout.predecessor_offset() >= 0;
+            Band band;
+            band.slices = v.frames;
+            band.band = closing_band_frames(lm_.shape, v.frames);
+            band.visits = std::min(2 * band.band, v.frames);
+            band.rows = v.height;
+            band.width = v.width;
+            band.channels = v.channels;
+            rematch_band(
+                band, *lm_.closing, layout.stride(), threads,
+                [&](int sweep, int t, int y, int x, uint8_t* query, MatchScratch* scratch) {
+                    layout.gather(pyramid_, x, y, t, query);
+                    const MatchContext context{voxel_salt(options_.seed, level_, 1 + sweep, x, y), options_.tolerance};
+                    return keep_or_match(*lm_.closing, keep_still, query, context, scratch, x, y, t);
+                },
+                [&](int t) { return v.frame_data(t); });
+        }
+
+    private:
+        // The matcher's pixel, or the output's own previous value where the
+        // entry shows the example did not change (temporal_synthesis.hpp).
+        const uint8_t* keep_or_match(const Matcher& matcher, bool keep_still, const uint8_t* query,
+                                     const MatchContext& context, MatchScratch* scratch, int x, int y, int t) const {
+            const uint8_t* pixel = matcher.match(query, context, scratch);
+            return keep_still && still_in_example(pixel, grid().channels) ? grid().wrapped(x, y, t - 1) : pixel;
+        }
+
+        bool keep_still_ = false;
+    };
+};
 
 }  // namespace
 
 std::vector<Volume> synthesize_volume_pyramid(const VolumeModel& model, const VolumeSynthesisOptions& options) {
-    const int levels = int(model.levels.size());
-    if (levels < 1) fail(VQTEX_ERROR_INVALID_ARGUMENT, "temporal texture model has no levels");
+    if (model.levels.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "temporal texture model has no levels");
     if (options.width < 1 || options.height < 1 || options.frames < 1)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "output must have at least 1x1 pixels and 1 frame");
-
-    std::vector<Volume> pyramid;
-    uint64_t total = 0;
-    for (int l = 0; l < levels; ++l) {
-        pyramid.emplace_back(pyramid_level_size(options.width, l), pyramid_level_size(options.height, l),
-                             pyramid_level_size(options.frames, l), model.channels);
-        total += pyramid.back().voxel_count();
-    }
-    if (options.trace) options.trace->assign(std::size_t(levels), {});
-    std::atomic<bool> stop{false};
-    uint64_t done = 0;
-    const int threads = std::max(1, options.threads);
-
-    for (int l = levels - 1; l >= 0; --l) {
-        const VolumeLevelModel& lm = model.levels[std::size_t(l)];
-        Volume& v = pyramid[std::size_t(l)];
-        if (options.init == LevelInit::Noise || l + 1 == levels)
-            fill_matched_noise(v.stack, lm.histogram, options.seed, l);
-        else
-            upsample_parent(pyramid[std::size_t(l + 1)], v);
-        const NeighborhoodLayout3 layout(lm.shape, model.channels, l, levels);
-        if (!lm.matcher || layout.stride() != lm.matcher->stride())
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "matcher and neighbourhood shape disagree at level " + std::to_string(l));
-        std::vector<uint32_t>* trace = nullptr;
-        if (options.trace) {
-            trace = &(*options.trace)[std::size_t(l)];
-            trace->assign(v.voxel_count(), 0);
-        }
-        std::atomic<uint32_t> trace_counter{0};
-        const Shape& shape = layout.shape();
-        const int reach_x = shape.cols / 2, reach_y = shape.rows / 2;
-        const int lag = reach_x + 1;
-        const bool parallel = threads > 1 && v.height >= 2 * reach_y + 2 && !options.trace;
-        const int workers = parallel ? std::min(threads, v.height) : 1;
-        std::vector<RowProgress> progress(std::size_t(v.height));
-        struct WorkerState {
-            std::vector<uint8_t> query;
-            std::unique_ptr<MatchScratch> scratch;
-        };
-
-        for (int t = 0; t < v.frames; ++t) {
-            for (auto& p : progress) p.done.store(0);
-            const bool keep_still = t > 0 && layout.predecessor_offset() >= 0;
-            const FrameRun run{{v.width, v.height, lag, reach_x, reach_y, wavefront_slack(v.width), parallel,
-                                &progress, &stop},
-                               &layout, lm.matcher.get(), &pyramid, keep_still, l, t, options.seed,
-                               options.tolerance, trace, &trace_counter};
-            run_rows(
-                workers, v.height, stop,
-                [&] { return WorkerState{std::vector<uint8_t>(layout.stride()), lm.matcher->make_scratch()}; },
-                [&](int, int y, WorkerState& state) { run_row(run, y, state.query, state.scratch.get()); });
-            if (lm.seam && !stop.load()) close_frame_seam(lm, pyramid, l, levels, model.channels, t, keep_still, options);
-            done += v.frame_pixels();
-            if (!stop.load() && options.progress && !options.progress(done, total)) stop.store(true);
-            if (stop.load()) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
-        }
-        if (lm.closing) close_loop(lm, pyramid, l, levels, model.channels, options);
-    }
-    return pyramid;
+    PaperRun run = paper_run(options);
+    run.trace = options.trace;
+    return synthesize_levels(AnimatedLevels(model, options), run);
 }
 
 }  // namespace vqtex

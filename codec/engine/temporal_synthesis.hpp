@@ -13,7 +13,7 @@
 // Loop closing. Frame 0 is synthesised before the last frames exist: through
 // the temporal wrap it reads their initial values, so the last frame and the
 // first do not quite meet (the temporal analogue of the 2D engine's seam
-// closing, synthesis.cpp). Once a level is done, the frames on both sides of
+// closing; both run band_rematch.hpp). Once a level is done, the frames on both sides of
 // the wrap are matched again with a symmetric neighbourhood (the full RxCxD
 // window, previous and next frames alike), frame by frame from the earlier
 // side of the band across the wrap, twice.
@@ -21,7 +21,7 @@
 // Frame-seam closing. Within a frame the raster scan starts at the top: the
 // first rows read, through the top/bottom wrap, the last rows' initial
 // values, so the frame would not tile in y (and row 0, which starts at
-// column 0, not quite in x). As in the 2D engine (synthesis.cpp), the rows
+// column 0, not quite in x). As in the 2D engine (band_rematch.hpp), the rows
 // on both sides of that wrap are matched again once the frame is done, with
 // a shape that sees the whole RxC window of the current frame (rows above
 // and below alike) but, like the causal one, only the previous frames: the

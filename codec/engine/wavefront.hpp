@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/parallel.hpp"
 #include "engine/synthesis.hpp"
 
 namespace vqtex {
@@ -80,22 +81,19 @@ bool scan_row(const WavefrontScan& s, int y, Visit&& visit) {
     return true;
 }
 
-// Rows 0..height-1 on `workers` threads, row y on worker y % workers (the
-// calling thread is worker 0). Each worker makes its own state once
-// (make_state()) and calls row(worker, y, state) for its rows in order.
+// Rows 0..height-1 on `workers` threads running together (run_together,
+// parallel.hpp), row y on worker y % workers (the calling thread is worker
+// 0). Each worker makes its own state once (make_state()) and calls
+// row(worker, y, state) for its rows in order.
 template <typename MakeState, typename Row>
 void run_rows(int workers, int height, const std::atomic<bool>& stop, MakeState&& make_state, Row&& row) {
-    auto worker = [&](int index) {
+    run_together(workers, [&](int index) {
         auto state = make_state();
         for (int y = index; y < height; y += workers) {
             if (stop.load()) return;
             row(index, y, state);
         }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < workers; ++t) pool.emplace_back(worker, t);
-    worker(0);
-    for (auto& t : pool) t.join();
+    });
 }
 
 }  // namespace vqtex

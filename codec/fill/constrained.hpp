@@ -79,7 +79,7 @@ struct FillOptions {
     double codeword_fraction = 1.0;   // TSVQ leaves per example neighbourhood
     // Additions to the paper's method (two-pass method only; measured in
     // README.md, "Hole filling"):
-    // Coherent candidates beside the tree's answer (constrained.cpp,
+    // Coherent candidates beside the tree's answer (fill_coherence.hpp,
     // coherent_choice): on/off, how far to look for the neighbours' sources
     // (1 or 2), and by how much (1/256) a coherent candidate may be farther
     // than the tree's answer and still win.
@@ -89,7 +89,7 @@ struct FillOptions {
     // Extra pass-2 sweeps per level after the first, alternately from the
     // centre outwards and from the border inwards.
     int sweeps = 2;
-    // Coarse context (constrained.cpp, context_known_pyramid): a coarser
+    // Coarse context (known_pyramid.cpp, context_known_pyramid): a coarser
     // pixel is context when at least this share (1/256) of its filter
     // weight falls on known pixels; 0 = only wholly known footprints.
     int context_threshold = 64;

@@ -20,14 +20,10 @@ std::size_t ExhaustiveMatcher::nearest(const uint8_t* query, const MatchContext&
                                      examples_.stride, examples_.count(), &best);
     if (context.tolerance == 0) return index;
     const uint32_t threshold = tolerance_threshold(best, context.tolerance);
-    std::size_t chosen = index;
-    uint64_t chosen_rank = candidate_rank(context.salt, index);
-    for (std::size_t i = 0; i < examples_.count(); ++i) {
-        if (k.ssd(query, examples_.vector(i), examples_.stride) > threshold) continue;
-        const uint64_t rank = candidate_rank(context.salt, uint32_t(i));
-        if (rank < chosen_rank || (rank == chosen_rank && i < chosen)) chosen = i, chosen_rank = rank;
-    }
-    return chosen;
+    NearTieChoice choice(context.salt, index);
+    for (std::size_t i = 0; i < examples_.count(); ++i)
+        if (k.ssd(query, examples_.vector(i), examples_.stride) <= threshold) choice.offer(uint32_t(i));
+    return choice.key();
 }
 
 const uint8_t* ExhaustiveMatcher::match(const uint8_t* query, const MatchContext& context,

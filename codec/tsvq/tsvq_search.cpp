@@ -160,14 +160,9 @@ std::size_t TsvqMatcher::search_general(const uint8_t* query, uint32_t leaves, M
     if (context.tolerance == 0) return best_leaf;
     const uint32_t threshold = tolerance_threshold(best_distance, context.tolerance);
     std::size_t chosen = best_leaf;
-    uint64_t chosen_rank = candidate_rank(context.salt, best_key);
-    for (const auto& [d, leaf] : work.visited) {
-        if (d > threshold) continue;
-        const uint32_t key = b.leaf_key(leaf);
-        const uint64_t rank = candidate_rank(context.salt, key);
-        if (rank < chosen_rank || (rank == chosen_rank && key < b.leaf_key(chosen)))
-            chosen = leaf, chosen_rank = rank;
-    }
+    NearTieChoice choice(context.salt, best_key);
+    for (const auto& [d, leaf] : work.visited)
+        if (d <= threshold && choice.offer(b.leaf_key(leaf))) chosen = leaf;
     return chosen;
 }
 

@@ -12,7 +12,10 @@
  * - Images are 8-bit, 1 to 4 channels interleaved (grey, grey+alpha, RGB,
  *   RGBA), rows packed with no padding. Images the library returns are freed
  *   with vqtex_image_free().
- * - No global state: calls on different data may run concurrently.
+ * - Calls on different data may run concurrently. The only process-wide
+ *   state is set once and holds no data of any call: the SIMD kernels
+ *   (chosen at first use from the CPU and VQTEX_SIMD) and the worker
+ *   threads (see threads below).
  * - Determinism: output bytes depend only on the inputs, the parameters and
  *   the seed; never on the thread count, the CPU's SIMD level or the run.
  */
@@ -182,7 +185,9 @@ typedef struct vqtex_synth_params {
     vqtex_init init;           /* [--init parent|noise] */
     uint32_t tolerance;        /* near-ties within best*(1+tolerance/256) are chosen among at
                                   random (seeded, per pixel); 0 = nearest only [--tolerance] */
-    uint32_t threads;          /* 0 = all cores [--threads] */
+    uint32_t threads;          /* 0 = all cores [--threads]. Worker threads are kept for the
+                                  process's life, idle between calls, and shared by every
+                                  call; a call that finds them busy starts its own. */
     vqtex_progress_fn progress;
     void* progress_user;
 } vqtex_synth_params;
