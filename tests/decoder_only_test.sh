@@ -18,7 +18,7 @@ for absent in vqtex-encode vqtex-synth vqtex-fill vqtex-bench libvqtex.a libvqte
     exit 1
   fi
 done
-library="$(find "$build" -maxdepth 1 -name 'libvqtex_decoder.a' -o -maxdepth 1 -name 'libvqtex_decoder.so')"
+library="$(find "$build" -maxdepth 1 \( -name libvqtex_decoder.a -o -name libvqtex_decoder.so \) | head -1)"
 [ -n "$library" ] || { echo "decoder-only build made no libvqtex_decoder" >&2; exit 1; }
 "$src/tests/decoder_symbols_test.sh" "$library"
 "$build/decode_to_pam" "$file" "$build/out.pam" 32 32
