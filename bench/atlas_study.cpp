@@ -20,7 +20,7 @@
 
 #include "common/image.hpp"
 #include "format/atlas_coder.hpp"
-#include "format/atlas_encoder.hpp"
+#include "writer/atlas_encoder.hpp"
 #include "image_io.hpp"
 #include "metrics.hpp"
 

@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "common/checksum.hpp"
+#include "atlas_v3_writer.hpp"
 #include "format/atlas_file.hpp"
+#include "writer/atlas_writer.hpp"
 #include "image_io.hpp"
 #include "vqtex/vqtex.h"
 

@@ -35,5 +35,7 @@ cmake --build "$prefix/examples-build" >/dev/null
 export PKG_CONFIG_PATH="$prefix/lib/pkgconfig:$prefix/lib/x86_64-linux-gnu/pkgconfig:${PKG_CONFIG_PATH:-}"
 # shellcheck disable=SC2046
 cc -std=c99 -Wall -Werror "$src/examples/asset_packer.c" -o "$prefix/asset_packer_pc" $(pkg-config --cflags --libs --static vqtex)
-"$prefix/asset_packer_pc" >/dev/null
+# A shared build's library is found where it was installed (pkg-config
+# gives no run path).
+LD_LIBRARY_PATH="$prefix/lib:$prefix/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}" "$prefix/asset_packer_pc" >/dev/null
 echo "install test: find_package and pkg-config builds both ran"

@@ -11,15 +11,18 @@
 #include <fstream>
 #include <iterator>
 
+#include "atlas_v3_writer.hpp"
 #include "codec_support.hpp"
 #include "common/bitstream.hpp"
 #include "common/checksum.hpp"
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "format/atlas_coder.hpp"
-#include "format/atlas_encoder.hpp"
+#include "writer/atlas_encoder.hpp"
 #include "format/atlas_file.hpp"
 #include "format/container.hpp"
+#include "writer/atlas_writer.hpp"
+#include "writer/byte_writer.hpp"
 #include "metrics.hpp"
 #include "test_support.hpp"
 #include "vqtex/vqtex.hpp"

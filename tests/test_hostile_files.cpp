@@ -15,12 +15,15 @@
 #include <vector>
 
 #include "alloc_counter.hpp"
+#include "atlas_v3_writer.hpp"
 #include "codec_support.hpp"
 #include "common/bitstream.hpp"
 #include "common/checksum.hpp"
 #include "engine/neighborhood.hpp"
 #include "format/atlas_file.hpp"
 #include "format/container.hpp"
+#include "writer/byte_writer.hpp"
+#include "writer/container_writer.hpp"
 #include "test_support.hpp"
 #include "tsvq/tsvq_tree.hpp"
 

@@ -16,6 +16,7 @@
 #include "format/volume_codec.hpp"
 #include "vqtex/vqtex.hpp"
 #include "format/container.hpp"
+#include "writer/container_writer.hpp"
 #include "common/rng.hpp"
 #include "test_support.hpp"
 #include "analysis/temporal_model.hpp"

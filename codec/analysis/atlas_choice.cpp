@@ -14,8 +14,9 @@
 #include "common/parallel.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "format/atlas_coder.hpp"
-#include "format/atlas_encoder.hpp"
+#include "writer/atlas_encoder.hpp"
 #include "format/atlas_file.hpp"
+#include "writer/atlas_writer.hpp"
 #include "metrics.hpp"
 #include "vqtex/vqtex.h"
 

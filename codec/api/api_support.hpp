@@ -13,7 +13,6 @@
 #include "format/container.hpp"
 #include "common/error.hpp"
 #include "common/image.hpp"
-#include "format/model_codec.hpp"
 #include "common/parallel.hpp"
 #include "engine/synthesis.hpp"
 #include "engine/volume.hpp"
@@ -116,18 +115,6 @@ inline int resolve_threads(uint32_t threads) { return threads ? int(threads) : h
 inline ProgressFn stage_progress(vqtex_progress_fn fn, void* user, vqtex_stage stage) {
     if (!fn) return {};
     return [fn, user, stage](uint64_t done, uint64_t total) { return fn(user, stage, done, total) != 0; };
-}
-
-// How the file coder should write what the caller asked for.
-inline EncodeSettings encode_settings_of(const vqtex_encode_params& p) {
-    EncodeSettings s;
-    s.precision = int(p.precision);
-    s.pixel_precision = int(p.pixel_precision);
-    s.smoothing = int(p.smoothing);
-    s.backtrack = uint8_t(p.backtrack);
-    s.init = p.init == VQTEX_INIT_NOISE ? LevelInit::Noise : LevelInit::Parent;
-    s.seed = p.seed;
-    return s;
 }
 
 inline std::size_t memory_limit_of(const vqtex_decode_params* p) {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "api/api_support.hpp"
-#include "api/validate.hpp"
+#include "api/validate_encode.hpp"
 #include "fill/constrained.hpp"
 #include "common/error.hpp"
 #include "vqtex/vqtex.h"

@@ -14,7 +14,7 @@
 #include "engine/pyramid.hpp"
 #include "engine/synthesis.hpp"
 #include "engine/temporal_synthesis.hpp"
-#include "engine/tree_model.hpp"
+#include "format/tree_model.hpp"
 #include "format/atlas_file.hpp"
 #include "format/model_codec.hpp"
 #include "format/volume_codec.hpp"

@@ -10,9 +10,10 @@
 #include <new>
 
 #include "api/api_support.hpp"
-#include "api/validate.hpp"
+#include "api/validate_encode.hpp"
 #include "common/error.hpp"
-#include "format/model_codec.hpp"
+#include "api/encode_support.hpp"
+#include "writer/model_writer.hpp"
 #include "common/parallel.hpp"
 #include "engine/synthesis.hpp"
 #include "analysis/atlas_choice.hpp"

@@ -11,7 +11,7 @@
 
 #include "analysis/texture_model.hpp"
 #include "api/api_support.hpp"
-#include "api/validate.hpp"
+#include "api/validate_encode.hpp"
 #include "common/error.hpp"
 #include "common/image.hpp"
 #include "common/parallel.hpp"

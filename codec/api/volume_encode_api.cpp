@@ -8,10 +8,11 @@
 #include <new>
 
 #include "api/api_support.hpp"
-#include "api/validate.hpp"
+#include "api/validate_encode.hpp"
 #include "common/error.hpp"
 #include "analysis/temporal_model.hpp"
-#include "format/volume_codec.hpp"
+#include "api/encode_support.hpp"
+#include "writer/volume_writer.hpp"
 #include "vqtex/vqtex.h"
 
 using namespace vqtex;

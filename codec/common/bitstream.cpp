@@ -1,27 +1,9 @@
-// bitstream.cpp - little-endian writer and bounds-checked reader.
+// bitstream.cpp - the bounds-checked little-endian reader.
 #include "common/bitstream.hpp"
 
 #include "common/error.hpp"
 
 namespace vqtex {
-
-void ByteWriter::u16(uint16_t v) {
-    u8(uint8_t(v));
-    u8(uint8_t(v >> 8));
-}
-void ByteWriter::u32(uint32_t v) {
-    for (int i = 0; i < 4; ++i) u8(uint8_t(v >> (8 * i)));
-}
-void ByteWriter::u64(uint64_t v) {
-    for (int i = 0; i < 8; ++i) u8(uint8_t(v >> (8 * i)));
-}
-void ByteWriter::varint(uint64_t v) {
-    while (v >= 0x80) {
-        u8(uint8_t(v | 0x80));
-        v >>= 7;
-    }
-    u8(uint8_t(v));
-}
 
 void ByteReader::corrupt(const std::string& detail) const {
     fail(VQTEX_ERROR_CORRUPT, what_ + " at byte " + std::to_string(pos_) + ": " + detail);

@@ -1,7 +1,7 @@
-// bitstream.hpp - little-endian byte writing and bounds-checked reading for
-// the file format (docs/FORMAT.md). Every read checks the remaining length
-// and throws a corrupt-file error naming what was being read; nothing is
-// ever read past the end.
+// bitstream.hpp - bounds-checked little-endian reading for the file format
+// (docs/FORMAT.md; writer/byte_writer.hpp writes what it reads). Every read
+// checks the remaining length and throws a corrupt-file error naming what
+// was being read; nothing is ever read past the end.
 #pragma once
 
 #include <cstddef>
@@ -11,27 +11,6 @@
 #include <vector>
 
 namespace vqtex {
-
-class ByteWriter {
-public:
-    void u8(uint8_t v) { bytes_.push_back(v); }
-    void u16(uint16_t v);
-    void u32(uint32_t v);
-    void u64(uint64_t v);
-    void varint(uint64_t v);  // LEB128, 7 bits per byte
-    void bytes(const uint8_t* data, std::size_t n) {
-        if (n == 0) return;
-        const std::size_t at = bytes_.size();
-        bytes_.resize(at + n);
-        std::memcpy(bytes_.data() + at, data, n);
-    }
-    void bytes(const std::vector<uint8_t>& v) { bytes(v.data(), v.size()); }
-    std::vector<uint8_t>& data() { return bytes_; }
-    std::size_t size() const { return bytes_.size(); }
-
-private:
-    std::vector<uint8_t> bytes_;
-};
 
 class ByteReader {
 public:

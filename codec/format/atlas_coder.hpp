@@ -6,7 +6,7 @@
 // conversion after it is this project's integer arithmetic, so an atlas
 // decodes to the same bytes on every platform. This half is in the decoder
 // library (dav1d only); the encoding half, which needs libaom, is in
-// atlas_encoder.hpp.
+// writer/atlas_encoder.hpp.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// atlas_file.cpp - reading and writing format versions 3 to 7
+// atlas_file.cpp - reading format versions 3 to 7
 // (docs/FORMAT.md section 8). Version 3: the container of sections 2.1-2.4
 // holding exactly two sections, ATLS (the coded atlas) and SYNP (the
 // engine's parameters). Version 4 (section 8.7): the same content behind a
@@ -7,7 +7,7 @@
 // Version 5 (section 8.8): version 4 with the seam blend's radius. Version
 // 6 (section 8.9): version 5 with the copy relocation's positions. Version
 // 7 (section 8.10): version 6 with the edge guard, the one the encoder
-// writes.
+// writes (writer/atlas_writer.cpp).
 #include "format/atlas_file.hpp"
 
 #include <string>
@@ -18,6 +18,7 @@
 #include "engine/coherent_synthesis.hpp"
 #include "engine/seam_blend.hpp"
 #include "format/atlas_coder.hpp"
+#include "format/atlas_compact.hpp"
 
 namespace vqtex {
 
@@ -26,19 +27,6 @@ namespace {
 // dav1d's fixed allocations (its context, tables and thread data) beside the
 // frame, rounded up from what a 128x128 decode measures (docs/FORMAT.md 8.5).
 constexpr uint64_t kDav1dFixedBytes = 8ull << 20;
-
-std::vector<uint8_t> synthesis_payload(const AtlasSynthesisParams& p) {
-    ByteWriter w;
-    w.u8(p.example_tileable ? 1 : 0);
-    w.u8(uint8_t(p.passes));
-    w.u8(uint8_t(p.coarse_passes));
-    w.u8(uint8_t(p.polish_passes));
-    w.u16(uint16_t(p.coherence_bias));
-    w.u8(uint8_t(p.coherence));
-    w.u8(p.roll ? 1 : 0);
-    w.u16(uint16_t(p.jitter));
-    return std::move(w.data());
-}
 
 AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {
     ByteReader r(bytes.data(), bytes.size(), "section SYNP");
@@ -62,37 +50,6 @@ AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {
     p.edge_guard = 0;
     r.expect_end();
     return p;
-}
-
-// Version 4 (docs/FORMAT.md 8.7). The packed byte after the version:
-constexpr uint8_t kPackedChannels = 0x03;         // channels - 1
-constexpr int kPackedLevelsShift = 2;             // levels - 1, bits 2-4
-constexpr uint8_t kPackedExemplarSize = 1u << 5;  // the exemplar size is stored (it is not the atlas's)
-constexpr uint8_t kPackedParameters = 1u << 6;    // the parameters are stored (they are not the defaults)
-constexpr uint8_t kPackedTileable = 1u << 7;      // the atlas wraps
-// Signature, version, packed byte, one-byte atlas width, height and seed,
-// CRC-32: no version 4 to 7 file is shorter.
-constexpr std::size_t kCompactMinSize = sizeof kMagic + 2 + 1 + 3 + kTrailerSize;
-
-// The parameters a version 4 to 7 file leaves out. These are the values of
-// the format, fixed by docs/FORMAT.md 8.7 to 8.10, not whatever the
-// engine's defaults become: a file written with them decodes the same
-// forever.
-// The blend when it is not stored: version 4 has none, version 5's default.
-constexpr int default_blend(uint16_t version) { return version >= kBlendAtlasFormatVersion ? kV5DefaultBlend : 0; }
-// The relocation when it is not stored: version 6's default, none before.
-constexpr int default_relocation(uint16_t version) {
-    return version >= kRelocationAtlasFormatVersion ? kV6DefaultRelocation : 0;
-}
-// The edge guard when it is not stored: version 7's default, none before.
-constexpr int default_edge_guard(uint16_t version) {
-    return version >= kEdgeGuardAtlasFormatVersion ? kV7DefaultEdgeGuard : 0;
-}
-
-bool are_compact_defaults(const AtlasSynthesisParams& p, uint16_t version) {
-    return p.passes == 2 && p.coarse_passes == 4 && p.polish_passes == 1 && p.coherence_bias == 256 &&
-           p.coherence == 1 && p.roll && p.jitter == 0 && p.blend == default_blend(version) &&
-           p.relocate == default_relocation(version) && p.edge_guard == default_edge_guard(version);
 }
 
 // The checks both versions make once the header's fields are read: the
@@ -259,66 +216,6 @@ AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t m
     const uint8_t* bits = r.bytes(r.remaining(), "atlas bitstream");
     f.atlas = decode_atlas(bits, f.atlas_bytes, aw, ah, h.channels, "section ATLS");
     return f;
-}
-
-std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
-                                       const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params) {
-    if (header.channels < 1 || header.channels > 4 || header.levels < 1 || header.levels > 8 ||
-        atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide || atlas_width > kMaxAtlasSide ||
-        atlas_height > kMaxAtlasSide || atlas_bitstream.empty() || params.blend < 0 || params.blend > kMaxBlendRadius ||
-        params.relocate < 0 || params.relocate > kMaxRelocationPositions || params.edge_guard < 0 ||
-        params.edge_guard > kMaxEdgeGuard)
-        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 7 can hold");
-    const bool exemplar_size =
-        header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
-    const bool parameters = !are_compact_defaults(params, kEdgeGuardAtlasFormatVersion);
-    ByteWriter w;
-    w.bytes(kMagic, sizeof kMagic);
-    w.u16(kEdgeGuardAtlasFormatVersion);
-    w.u8(uint8_t((header.channels - 1) | (header.levels - 1) << kPackedLevelsShift |
-                 (exemplar_size ? kPackedExemplarSize : 0) | (parameters ? kPackedParameters : 0) |
-                 (params.example_tileable ? kPackedTileable : 0)));
-    w.varint(uint64_t(atlas_width));
-    w.varint(uint64_t(atlas_height));
-    if (exemplar_size) {
-        w.varint(header.exemplar_width);
-        w.varint(header.exemplar_height);
-    }
-    w.varint(header.seed);
-    if (parameters) {
-        w.varint(uint64_t(params.passes));
-        w.varint(uint64_t(params.coarse_passes));
-        w.varint(uint64_t(params.polish_passes));
-        w.varint(uint64_t(params.coherence_bias));
-        w.varint(uint64_t(params.coherence));
-        w.varint(params.roll ? 1 : 0);
-        w.varint(uint64_t(params.jitter));
-        w.varint(uint64_t(params.blend));
-        w.varint(uint64_t(params.relocate));
-        w.varint(uint64_t(params.edge_guard));
-    }
-    w.bytes(atlas_bitstream);
-    w.u32(crc32(w.data().data(), w.size()));
-    return std::move(w.data());
-}
-
-std::vector<uint8_t> encode_atlas_file_v3(const FileHeader& header, int atlas_width, int atlas_height,
-                                          const std::vector<uint8_t>& atlas_bitstream,
-                                          const AtlasSynthesisParams& params) {
-    FileHeader h = header;
-    h.version = kAtlasFormatVersion;
-    h.flags = 0;
-    h.init = 0;
-    h.backtrack = 1;
-    ContainerWriter w(h);
-    ByteWriter atlas;
-    atlas.varint(uint64_t(atlas_width));
-    atlas.varint(uint64_t(atlas_height));
-    atlas.u8(uint8_t(AtlasCoder::Av1));
-    atlas.bytes(atlas_bitstream);
-    w.add(kTagAtlas, 0, 0, std::move(atlas.data()));
-    w.add(kTagSynthesis, 0, 0, synthesis_payload(params));
-    return w.write();
 }
 
 }  // namespace vqtex

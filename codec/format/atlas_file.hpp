@@ -105,20 +105,4 @@ AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t m
 uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
                              uint64_t width, uint64_t height);
 
-// A version 7 file (what the encoder writes): the exemplar size, channels,
-// levels and seed of `header` (its other fields are not stored), the coded
-// atlas and the parameters. The exemplar size is stored only when it is
-// not the atlas's, the parameters only when they are not the defaults.
-std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
-                                       const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params);
-
-// The same content as a version 3 file (the header fields of `header`
-// other than version, flags and section count). Kept for the tests and the
-// fuzzers' seeds: version 3 must go on decoding. Version 3 has no blend,
-// no relocation and no edge guard: params.blend, params.relocate and
-// params.edge_guard are not stored, and the file decodes without them.
-std::vector<uint8_t> encode_atlas_file_v3(const FileHeader& header, int atlas_width, int atlas_height,
-                                          const std::vector<uint8_t>& atlas_bitstream,
-                                          const AtlasSynthesisParams& params);
-
 }  // namespace vqtex

@@ -1,5 +1,6 @@
 // container.hpp - the vqtex file container (docs/FORMAT.md): header,
-// section table, section payloads and CRC-32 trailer. Knows nothing about
+// section table, section payloads and CRC-32 trailer, and reading it
+// (writer/container_writer.hpp writes it). Knows nothing about
 // codebooks; model_codec.* gives the sections their meaning.
 #pragma once
 
@@ -77,25 +78,6 @@ struct Section {
     std::size_t stored_size = 0;
     std::size_t offset = 0;  // of the payload, in the file
     std::string name() const;
-};
-
-// Writing: sections are added with their raw bytes; write() compresses
-// each (keeping it stored when zstd does not help) and assembles the file.
-class ContainerWriter {
-public:
-    explicit ContainerWriter(const FileHeader& header, int zstd_level = 19)
-        : header_(header), zstd_level_(zstd_level) {}
-    void add(const char tag[4], uint8_t level, uint8_t kind, std::vector<uint8_t> raw);
-    std::vector<uint8_t> write();
-
-private:
-    FileHeader header_;
-    int zstd_level_;
-    struct Pending {
-        Section section;
-        std::vector<uint8_t> raw;
-    };
-    std::vector<Pending> sections_;
 };
 
 struct Container {

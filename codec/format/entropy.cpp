@@ -1,4 +1,4 @@
-// entropy.cpp - zstd section coding.
+// entropy.cpp - zstd section decoding (writer/zstd_compress.cpp codes them).
 #include "format/entropy.hpp"
 
 #include <zstd.h>
@@ -6,14 +6,6 @@
 #include "common/error.hpp"
 
 namespace vqtex {
-
-std::vector<uint8_t> zstd_compress(const std::vector<uint8_t>& raw, int level) {
-    std::vector<uint8_t> out(ZSTD_compressBound(raw.size()));
-    const std::size_t n = ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), level);
-    if (ZSTD_isError(n)) fail(VQTEX_ERROR_INTERNAL, std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
-    out.resize(n);
-    return out;
-}
 
 std::vector<uint8_t> zstd_decompress(const uint8_t* data, std::size_t size, std::size_t raw_size,
                                      const std::string& what) {

@@ -1,5 +1,6 @@
-// entropy.hpp - entropy coding of file sections with zstd. The only file
-// that includes <zstd.h>.
+// entropy.hpp - entropy decoding of file sections with zstd. The decoder
+// library's only file that includes <zstd.h> (writer/zstd_compress.hpp is
+// the encoder's).
 #pragma once
 
 #include <cstddef>
@@ -8,8 +9,6 @@
 #include <vector>
 
 namespace vqtex {
-
-std::vector<uint8_t> zstd_compress(const std::vector<uint8_t>& raw, int level);
 
 // Decompresses exactly `raw_size` bytes; anything else (a frame declaring
 // another size, a damaged frame, trailing data) is a corrupt-file error

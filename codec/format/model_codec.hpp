@@ -1,5 +1,6 @@
-// model_codec.hpp - turning a trained texture model into the sections of a
-// vqtex file and back (docs/FORMAT.md; paper section 6, "only the codebook
+// model_codec.hpp - the sections of a vqtex file that hold a texture model,
+// and reading them back into the model (docs/FORMAT.md; the writing half is
+// writer/model_writer.hpp; paper section 6, "only the codebook
 // would be transmitted"). The file holds, per pyramid level, the
 // neighbourhood shape and the TSVQ codebooks (tree topology, leaf weights,
 // quantised leaf codewords, leaf entries), plus the histograms that seed the
@@ -14,23 +15,11 @@
 #include "common/bitstream.hpp"
 #include "engine/neighborhood.hpp"
 #include "engine/noise.hpp"
-#include "engine/tree_model.hpp"
+#include "format/tree_model.hpp"
 #include "format/container.hpp"
 #include "tsvq/tsvq_tree.hpp"
 
 namespace vqtex {
-
-struct EncodeSettings {
-    int precision = 5;        // bits per codeword and key sample, 1..8
-    int pixel_precision = 8;  // bits per entry pixel, 1..8
-    int smoothing = 1;        // codeword taps averaged in blocks of this size (encoder only)
-    uint8_t backtrack = 1;
-    LevelInit init = LevelInit::Parent;
-    uint64_t seed = 1;
-    int zstd_level = 19;
-};
-
-std::vector<uint8_t> encode_model(const CodecModel& model, const EncodeSettings& settings);
 
 // What the tree coding needs to know of a neighbourhood shape, 2D or 3D
 // (temporal shapes have dt != 0; volume_codec.cpp): sizes, the taps (for the
@@ -49,11 +38,8 @@ struct TreeLayout {
 };
 TreeLayout tree_layout_of(const NeighborhoodLayout& layout);
 
-// One TSVQ tree as its TOPO, CODE and ENTR payloads, and back.
-struct TreeSections {
-    std::vector<uint8_t> topology, codewords, entries;
-};
-TreeSections encode_tree(const Codebook& book, const TreeLayout& layout, const EncodeSettings& settings);
+// One TSVQ tree from its TOPO, CODE and ENTR payloads (encode_tree of
+// writer/model_writer.hpp writes them).
 std::shared_ptr<const Codebook> decode_tree(const std::vector<uint8_t>& topology, const std::vector<uint8_t>& codewords,
                                             const std::vector<uint8_t>& entries, const TreeLayout& layout,
                                             int precision, int pixel_precision, const std::string& where,
@@ -83,31 +69,8 @@ const char* tree_name(TreeKind kind);
 // one is CORRUPT.
 const Section& require_section(const Container& c, const char tag[4], int level, TreeKind kind = TreeKind::Causal);
 
-// A tree of a level and kind as its three sections, encode_tree into the
-// writer (LevelReader::tree reads it back).
-void write_tree(ContainerWriter& writer, int level, TreeKind kind, const Codebook& book, const TreeLayout& layout,
-                const EncodeSettings& settings);
-
 // A HIST payload: 256 counts per channel, as varints.
-std::vector<uint8_t> encode_histogram(const LevelHistogram& h);
 LevelHistogram decode_histogram(const std::vector<uint8_t>& bytes, int channels, const std::string& where);
-
-// The header both encoders start from: the model's sizes and the settings;
-// the seam-closing flag when some level has a closing tree.
-FileHeader model_header(int channels, uint32_t exemplar_width, uint32_t exemplar_height, int levels,
-                        bool any_closing, const EncodeSettings& settings);
-
-// The parts of a level both encoders write alike: the LEVL fields after the
-// shape (LevelReader::read_coding reads them back) and the HIST section,
-// which a file has at noise init and at its coarsest level.
-void write_level_coding(ByteWriter& level, const EncodeSettings& settings, bool has_closing);
-// A level's LEVL section: its window, its coding and, with a closing tree,
-// the closing window; animated levels add the frames of each window (the
-// writing side of LevelReader::level_shapes).
-std::vector<uint8_t> level_section(const Shape& shape, const Shape* closing_shape, const EncodeSettings& settings,
-                                   bool animated);
-void write_histogram(ContainerWriter& writer, int level, int levels, const EncodeSettings& settings,
-                     const LevelHistogram& histogram);
 
 // The level reader of the still and animated decoders: it hands out the
 // sections a level needs, counts them (every section of the file must be
@@ -185,6 +148,11 @@ struct DecodedFile {
 // Parses, verifies and rebuilds everything; throws a specific error for any
 // damage. Nothing larger than `memory_limit` bytes is allocated.
 DecodedFile decode_file(const uint8_t* data, std::size_t size, std::size_t memory_limit);
+
+// The leaves of a tree given as each node's first child (-1 at a leaf), in
+// depth-first order, first child first: the order both halves code the
+// codewords and entries in.
+std::vector<uint32_t> depth_first_leaves(const std::vector<int32_t>& first_child);
 
 // Quantisation to `bits` and back, exactly invertible at 8 bits.
 inline uint8_t quantise(uint8_t v, int bits) {

@@ -1,6 +1,7 @@
-// volume_codec.cpp - writing and reading animated-texture files
-// (docs/FORMAT.md section 7). The trees are coded exactly as for still
-// textures (model_codec.cpp); only the shapes and the VOLU section differ.
+// volume_codec.cpp - reading animated-texture files (docs/FORMAT.md
+// section 7; writer/volume_writer.cpp writes them). The trees are coded
+// exactly as for still textures (model_codec.cpp); only the shapes and the
+// VOLU section differ.
 #include "format/volume_codec.hpp"
 
 #include <cstring>
@@ -12,9 +13,9 @@
 namespace vqtex {
 namespace {
 
-constexpr char kTagVolume[4] = {'V', 'O', 'L', 'U'};
 constexpr uint32_t kMaxExemplarFrames = 65536;
-constexpr uint8_t kTimeFactor = 2;
+
+}  // namespace
 
 TreeLayout tree_layout_of(const NeighborhoodLayout3& layout) {
     TreeLayout t;
@@ -28,8 +29,6 @@ TreeLayout tree_layout_of(const NeighborhoodLayout3& layout) {
     return t;
 }
 
-// The frame-seam tree's shape is not stored: the causal window's frames and
-// levels with the closing window's rows and columns, whole-frame.
 Shape seam_shape_of(const Shape& causal, const Shape& closing) {
     Shape s = causal;
     s.rows = closing.rows;
@@ -37,46 +36,6 @@ Shape seam_shape_of(const Shape& causal, const Shape& closing) {
     s.causal = true;
     s.whole_frame = true;
     return s;
-}
-
-}  // namespace
-
-std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const EncodeSettings& s) {
-    bool any_closing = false;
-    for (const auto& lv : model.levels) any_closing = any_closing || lv.closing != nullptr;
-    FileHeader h = model_header(model.channels, model.exemplar_width, model.exemplar_height, int(model.levels.size()),
-                                any_closing, s);
-    h.version = kVolumeFormatVersion;
-    h.flags |= kFlagVolume;
-    ContainerWriter writer(h, s.zstd_level);
-    ByteWriter vw;
-    vw.varint(model.exemplar_frames);
-    vw.u8(kTimeFactor);
-    writer.add(kTagVolume, 0, 0, std::move(vw.data()));
-    const int levels = int(model.levels.size());
-    for (int l = 0; l < levels; ++l) {
-        const VolumeCodecModel::Level& lv = model.levels[std::size_t(l)];
-        if (!lv.causal) fail(VQTEX_ERROR_INVALID_ARGUMENT, "level " + std::to_string(l) + " has no codebook");
-        writer.add(kTagLevel, uint8_t(l), 0, level_section(lv.shape, lv.closing ? &lv.closing_shape : nullptr, s, true));
-        write_histogram(writer, l, levels, s, lv.histogram);
-        if (bool(lv.closing) != bool(lv.seam) ||
-            (lv.seam && seam_shape_of(lv.shape, lv.closing_shape) != lv.seam_shape))
-            fail(VQTEX_ERROR_INVALID_ARGUMENT,
-                 "level " + std::to_string(l) + ": loop-closing and frame-seam trees go together");
-        for (const TreeKind kind : {TreeKind::Causal, TreeKind::Closing, TreeKind::FrameSeam}) {
-            const Codebook* book = kind == TreeKind::Causal    ? lv.causal.get()
-                                   : kind == TreeKind::Closing ? lv.closing.get()
-                                                               : lv.seam.get();
-            if (!book) continue;
-            Shape shape = kind == TreeKind::Causal    ? lv.shape
-                           : kind == TreeKind::Closing ? lv.closing_shape
-                                                       : lv.seam_shape;
-            shape.causal = kind != TreeKind::Closing;
-            const NeighborhoodLayout3 layout(shape, model.channels, l, levels);
-            write_tree(writer, l, kind, *book, tree_layout_of(layout), s);
-        }
-    }
-    return writer.write();
 }
 
 bool is_volume_file(const uint8_t* data, std::size_t size) {

@@ -1,5 +1,6 @@
-// volume_codec.hpp - the codec file for temporal textures (docs/FORMAT.md
-// section 7; paper sections 5.2 and 6): the same container, sections and
+// volume_codec.hpp - the codec file for temporal textures and reading it
+// (docs/FORMAT.md section 7, paper sections 5.2 and 6;
+// writer/volume_writer.hpp writes it): the same container, sections and
 // tree coding as a still texture, with header flag bit 1 set, a VOLU section
 // (the example's frame count and the temporal pyramid factor) and 3D
 // neighbourhood shapes {RxCxD,k} in each LEVL section.
@@ -9,13 +10,22 @@
 #include <memory>
 #include <vector>
 
-#include "engine/tree_model.hpp"
+#include "format/tree_model.hpp"
 #include "format/model_codec.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex {
 
-std::vector<uint8_t> encode_volume_model(const VolumeCodecModel& model, const EncodeSettings& settings);
+inline constexpr char kTagVolume[4] = {'V', 'O', 'L', 'U'};
+// The temporal pyramid's factor, the only one the format knows (VOLU).
+inline constexpr uint8_t kTimeFactor = 2;
+
+// The tree coding of a 3D shape: keys at pixel precision (TreeLayout).
+TreeLayout tree_layout_of(const NeighborhoodLayout3& layout);
+
+// The frame-seam tree's shape is not stored: the causal window's frames and
+// levels with the closing window's rows and columns, whole-frame.
+Shape seam_shape_of(const Shape& causal, const Shape& closing);
 
 struct DecodedVolumeFile {
     FileHeader header;

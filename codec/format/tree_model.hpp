@@ -1,8 +1,9 @@
 // tree_model.hpp - a model as a file holds it, still or animated: per level
-// the neighbourhood shapes, the noise histogram and the TSVQ trees. format/
-// reads and writes these and nothing more; the engine turns the trees into
-// the matchers it runs (texture_model_of, volume_model_of), so the decoder
-// side of the format never needs the synthesis engine.
+// the neighbourhood shapes, the noise histogram and the TSVQ trees.
+// model_codec.hpp and volume_codec.hpp read these (writer/ writes them);
+// texture_model_of and volume_model_of turn the trees into the TSVQ
+// matchers the engine runs. Here, above both engine/ and tsvq/, because it
+// needs both: the engine's shapes and histograms, and tsvq's trees.
 #pragma once
 
 #include <cstdint>

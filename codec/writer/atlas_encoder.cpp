@@ -2,7 +2,7 @@
 // docs/ATLAS.md): a still picture (g_limit = 1, so libaom writes the reduced
 // still-picture sequence header, a few bytes), full-range YCbCr converted by
 // atlas_rgb_to_ycbcr, one thread, raw OBUs without temporal delimiters.
-#include "format/atlas_encoder.hpp"
+#include "writer/atlas_encoder.hpp"
 
 #include <aom/aom_encoder.h>
 #include <aom/aomcx.h>
@@ -11,6 +11,7 @@
 #include <string>
 
 #include "common/bitstream.hpp"
+#include "writer/byte_writer.hpp"
 #include "common/error.hpp"
 #include "format/atlas_coder.hpp"
 

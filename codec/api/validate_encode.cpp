@@ -1,11 +1,13 @@
-// validate.cpp - the checks of validate.hpp, one function per params struct.
-#include "api/validate.hpp"
+// validate_encode.cpp - the checks of validate_encode.hpp, one function per
+// params struct of the encoder library's calls.
+#include "api/validate_encode.hpp"
 
 #include <cstring>
 #include <initializer_list>
 #include <string>
 
 #include "api/api_support.hpp"
+#include "api/validate.hpp"
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/copy_relocation.hpp"
@@ -48,14 +50,6 @@ void check_backtrack(uint32_t backtrack, uint32_t most, const char* what) {
 void check_tolerance(uint32_t tolerance) {
     if (tolerance > 4096)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "tolerance must be 0 to 4096 (in 1/256 of the best distance)");
-}
-
-// `least` is 0 where 0 means the example's size.
-void check_output_side(uint32_t width, uint32_t height, uint32_t least) {
-    if (width < least || height < least || width > kMaxOutputSide || height > kMaxOutputSide)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(width) + "x" + std::to_string(height) +
-                                               " is out of range (1 to " +
-                                               std::to_string(kMaxOutputSide) + " per side)");
 }
 
 constexpr uint32_t kNoLimit = ~uint32_t(0);
@@ -159,12 +153,6 @@ void validate(const vqtex_fill_params* p) {
     if (!(p->codeword_fraction > 0.0f && p->codeword_fraction <= 1.0f))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "codeword fraction must be in (0, 1]");
     check_tolerance(p->tolerance);
-}
-
-void validate(const vqtex_decode_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_decode_params))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_decode_params not initialised with vqtex_decode_params_init()");
-    check_output_side(p->width, p->height, 0);  // 0 = the example's size
 }
 
 }  // namespace vqtex

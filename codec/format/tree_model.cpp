@@ -1,5 +1,5 @@
 // tree_model.cpp - the matchers the engine runs over a file's trees.
-#include "engine/tree_model.hpp"
+#include "format/tree_model.hpp"
 
 #include "engine/synthesis.hpp"
 #include "engine/temporal_synthesis.hpp"
