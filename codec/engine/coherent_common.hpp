@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/hash.hpp"
 #include "common/image.hpp"
 #include "common/parallel.hpp"
 #include "dsp/dsp.hpp"
@@ -28,13 +29,6 @@ inline constexpr int kRadius = 2;
 inline constexpr int kSide = 2 * kRadius + 1;
 static_assert(kAppearanceDims == dsp::kWindowTapValues, "windows are compared by dsp::Kernels::window_ssd");
 inline constexpr int kTaps = kSide * kSide;
-
-inline uint64_t mix64(uint64_t z) {
-    z += 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
 
 // A per-pixel hash of the seed, the level and a purpose: the same pixel of
 // the same level gets the same numbers whatever else is computed.
