@@ -121,7 +121,7 @@ struct Kernels {
     // c * tap_step. Differences must fit 16 bits. The sum is taken row by
     // row, modulo 2^32, and returned as soon as a row ends above `bound`
     // (so a caller comparing with the bound gets the same answer from every
-    // set). The coherent engine's one hot loop (coherent_synthesis.cpp).
+    // set). The coherent engine's one hot loop (coherent_correction.hpp).
     uint32_t (*window_ssd)(const int16_t* query, const int16_t* example, std::ptrdiff_t tap_step,
                            std::ptrdiff_t row_step, int side, uint32_t bound);
     // The appearance space's linear algebra (engine/appearance.cpp,

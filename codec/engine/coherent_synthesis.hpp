@@ -23,6 +23,7 @@
 
 #include "engine/appearance.hpp"
 #include "engine/coherence_sets.hpp"
+#include "engine/coherent_positions.hpp"
 #include "common/image.hpp"
 
 namespace vqtex {
@@ -42,14 +43,15 @@ struct CoherentOptions {
     // passes of each level from kRelocationMinLevel up (copy_relocation.hpp);
     // 0: none.
     int relocate = 0;
-    // How copies end at the example's edge (format 7; 0: formats 3 to 6).
-    // Above 0, a child whose parent's block runs past the edge is clamped
-    // to it instead of the block moving inside (child_coordinate), and a
-    // correction takes no position within this many example pixels, in x
-    // and in y, of where a neighbour's copy would go on past the edge: a
-    // copy cut off by the edge ends in a seam, not in a stutter of its last
-    // columns (docs/SYNTHESIS.md "Session 12").
+    // How copies end at the example's edge, two behaviours that stop
+    // stutters of its last columns (docs/SYNTHESIS.md "Session 12"). The
+    // edge guard: above 0, a correction takes no position within this many
+    // example pixels, in x and in y, of where a neighbour's copy would go
+    // on past the edge, so that a copy cut off by the edge ends in a seam.
     int edge_guard = 0;
+    // Children whose parent's block runs past the edge are clamped to it
+    // instead of the block moving inside (coherent::child_coordinate).
+    bool clamp_children = false;
     bool roll = true;            // cut the torus open where the pixels change least
     // Distance surcharge, in 1/256, of a candidate that continues no
     // neighbour's source (a k-coherence alternative) over one that does:
@@ -57,8 +59,9 @@ struct CoherentOptions {
     int coherence_bias = 256;
     // Surcharge, in 1/256 of the distance, for each of the four nearest
     // neighbours that does not continue a candidate's copy (see
-    // correct_pixel): 256 makes a candidate with no such link weigh 5 times
-    // its distance, one inside its neighbours' copy 1 time.
+    // coherent_pixel_correction.cpp): 256 makes a candidate with no such
+    // link weigh 5 times its distance, one inside its neighbours' copy 1
+    // time.
     int link_bias = 256;
     // The finest level of an output taller than a band and its margins is
     // synthesised in bands of this many rows (0: sized by the output), with
@@ -83,15 +86,12 @@ inline constexpr int kRelocationMinLevel = 2;
 inline constexpr int kDefaultEdgeGuard = 8;
 inline constexpr int kMaxEdgeGuard = 64;
 
-// Positions into the example, (y << 16) | x, for a width x height output.
+// Positions into the example (pack_position) of a width x height output.
 struct PositionMap {
     int width = 0, height = 0;
     std::vector<uint32_t> positions;
 };
 
-inline uint32_t pack_position(int x, int y) { return (uint32_t(y) << 16) | uint32_t(x); }
-inline int position_x(uint32_t p) { return int(p & 0xFFFF); }
-inline int position_y(uint32_t p) { return int(p >> 16); }
 
 // Positions as the example's pixel indices (y * width + x) in the fewest
 // whole bytes: 2 up to 65536 example pixels (an atlas of up to 256x256, the
@@ -146,8 +146,9 @@ int coherent_levels(int width, int height);
 // The whole engine, example to texture: the appearance space of `levels`
 // levels (mirrored edges, or wrapped when the example tiles), the
 // coherence sets of `coherence` nearest, then the positions and their
-// pixels. vqtex_synthesize and the format v3 decoder both call it, so a v3
-// file decodes to what synthesis from its atlas gives. `analysed`, when set,
+// pixels. vqtex_synthesize and the atlas decoder both call it, with
+// options made in one place (api/coherent_options.hpp), so an atlas file
+// decodes to what synthesis from its atlas gives. `analysed`, when set,
 // is called between analysis and synthesis and returns false to cancel.
 struct CoherentResult {
     Image image;

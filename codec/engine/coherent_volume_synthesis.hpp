@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "engine/appearance.hpp"
+#include "engine/coherent_positions.hpp"
 #include "engine/volume.hpp"
 
 namespace vqtex {
@@ -54,18 +55,15 @@ struct VolumeCoherentOptions {
     // frame-to-frame change 1.04-1.09 times the example's with 0, 1.02-1.04
     // with 256, per-frame SWD unchanged.
     int temporal_bias = 256;
+    // Children whose parent's block runs past the example's edge are
+    // clamped to it instead of the block moving inside
+    // (coherent::child_coordinate). Off: the clamp was measured on still
+    // textures only.
+    bool clamp_children = false;
     std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
 };
 
-// Positions into the example volume: (t << 32) | (y << 16) | x.
-inline uint64_t pack_voxel(int x, int y, int t) {
-    return (uint64_t(uint32_t(t)) << 32) | (uint64_t(uint32_t(y)) << 16) | uint64_t(uint32_t(x));
-}
-inline int voxel_x(uint64_t v) { return int(v & 0xFFFF); }
-inline int voxel_y(uint64_t v) { return int((v >> 16) & 0xFFFF); }
-inline int voxel_t(uint64_t v) { return int(v >> 32); }
-
-// One output frame's positions, width x height.
+// One output frame's positions (pack_voxel), width x height.
 struct VoxelMap {
     int width = 0, height = 0;
     std::vector<uint64_t> voxels;

@@ -9,7 +9,7 @@
 #include "common/hash.hpp"
 #include "common/image.hpp"
 #include "common/parallel.hpp"
-#include "engine/coherent_common.hpp"
+#include "engine/coherent_start.hpp"
 
 namespace vqtex {
 namespace {
