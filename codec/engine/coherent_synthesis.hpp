@@ -24,18 +24,14 @@
 #include "engine/appearance.hpp"
 #include "engine/coherence_sets.hpp"
 #include "engine/coherent_positions.hpp"
+#include "engine/coherent_run.hpp"
 #include "common/image.hpp"
 
 namespace vqtex {
 
-struct CoherentOptions {
-    int width = 256, height = 256;
-    uint64_t seed = 1;
-    int threads = 1;
-    int passes = 2;         // correction passes at every level but the coarsest (the finest: one fewer, at least 1)
-    int coarse_passes = 4;  // at the coarsest, which starts from random positions
+// The still engine's options beside those of every run (CoherentRun).
+struct CoherentOptions : CoherentRun {
     int jitter = 0;         // per level, in 1/256 of the level's spacing
-    int polish_passes = 1;       // finest level: passes matching raw colours (5x5)
     // Radius of the blend of the copies that meet at a seam as the output is
     // read (seam_blend.hpp), 0 to kMaxBlendRadius; 0 copies each pixel.
     int blend = 0;
@@ -43,16 +39,13 @@ struct CoherentOptions {
     // passes of each level from kRelocationMinLevel up (copy_relocation.hpp);
     // 0: none.
     int relocate = 0;
-    // How copies end at the example's edge, two behaviours that stop
-    // stutters of its last columns (docs/SYNTHESIS.md "Session 12"). The
-    // edge guard: above 0, a correction takes no position within this many
-    // example pixels, in x and in y, of where a neighbour's copy would go
-    // on past the edge, so that a copy cut off by the edge ends in a seam.
+    // How copies end at the example's edge, one of two behaviours that
+    // stop stutters of its last columns (the other is
+    // CoherentRun::clamp_children; docs/SYNTHESIS.md "Session 12"): above 0,
+    // a correction takes no position within this many example pixels, in x
+    // and in y, of where a neighbour's copy would go on past the edge, so
+    // that a copy cut off by the edge ends in a seam.
     int edge_guard = 0;
-    // Children whose parent's block runs past the edge are clamped to it
-    // instead of the block moving inside (coherent::child_coordinate).
-    bool clamp_children = false;
-    bool roll = true;            // cut the torus open where the pixels change least
     // Distance surcharge, in 1/256, of a candidate that continues no
     // neighbour's source (a k-coherence alternative) over one that does:
     // favours long coherent copies (Hertzmann et al. 2001's kappa).
@@ -73,7 +66,6 @@ struct CoherentOptions {
     // leaves: the same bytes, a level's memory instead of the stack's.
     // -1 decides by that size, 0 and 1 force either way (tests).
     int analysis_by_level = -1;
-    std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
 };
 
 // The finest level the copy relocation runs at: below it, the copies of a

@@ -26,6 +26,7 @@
 
 #include "engine/appearance.hpp"
 #include "engine/coherent_positions.hpp"
+#include "engine/coherent_run.hpp"
 #include "engine/volume.hpp"
 
 namespace vqtex {
@@ -38,14 +39,11 @@ enum class FrameLevels {
              // level, each corrected against the previous frame's same level
 };
 
-struct VolumeCoherentOptions {
-    int width = 128, height = 128, frames = 32;
-    uint64_t seed = 1;
-    int threads = 1;
-    int passes = 2;         // correction passes per level (and per frame)
-    int coarse_passes = 4;  // at frame 0's coarsest level, which starts from random positions
-    int polish_passes = 1;  // finest level: passes matching raw colours
-    bool roll = true;       // cut the torus open where the pixels change least over all frames
+// The animation engine's options beside those of every run (CoherentRun),
+// whose output is 128x128 unless told.
+struct VolumeCoherentOptions : CoherentRun {
+    VolumeCoherentOptions() { width = height = 128; }
+    int frames = 32;
     bool close_loop = true; // the last frames also match the first frame, which follows them
     int closing_frames = 8; // how many last frames (measured: 1, 4, 8; docs/ANIMATION.md)
     FrameLevels frame_levels = FrameLevels::Finest;
@@ -55,12 +53,6 @@ struct VolumeCoherentOptions {
     // frame-to-frame change 1.04-1.09 times the example's with 0, 1.02-1.04
     // with 256, per-frame SWD unchanged.
     int temporal_bias = 256;
-    // Children whose parent's block runs past the example's edge are
-    // clamped to it instead of the block moving inside
-    // (coherent::child_coordinate). Off: the clamp was measured on still
-    // textures only.
-    bool clamp_children = false;
-    std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
 };
 
 // One output frame's positions (pack_voxel), width x height.
