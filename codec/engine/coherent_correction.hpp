@@ -13,7 +13,8 @@
 //   void gather(const int* xs, const int* ys, Window&) const;
 //   bool settled(const Window&, uint32_t& departing) const: whether the
 //     pixel keeps its position without a comparison (inside a coherent
-//     copy), with the departing taps of its window (departing_taps);
+//     copy), and may give propose() the departing taps of its window
+//     (departing_taps; all of them if not);
 //   void propose(Window&, uint32_t departing, CandidateList&) const, which
 //     may note in the window what barred() reads;
 //   void fill_query(const Window&, int16_t* query) const;

@@ -80,18 +80,21 @@ struct VoxelStep {
     }
     // Inside a coherent copy in space and time every candidate is the
     // voxel's own position: nothing to compare (most voxels).
-    bool settled(const Window& win, uint32_t& departing) const {
-        using coherent::VoxelPositions;
+    bool settled(const Window& win, uint32_t&) const {
         const uint64_t own = win.own();
         const int ox = voxel_x(own), oy = voxel_y(own), ot = voxel_t(own), frames = v.frames();
-        departing = coherent::departing_taps<VoxelPositions>(v.space, v.spacing, win.sources, own);
-        if (around.previous)
-            departing |= coherent::departing_taps<VoxelPositions>(v.space, v.spacing, win.before,
-                                                                  pack_voxel(ox, oy, (ot + frames - 1) % frames));
-        if (around.next)
-            departing |= coherent::departing_taps<VoxelPositions>(v.space, v.spacing, win.after,
-                                                                  pack_voxel(ox, oy, (ot + around.gap) % frames));
-        return departing == 0;
+        const uint64_t* windows[3] = {win.sources};
+        uint64_t centres[3] = {own};
+        int count = 1;
+        if (around.previous) {
+            windows[count] = win.before;
+            centres[count++] = pack_voxel(ox, oy, (ot + frames - 1) % frames);
+        }
+        if (around.next) {
+            windows[count] = win.after;
+            centres[count++] = pack_voxel(ox, oy, (ot + around.gap) % frames);
+        }
+        return coherent::continue_copy<coherent::VoxelPositions>(v.space, v.spacing, windows, centres, count);
     }
     // A neighbour's source moved back by its offset (and to another frame by
     // `dt`), unless that leaves an example that does not tile; flagged when

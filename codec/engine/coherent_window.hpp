@@ -89,6 +89,26 @@ inline uint32_t departing_taps(const AppearanceSpace& space, int spacing, const 
     return departing;
 }
 
+// Whether each of `count` windows holds, at every tap, its centre
+// (centres[i], all at the same x and y) shifted by the tap's offset: the
+// pixel lies inside one coherent copy across all of them, so nothing can
+// beat its own position. False within the window's reach of the example's
+// edge. One pass over the taps for all the windows: for an animation,
+// which checks three windows a voxel, this is its hottest loop.
+template <typename Positions>
+inline bool continue_copy(const AppearanceSpace& space, int spacing, const typename Positions::Position* const* windows,
+                          const typename Positions::Position* centres, int count) {
+    const int ox = Positions::x(centres[0]), oy = Positions::y(centres[0]);
+    const int reach = kRadius * spacing;
+    if (!(ox >= reach && oy >= reach && ox + reach < space.width && oy + reach < space.height)) return false;
+    typename Positions::Position differ = 0;
+    for (int dy = -kRadius, t = 0; dy <= kRadius; ++dy)
+        for (int dx = -kRadius; dx <= kRadius; ++dx, ++t)
+            for (int i = 0; i < count; ++i)
+                differ |= windows[i][t] ^ Positions::at(centres[i], ox + dx * spacing, oy + dy * spacing);
+    return differ == 0;
+}
+
 // The example pixel that continues, at tap t's offset, the copy that
 // neighbour took from (sx, sy) (shifted_source), wrapped when the example
 // tiles; false when it lies past the edge of an example that does not.
