@@ -6,6 +6,7 @@
 // each; the passes counted for the progress callback.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "engine/appearance.hpp"

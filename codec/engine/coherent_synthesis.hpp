@@ -73,8 +73,8 @@ struct CoherentOptions : CoherentRun {
 // synthesis for little (docs/SYNTHESIS.md "Session 11").
 inline constexpr int kRelocationMinLevel = 2;
 
-// vqtex_synthesize's edge guard (format version 7 fixes its own default of
-// the same value), and the most the API and the format accept.
+// vqtex_synthesize's edge guard (the atlas format fixes its own default,
+// atlas_file.hpp), and the most the API and the format accept.
 inline constexpr int kDefaultEdgeGuard = 8;
 inline constexpr int kMaxEdgeGuard = 64;
 
