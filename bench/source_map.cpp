@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "api/coherent_options.hpp"
 #include "common/image.hpp"
 #include "engine/appearance.hpp"
 #include "engine/coherence_sets.hpp"

@@ -4,21 +4,19 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/rng.hpp"
 #include "metrics.hpp"
 
 namespace vqtex_metrics::detail {
 
-// SplitMix64 (Steele, Lea, Flood 2014): tiny, seedable, and identical on
-// every platform. All randomness of the library comes from here.
+// The codec's SplitMix64 generator (Steele, Lea, Flood 2014; codec
+// common/rng.hpp): tiny, seedable, and identical on every platform. All
+// randomness of the library comes from here; the draws below are the
+// metrics' own (their scores are pinned by the tests).
 class SplitMix64 {
  public:
-  explicit SplitMix64(uint64_t seed) : state_(seed) {}
-  uint64_t next() {
-    uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
+  explicit SplitMix64(uint64_t seed) : rng_(seed) {}
+  uint64_t next() { return rng_.next(); }
   // Uniform in [0, 1) with 53 random bits.
   double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
   // Uniform integer in [0, n) for n < 2^32 (multiply-shift of the top 32
@@ -28,7 +26,7 @@ class SplitMix64 {
   double gaussian();
 
  private:
-  uint64_t state_;
+  vqtex::Rng rng_;
 };
 
 // A seed for a sub-task, derived from the caller's seed and a tag.

@@ -8,6 +8,7 @@
 #include <new>
 
 #include "api/api_support.hpp"
+#include "api/coherent_options.hpp"
 #include "api/validate.hpp"
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"

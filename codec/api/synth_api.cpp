@@ -11,6 +11,7 @@
 
 #include "analysis/texture_model.hpp"
 #include "api/api_support.hpp"
+#include "api/coherent_options.hpp"
 #include "api/validate_encode.hpp"
 #include "common/error.hpp"
 #include "common/image.hpp"
@@ -31,17 +32,17 @@ namespace {
 void synthesize_coherent_api(const vqtex_synth_params& params, const Image& example, int threads,
                              vqtex_image* out, vqtex_synth_stats* stats) {
     const int levels = params.model.levels ? int(params.model.levels) : coherent_levels(example.width, example.height);
-    CoherentOptions opt;
-    opt.width = int(params.width);
-    opt.height = int(params.height);
-    opt.seed = params.seed;
+    // The engine's parameters as an atlas file would store them, so that
+    // both become options in one place (coherent_options.hpp).
+    AtlasSynthesisParams engine;
+    engine.passes = int(params.passes);
+    engine.coarse_passes = std::max(4, int(params.passes));
+    engine.jitter = int(params.jitter);
+    engine.blend = int(params.blend);
+    engine.relocate = int(params.relocate);
+    engine.edge_guard = int(params.edge_guard);
+    CoherentOptions opt = coherent_options(engine, int(params.width), int(params.height), params.seed);
     opt.threads = threads;
-    opt.passes = int(params.passes);
-    opt.coarse_passes = std::max(4, int(params.passes));
-    opt.jitter = int(params.jitter);
-    opt.blend = int(params.blend);
-    opt.relocate = int(params.relocate);
-    opt.edge_guard = int(params.edge_guard);
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
     CoherentResult r = synthesize_coherent(example, levels, params.model.example_tileable != 0, int(params.coherence),
                                            opt, stage_progress(params.progress, params.progress_user, VQTEX_STAGE_ANALYSE));

@@ -3,10 +3,12 @@
 // Decoded pixels must depend only on the file, the size and the seed (paper
 // section 2.5 starts from white noise; we make that noise reproducible). The
 // standard library's engines are portable but its distributions are not, so
-// we use SplitMix64 and our own bounded draws.
+// we use SplitMix64 (common/hash.hpp) and our own bounded draws.
 #pragma once
 
 #include <cstdint>
+
+#include "common/hash.hpp"
 
 namespace vqtex {
 
@@ -18,10 +20,8 @@ public:
     explicit Rng(uint64_t seed) : state_(seed) {}
 
     uint64_t next() {
-        uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
+        state_ += kGoldenGamma;
+        return mix_bits(state_);
     }
 
     // Uniform in [0, bound), bound > 0. Multiply-shift: no division, and the

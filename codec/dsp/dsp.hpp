@@ -11,6 +11,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "common/hash.hpp"
+
 // For the small kernels that other kernels are built from (descent.hpp): a
 // call per tree level would cost more than the arithmetic.
 #if defined(__GNUC__)
@@ -21,17 +23,14 @@
 
 namespace vqtex::dsp {
 
-// The per-pixel ranking of near-tie candidates (matcher.hpp): a 64-bit
-// mix of the pixel's salt and the candidate's key. Defined here because the
+// The per-pixel ranking of near-tie candidates (matcher.hpp): the 64-bit
+// hash (common/hash.hpp) of the pixel's salt and the candidate's key. Defined here because the
 // rank_candidates kernels must reproduce it exactly. Only files compiled for the
 // baseline instruction set may call it (the AVX files have their own vector
 // forms): a copy of an inline function compiled with AVX flags could be the
 // one the linker keeps.
 inline uint64_t rank_hash(uint64_t salt, uint32_t key) {
-    uint64_t z = salt ^ (uint64_t(key) * 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
+    return mix_bits(salt ^ (uint64_t(key) * kGoldenGamma));
 }
 
 // Vectors handed to the kernels are padded with zeros to a multiple of this
@@ -122,7 +121,7 @@ struct Kernels {
     // c * tap_step. Differences must fit 16 bits. The sum is taken row by
     // row, modulo 2^32, and returned as soon as a row ends above `bound`
     // (so a caller comparing with the bound gets the same answer from every
-    // set). The coherent engine's one hot loop (coherent_synthesis.cpp).
+    // set). The coherent engine's one hot loop (coherent_correction.hpp).
     uint32_t (*window_ssd)(const int16_t* query, const int16_t* example, std::ptrdiff_t tap_step,
                            std::ptrdiff_t row_step, int side, uint32_t bound);
     // The appearance space's linear algebra (engine/appearance.cpp,

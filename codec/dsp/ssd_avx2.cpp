@@ -98,14 +98,14 @@ inline __m256i mul64(__m256i a, __m256i b) {
 // running sum over consecutive keys: one multiply fewer).
 inline __m256i rank_hash4_mixed(__m256i salt, __m256i key_times_golden) {
     __m256i z = _mm256_xor_si256(salt, key_times_golden);
-    z = mul64(_mm256_xor_si256(z, _mm256_srli_epi64(z, 30)), _mm256_set1_epi64x(int64_t(0xBF58476D1CE4E5B9ull)));
-    z = mul64(_mm256_xor_si256(z, _mm256_srli_epi64(z, 27)), _mm256_set1_epi64x(int64_t(0x94D049BB133111EBull)));
+    z = mul64(_mm256_xor_si256(z, _mm256_srli_epi64(z, 30)), _mm256_set1_epi64x(int64_t(kMixMultiplier1)));
+    z = mul64(_mm256_xor_si256(z, _mm256_srli_epi64(z, 27)), _mm256_set1_epi64x(int64_t(kMixMultiplier2)));
     return _mm256_xor_si256(z, _mm256_srli_epi64(z, 31));
 }
 
 uint64_t rank_candidates_avx2(uint64_t salt, uint32_t count, uint64_t* ranks) {
     const __m256i salt4 = _mm256_set1_epi64x(int64_t(salt));
-    constexpr uint64_t kGolden = 0x9E3779B97F4A7C15ull;
+    constexpr uint64_t kGolden = kGoldenGamma;
     __m256i mixed = _mm256_set_epi64x(int64_t(3 * kGolden), int64_t(2 * kGolden), int64_t(kGolden), 0);
     const __m256i step = _mm256_set1_epi64x(int64_t(4 * kGolden));
     for (uint32_t base = 0; base < count; base += 4) {

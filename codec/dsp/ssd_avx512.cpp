@@ -111,15 +111,15 @@ VQTEX_DSP_INLINE void dot2_avx512(const int8_t* query, const uint8_t* pair, std:
 inline __m512i rank_hash8_mixed(__m512i salt, __m512i key_times_golden) {
     __m512i z = _mm512_xor_si512(salt, key_times_golden);
     z = _mm512_mullo_epi64(_mm512_xor_si512(z, _mm512_srli_epi64(z, 30)),
-                           _mm512_set1_epi64(int64_t(0xBF58476D1CE4E5B9ull)));
+                           _mm512_set1_epi64(int64_t(kMixMultiplier1)));
     z = _mm512_mullo_epi64(_mm512_xor_si512(z, _mm512_srli_epi64(z, 27)),
-                           _mm512_set1_epi64(int64_t(0x94D049BB133111EBull)));
+                           _mm512_set1_epi64(int64_t(kMixMultiplier2)));
     return _mm512_xor_si512(z, _mm512_srli_epi64(z, 31));
 }
 
 uint64_t rank_candidates_avx512(uint64_t salt, uint32_t count, uint64_t* ranks) {
     const __m512i salt8 = _mm512_set1_epi64(int64_t(salt));
-    constexpr uint64_t kGolden = 0x9E3779B97F4A7C15ull;
+    constexpr uint64_t kGolden = kGoldenGamma;
     __m512i mixed = _mm512_set_epi64(int64_t(7 * kGolden), int64_t(6 * kGolden), int64_t(5 * kGolden),
                                      int64_t(4 * kGolden), int64_t(3 * kGolden), int64_t(2 * kGolden),
                                      int64_t(kGolden), 0);

@@ -1,5 +1,5 @@
 // coherent_candidates.hpp - the candidate list that the coherent engine
-// (coherent_synthesis.cpp) and the constrained fill (fill/constrained.cpp)
+// (coherent_correction.hpp) and the constrained fill (fill/constrained.cpp)
 // share: Ashikhmin 2001's coherent candidates, the example positions that
 // continue the copies the pixel's neighbours were taken from, each offered
 // once, in the order the neighbours propose them, so that the choice among
@@ -24,13 +24,15 @@ inline ShiftedSource shifted_source(int sx, int sy, int dx, int dy, int spacing)
     return ShiftedSource{sx - dx * spacing, sy - dy * spacing};
 }
 
-template <int Max>
+// The list of one correction: example positions of type T (a pixel's
+// packed position, or a voxel's for animations).
+template <int Max, typename T = uint32_t>
 class CandidateList {
 public:
     static constexpr int kMax = Max;
     // Offers `value`; a value already listed only gains `continues`. Once
     // the list is full, new values are dropped.
-    void add(uint32_t value, bool continues) {
+    void add(T value, bool continues) {
         for (int j = 0; j < count_; ++j)
             if (values_[j] == value) {
                 continues_[j] = continues_[j] || continues;
@@ -41,11 +43,11 @@ public:
         values_[count_++] = value;
     }
     int size() const { return count_; }
-    uint32_t operator[](int i) const { return values_[i]; }
+    T operator[](int i) const { return values_[i]; }
     bool continues(int i) const { return continues_[i]; }
 
 private:
-    uint32_t values_[Max];
+    T values_[Max];
     bool continues_[Max];
     int count_ = 0;
 };

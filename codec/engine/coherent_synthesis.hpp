@@ -23,18 +23,15 @@
 
 #include "engine/appearance.hpp"
 #include "engine/coherence_sets.hpp"
+#include "engine/coherent_positions.hpp"
+#include "engine/coherent_run.hpp"
 #include "common/image.hpp"
 
 namespace vqtex {
 
-struct CoherentOptions {
-    int width = 256, height = 256;
-    uint64_t seed = 1;
-    int threads = 1;
-    int passes = 2;         // correction passes at every level but the coarsest (the finest: one fewer, at least 1)
-    int coarse_passes = 4;  // at the coarsest, which starts from random positions
+// The still engine's options beside those of every run (CoherentRun).
+struct CoherentOptions : CoherentRun {
     int jitter = 0;         // per level, in 1/256 of the level's spacing
-    int polish_passes = 1;       // finest level: passes matching raw colours (5x5)
     // Radius of the blend of the copies that meet at a seam as the output is
     // read (seam_blend.hpp), 0 to kMaxBlendRadius; 0 copies each pixel.
     int blend = 0;
@@ -42,23 +39,22 @@ struct CoherentOptions {
     // passes of each level from kRelocationMinLevel up (copy_relocation.hpp);
     // 0: none.
     int relocate = 0;
-    // How copies end at the example's edge (format 7; 0: formats 3 to 6).
-    // Above 0, a child whose parent's block runs past the edge is clamped
-    // to it instead of the block moving inside (child_coordinate), and a
-    // correction takes no position within this many example pixels, in x
-    // and in y, of where a neighbour's copy would go on past the edge: a
-    // copy cut off by the edge ends in a seam, not in a stutter of its last
-    // columns (docs/SYNTHESIS.md "Session 12").
+    // How copies end at the example's edge, one of two behaviours that
+    // stop stutters of its last columns (the other is
+    // CoherentRun::clamp_children; docs/SYNTHESIS.md "Session 12"): above 0,
+    // a correction takes no position within this many example pixels, in x
+    // and in y, of where a neighbour's copy would go on past the edge, so
+    // that a copy cut off by the edge ends in a seam.
     int edge_guard = 0;
-    bool roll = true;            // cut the torus open where the pixels change least
     // Distance surcharge, in 1/256, of a candidate that continues no
     // neighbour's source (a k-coherence alternative) over one that does:
     // favours long coherent copies (Hertzmann et al. 2001's kappa).
     int coherence_bias = 256;
     // Surcharge, in 1/256 of the distance, for each of the four nearest
     // neighbours that does not continue a candidate's copy (see
-    // correct_pixel): 256 makes a candidate with no such link weigh 5 times
-    // its distance, one inside its neighbours' copy 1 time.
+    // coherent_pixel_correction.cpp): 256 makes a candidate with no such
+    // link weigh 5 times its distance, one inside its neighbours' copy 1
+    // time.
     int link_bias = 256;
     // The finest level of an output taller than a band and its margins is
     // synthesised in bands of this many rows (0: sized by the output), with
@@ -70,7 +66,6 @@ struct CoherentOptions {
     // leaves: the same bytes, a level's memory instead of the stack's.
     // -1 decides by that size, 0 and 1 force either way (tests).
     int analysis_by_level = -1;
-    std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
 };
 
 // The finest level the copy relocation runs at: below it, the copies of a
@@ -78,20 +73,17 @@ struct CoherentOptions {
 // synthesis for little (docs/SYNTHESIS.md "Session 11").
 inline constexpr int kRelocationMinLevel = 2;
 
-// vqtex_synthesize's edge guard (format version 7 fixes its own default of
-// the same value), and the most the API and the format accept.
+// vqtex_synthesize's edge guard (the atlas format fixes its own default,
+// atlas_file.hpp), and the most the API and the format accept.
 inline constexpr int kDefaultEdgeGuard = 8;
 inline constexpr int kMaxEdgeGuard = 64;
 
-// Positions into the example, (y << 16) | x, for a width x height output.
+// Positions into the example (pack_position) of a width x height output.
 struct PositionMap {
     int width = 0, height = 0;
     std::vector<uint32_t> positions;
 };
 
-inline uint32_t pack_position(int x, int y) { return (uint32_t(y) << 16) | uint32_t(x); }
-inline int position_x(uint32_t p) { return int(p & 0xFFFF); }
-inline int position_y(uint32_t p) { return int(p >> 16); }
 
 // Positions as the example's pixel indices (y * width + x) in the fewest
 // whole bytes: 2 up to 65536 example pixels (an atlas of up to 256x256, the
@@ -146,8 +138,9 @@ int coherent_levels(int width, int height);
 // The whole engine, example to texture: the appearance space of `levels`
 // levels (mirrored edges, or wrapped when the example tiles), the
 // coherence sets of `coherence` nearest, then the positions and their
-// pixels. vqtex_synthesize and the format v3 decoder both call it, so a v3
-// file decodes to what synthesis from its atlas gives. `analysed`, when set,
+// pixels. vqtex_synthesize and the atlas decoder both call it, with
+// options made in one place (api/coherent_options.hpp), so an atlas file
+// decodes to what synthesis from its atlas gives. `analysed`, when set,
 // is called between analysis and synthesis and returns false to cancel.
 struct CoherentResult {
     Image image;

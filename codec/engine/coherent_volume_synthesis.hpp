@@ -25,6 +25,8 @@
 #include <vector>
 
 #include "engine/appearance.hpp"
+#include "engine/coherent_positions.hpp"
+#include "engine/coherent_run.hpp"
 #include "engine/volume.hpp"
 
 namespace vqtex {
@@ -37,14 +39,11 @@ enum class FrameLevels {
              // level, each corrected against the previous frame's same level
 };
 
-struct VolumeCoherentOptions {
-    int width = 128, height = 128, frames = 32;
-    uint64_t seed = 1;
-    int threads = 1;
-    int passes = 2;         // correction passes per level (and per frame)
-    int coarse_passes = 4;  // at frame 0's coarsest level, which starts from random positions
-    int polish_passes = 1;  // finest level: passes matching raw colours
-    bool roll = true;       // cut the torus open where the pixels change least over all frames
+// The animation engine's options beside those of every run (CoherentRun),
+// whose output is 128x128 unless told.
+struct VolumeCoherentOptions : CoherentRun {
+    VolumeCoherentOptions() { width = height = 128; }
+    int frames = 32;
     bool close_loop = true; // the last frames also match the first frame, which follows them
     int closing_frames = 8; // how many last frames (measured: 1, 4, 8; docs/ANIMATION.md)
     FrameLevels frame_levels = FrameLevels::Finest;
@@ -54,18 +53,9 @@ struct VolumeCoherentOptions {
     // frame-to-frame change 1.04-1.09 times the example's with 0, 1.02-1.04
     // with 256, per-frame SWD unchanged.
     int temporal_bias = 256;
-    std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
 };
 
-// Positions into the example volume: (t << 32) | (y << 16) | x.
-inline uint64_t pack_voxel(int x, int y, int t) {
-    return (uint64_t(uint32_t(t)) << 32) | (uint64_t(uint32_t(y)) << 16) | uint64_t(uint32_t(x));
-}
-inline int voxel_x(uint64_t v) { return int(v & 0xFFFF); }
-inline int voxel_y(uint64_t v) { return int((v >> 16) & 0xFFFF); }
-inline int voxel_t(uint64_t v) { return int(v >> 32); }
-
-// One output frame's positions, width x height.
+// One output frame's positions (pack_voxel), width x height.
 struct VoxelMap {
     int width = 0, height = 0;
     std::vector<uint64_t> voxels;

@@ -1,7 +1,7 @@
 // copy_links.hpp - byte maps of the links between adjacent entries of a
 // position map (coherent_synthesis.hpp): where a pixel continues its
-// neighbour's copy. The correction's skip (coherent_synthesis.cpp) and the
-// blend at seams (seam_blend.cpp) find with them, a row at a time, the
+// neighbour's copy. The correction's skip (coherent_pixel_correction.cpp)
+// and the blend at seams (seam_blend.cpp) find with them, a row at a time, the
 // pixels whose whole window continues their own copy. A window of radius r
 // continues its centre at every tap if and only if each pixel continues its
 // left neighbour along the window's rows and its upper neighbour down the

@@ -6,9 +6,10 @@
 #include <utility>
 #include <vector>
 
+#include "common/hash.hpp"
 #include "common/image.hpp"
 #include "common/parallel.hpp"
-#include "engine/coherent_common.hpp"
+#include "engine/coherent_start.hpp"
 
 namespace vqtex {
 namespace {
@@ -170,7 +171,7 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
             const uint64_t base = coherent::pixel_hash(seed, level, kRelocationPurpose, int(first % uint32_t(w)),
                                                        int(first / uint32_t(w)));
             for (int t = 0; t < candidates; ++t) {
-                const uint64_t r = coherent::mix64(base + uint64_t(t));
+                const uint64_t r = mix64(base + uint64_t(t));
                 const int tx = lo_x + int((r & 0xFFFFFFFF) % uint64_t(span_x));
                 const int ty = lo_y + int((r >> 32) % uint64_t(span_y));
                 const int64_t tried = cost(tx, ty, best);

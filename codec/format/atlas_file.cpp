@@ -148,23 +148,6 @@ bool is_atlas_file(const uint8_t* data, std::size_t size) {
     }
 }
 
-CoherentOptions coherent_options(const AtlasSynthesisParams& params, int width, int height, uint64_t seed) {
-    CoherentOptions opt;
-    opt.width = width;
-    opt.height = height;
-    opt.seed = seed;
-    opt.passes = params.passes;
-    opt.coarse_passes = params.coarse_passes;
-    opt.polish_passes = params.polish_passes;
-    opt.coherence_bias = params.coherence_bias;
-    opt.roll = params.roll;
-    opt.jitter = params.jitter;
-    opt.blend = params.blend;
-    opt.relocate = params.relocate;
-    opt.edge_guard = params.edge_guard;
-    return opt;
-}
-
 uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
                              uint64_t width, uint64_t height) {
     const uint64_t a = uint64_t(atlas_width) * uint64_t(atlas_height), ch = uint64_t(channels);

@@ -7,7 +7,8 @@
 // version 4 (section 8.8), version 6 the copy relocation to version 5
 // (section 8.9), version 7, which the encoder writes, the edge guard to
 // version 6 (section 8.10). The decoder rebuilds the appearance space from
-// the decoded atlas and synthesises with codec/engine/coherent_synthesis.hpp.
+// the decoded atlas and synthesises with the coherent engine
+// (api/coherent_options.hpp gives its options).
 #pragma once
 
 #include <cstddef>
@@ -15,7 +16,6 @@
 #include <vector>
 
 #include "common/image.hpp"
-#include "engine/coherent_synthesis.hpp"
 #include "engine/copy_relocation.hpp"
 #include "format/container.hpp"
 
@@ -63,14 +63,17 @@ struct AtlasSynthesisParams {
     // Positions tried per copy by the copy relocation, 0..kMaxRelocationPositions
     // (version 6; files of versions 3 to 5 have none, 0).
     int relocate = kV6DefaultRelocation;
-    // How copies end at the atlas's edge (CoherentOptions::edge_guard),
+    // How copies end at the atlas's edge (CoherentOptions::edge_guard, and
+    // clamps_children),
     // 0..kMaxEdgeGuard (version 7; files of versions 3 to 6: 0).
     int edge_guard = kV7DefaultEdgeGuard;
 };
 
-// The engine's options for a file's parameters, at an output size and seed
-// (the rest left at CoherentOptions' defaults: threads 1, no progress).
-CoherentOptions coherent_options(const AtlasSynthesisParams& params, int width, int height, uint64_t seed);
+// Whether the engine clamps children past the atlas's edge
+// (CoherentOptions::clamp_children): version 7's edges come with its edge
+// guard, and a file with a guard of 0, like every file of versions 3 to 6,
+// has its blocks of children moved inside.
+inline bool clamps_children(const AtlasSynthesisParams& params) { return params.edge_guard > 0; }
 
 struct AtlasFile {
     // Version 3, 4 or 5; levels = the engine's stack depth. A version 4 or 5 file's

@@ -1,91 +1,24 @@
-// coherent_common.hpp - pieces the still and the animated coherent engines
-// share (Lefebvre & Hoppe 2005 sections 3-4, 2006 section 4): per-pixel
-// seeded hashes, the 5x5 appearance-window distance with windows folded at
-// the example's edge, the child coordinate of an upsampled parent, the
-// correction pass scheduled in four interleaved subsets, and the choice of
-// where to cut the output torus open. One definition each, so that both
-// engines give the same bytes for any thread count and kernel set for the
-// same reasons.
+// coherent_pass.hpp - the schedule of one correction pass of the coherent
+// engine (Lefebvre & Hoppe 2005 section 3.4): the pixels of a torus of
+// states corrected in four interleaved subsets, each reading only the
+// states before it, so that no result depends on the thread count or the
+// order of the pixels; with the flags of the pixels whose window changed
+// (the only ones a pass must evaluate again) and the bands of rows of a
+// taller torus that the still engine's finest level runs in. Written once
+// for any state type: still textures and animations alike.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <utility>
 #include <vector>
 
 #include "common/image.hpp"
 #include "common/parallel.hpp"
-#include "dsp/dsp.hpp"
-#include "engine/appearance.hpp"
+#include "engine/coherent_window.hpp"
 
 namespace vqtex::coherent {
-
-// Neighbourhood of a correction step: the 5x5 window of appearance
-// vectors (each already summarises a 5x5 window of its level).
-inline constexpr int kRadius = 2;
-inline constexpr int kSide = 2 * kRadius + 1;
-static_assert(kAppearanceDims == dsp::kWindowTapValues, "windows are compared by dsp::Kernels::window_ssd");
-inline constexpr int kTaps = kSide * kSide;
-
-inline uint64_t mix64(uint64_t z) {
-    z += 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-// A per-pixel hash of the seed, the level and a purpose: the same pixel of
-// the same level gets the same numbers whatever else is computed.
-inline uint64_t pixel_hash(uint64_t seed, int level, int purpose, int x, int y) {
-    return mix64(seed ^ mix64((uint64_t(uint32_t(level)) << 40) ^ (uint64_t(uint32_t(purpose)) << 56) ^
-                              (uint64_t(uint32_t(y)) << 20) ^ uint64_t(uint32_t(x))));
-}
-
-// Distance between `query` (kTaps vectors) and the window of `features`
-// (kAppearanceDims per example pixel of `space`'s size) around (x, y) with
-// taps `spacing` apart, stopping once it exceeds `bound`
-// (Kernels::window_ssd). Windows across the example's edge read it folded:
-// their taps are gathered side by side first, for the same kernel and the
-// same sums.
-inline uint32_t window_distance(const dsp::Kernels& kernels, const AppearanceSpace& space, const int16_t* features,
-                                int spacing, const int16_t* query, int x, int y, uint32_t bound) {
-    const int w = space.width, h = space.height;
-    auto feature = [&](int fx, int fy) { return features + (std::size_t(fy) * w + fx) * kAppearanceDims; };
-    const std::ptrdiff_t tap = std::ptrdiff_t(spacing) * kAppearanceDims;
-    if (x - kRadius * spacing >= 0 && x + kRadius * spacing < w && y - kRadius * spacing >= 0 &&
-        y + kRadius * spacing < h)
-        return kernels.window_ssd(query, feature(x - kRadius * spacing, y - kRadius * spacing), tap, tap * w, kSide,
-                                  bound);
-    alignas(16) int16_t window[kTaps * kAppearanceDims];
-    int xs[kSide], ys[kSide];
-    for (int i = 0; i < kSide; ++i) {
-        const int sx = x + (i - kRadius) * spacing, sy = y + (i - kRadius) * spacing;
-        xs[i] = sx >= 0 && sx < w ? sx : space.fold_x(sx);
-        ys[i] = sy >= 0 && sy < h ? sy : space.fold_y(sy);
-    }
-    for (int r = 0, t = 0; r < kSide; ++r)
-        for (int c = 0; c < kSide; ++c, ++t)
-            std::memcpy(window + t * kAppearanceDims, feature(xs[c], ys[r]), sizeof(int16_t) * kAppearanceDims);
-    return kernels.window_ssd(query, window, kAppearanceDims, std::ptrdiff_t(kSide) * kAppearanceDims, kSide, bound);
-}
-
-// A child's coordinate from its parent's. Formats 3 to 6 (`clamp` false):
-// a parent whose second child would fall past the example's edge has its
-// block of children moved inside whole, so the block stays a coherent copy;
-// folding the child back (a mirror) repeated the same rows over several
-// levels and drew streaks. But the moved block repeats a few columns of the
-// copy beside it, and over the levels those repeats became stutters: strips
-// of the example's last columns shown twice or three times side by side
-// (caustics' bright blips). Format 7 (`clamp` true): the child past the edge
-// is clamped to it, so its copy breaks there and the correction passes
-// decide what it shows (docs/SYNTHESIS.md "Session 12").
-inline int child_coordinate(int size, bool wraps, int parent, int offset, int spacing, bool clamp) {
-    if (wraps) return Image::wrap(parent + offset * spacing, size);
-    const int base = clamp || parent + spacing < size ? parent : std::max(0, size - 1 - spacing);
-    return std::min(base + offset * spacing, size - 1);
-}
 
 // Which pixels a pass must evaluate again. A pixel's correction depends
 // only on the states in its window, so a pixel none of whose window has
@@ -98,7 +31,7 @@ struct Revisit {
 };
 
 // A band of rows of a taller torus, passed through on its own (the
-// finest level of a large output, coherent_synthesis.cpp): the map's row r
+// finest level of a large output, coherent_bands.cpp): the map's row r
 // is row (first + r) mod torus_height of the torus, which decides the
 // subset it belongs to. Windows do not wrap inside a band: those that reach
 // past its first or last row read that row instead, so states near its
@@ -226,52 +159,6 @@ void interleaved_pass(int threads, int w, int h, std::vector<T>& map, Correct&& 
             }
         }
     }
-}
-
-// The cut's column and row from the change summed across each column
-// (`across_x[x]`: between columns x - 1 and x, wrapped) and each row: the
-// first of the least, so that ties go the same way for every caller.
-inline std::pair<int, int> least_change_origin(const std::vector<int64_t>& across_x,
-                                               const std::vector<int64_t>& across_y) {
-    const auto first_least = [](const std::vector<int64_t>& across) {
-        std::size_t at = 0;
-        for (std::size_t i = 1; i < across.size(); ++i)
-            if (across[i] < across[at]) at = i;
-        return int(at);
-    };
-    return {first_least(across_x), first_least(across_y)};
-}
-
-// Where to cut a w x h torus open: the column and the row across which the
-// pixels change least, `step(x0, y0, x1, y1)` being the change between two
-// adjacent pixels (summed over everything that shares the cut, such as all
-// the frames of an animation). Left at the coarsest level's grid, the edges
-// lay where coherent copies tend to meet, and on 6 of 23 corpus textures the
-// wrap was a visible line.
-//
-// The sums are exact integers, so their order is free: the columns' are
-// taken in strips of columns, row after row (a column at a time strode
-// across the whole map, a cache miss a step), the rows' row by row, both
-// on up to `threads` threads (`step` must be safe to call from several at
-// once); it was a serial 5% of a 512x512 decode.
-template <typename Step>
-std::pair<int, int> torus_origin(int w, int h, Step&& step, int threads = 1) {
-    std::vector<int64_t> across_x(std::size_t(w), 0), across_y(std::size_t(h), 0);
-    constexpr int kStrip = 64;
-    parallel_for(threads, std::size_t((w + kStrip - 1) / kStrip), 1, [&](std::size_t s0, std::size_t s1) {
-        const int x0 = int(s0) * kStrip, x1 = std::min(w, int(s1) * kStrip);
-        for (int y = 0; y < h; ++y)
-            for (int x = x0; x < x1; ++x) across_x[std::size_t(x)] += step(x == 0 ? w - 1 : x - 1, y, x, y);
-    });
-    parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
-        for (int y = int(y0); y < int(y1); ++y) {
-            int64_t sum = 0;
-            const int above = y == 0 ? h - 1 : y - 1;
-            for (int x = 0; x < w; ++x) sum += step(x, above, x, y);
-            across_y[std::size_t(y)] = sum;
-        }
-    });
-    return least_change_origin(across_x, across_y);
 }
 
 }  // namespace vqtex::coherent

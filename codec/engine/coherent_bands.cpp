@@ -1,0 +1,128 @@
+// coherent_bands.cpp - the still coherent engine's output whole or in
+// bands of rows, and the memory it takes (Lefebvre & Hoppe 2005's passes
+// on a torus, cut into bands). See coherent_bands.hpp.
+#include "engine/coherent_bands.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "engine/coherent_levels.hpp"
+#include "engine/coherent_torus.hpp"
+#include "engine/seam_blend.hpp"
+
+namespace vqtex {
+namespace coherent {
+namespace {
+
+// A band's buffers when the finest level is synthesised in bands (band_rows),
+// at most, and at least (band_bytes).
+constexpr uint64_t kBandBytes = uint64_t(8) << 20;
+constexpr uint64_t kMinBandBytes = uint64_t(2) << 20;
+
+// Output rows per band of the finest level, or 0 to synthesise it whole.
+// Whole, the level's buffers take 6.25 bytes a pixel (positions, revisit
+// flags, a subset's choices, and a quarter of a byte for which of those
+// changed): within twice the output plus 8 MiB from 4 channels, and from 3
+// up to about 5800x5800, so those outputs and small ones keep the single
+// pass over the level. With a blend, reading it holds the positions and the
+// output, 4 + channels bytes a pixel: 3 channels stay whole up to about
+// 2900x2900. Otherwise bands of about 8 MiB of buffers: a band, the output
+// and the coarser level (its pixel indices: 0.5 or 0.75 bytes an output
+// pixel for an atlas, PixelIndices) stay within
+// twice the output plus 16 MiB (the decoder's budget), and so does the output
+// with the caller's copy of it beside a band's worth of freed memory that
+// the allocator may keep. Each band's `margin` rows on either side are
+// synthesised twice.
+int band_rows(const CoherentOptions& options, int channels, int margin, uint64_t band_bytes) {
+    const uint64_t pixels = uint64_t(options.width) * uint64_t(options.height);
+    int rows = options.band_rows;
+    if (rows <= 0) {
+        // In quarter bytes: 25 a pixel whole, or 4 (4 + channels) to read a blend.
+        const uint64_t whole = options.blend > 0 ? std::max<uint64_t>(25, 4 * (4 + uint64_t(channels))) : 25;
+        if (whole * pixels <= 4 * (2 * pixels * uint64_t(channels) + band_bytes)) return 0;
+        const uint64_t with_margins = 4 * band_bytes / (25 * uint64_t(options.width));
+        rows = int(std::min<uint64_t>(std::max<uint64_t>(with_margins, 4 * uint64_t(margin)) - 2 * uint64_t(margin),
+                                      uint64_t(options.height)));
+    }
+    return uint64_t(rows) + 2 * uint64_t(margin) < uint64_t(options.height) ? rows : 0;
+}
+
+// The output of a large texture: the finest level synthesised in bands of
+// `band` rows, each with `margin` rows more on either side (the rows the
+// band's passes leave wrong), from the coarser level's positions; each
+// band's own rows are read into the output at once, so neither the finest
+// level's positions nor a second image are ever whole. The same bytes as
+// read_positions on the whole level: a band's rows are exact, and the torus
+// cut is found on the pixels, the same sums as through the positions.
+Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, int margin) {
+    const CoherentOptions& options = passes.options;
+    const AppearanceSpace& space = passes.space;
+    const int w = options.width, h = options.height;
+    PositionMap coarse = passes.levels_down_to(1);
+    // The coarser level as pixel indices (2 or 3 bytes each for an atlas,
+    // PixelIndices), as read_positions narrows the finest.
+    PixelIndices parents = narrow_positions(example.width, example.pixel_count(), coarse.positions, options.threads);
+    const auto parent_at = [&](std::size_t i) { return parents.position(i); };
+    Image out(w, h, example.channels);
+    PositionMap part{w, 0, {}};
+    passes.enter(0);
+    for (int y0 = 0; y0 < h; y0 += band) {
+        const int rows = std::min(band, h - y0);
+        const Band rows_of{Image::wrap(y0 - margin, h), h};
+        part.height = rows + 2 * margin;
+        part.positions.resize(std::size_t(w) * std::size_t(part.height));
+        start_rows<PixelPositions>(space, parent_at, coarse.width, w, h, 0, space.levels[0].spacing,
+                                   start_rules(options), true, rows_of.first, part.height, part.positions.data());
+        passes.run(0, part, &rows_of, rows);
+        // The band's own rows (blend 0 copies each pixel).
+        blend_rows(example, space.wraps, options.blend,
+                   [&](int y) { return part.positions.data() + std::size_t(y - y0 + margin) * std::size_t(w); }, y0,
+                   rows, out, options.threads);
+    }
+    std::vector<uint32_t>().swap(part.positions);
+    std::vector<uint8_t>().swap(parents.data);
+    if (options.roll) cut_torus(out, options.threads);
+    return out;
+}
+
+// A band's buffers: 8 MiB, less what the analysis holds beyond 4 MiB (an
+// atlas of more than 65536 pixels: a 512x512 grey one of 8 levels is
+// counted 10 MiB, so 2 MiB bands), down to 2 MiB, so that the whole decode stays within twice the output plus 16
+// MiB. The band's size changes no byte of the output.
+uint64_t band_bytes(const Image& example, const AppearanceSpace& space, int coherence) {
+    const uint64_t held = coherent_analysis_memory(example.width, example.height, example.channels,
+                                                   int(space.levels.size()), coherence);
+    const uint64_t spare = kBandBytes + kAnalysisAtOnceBytes;
+    return held >= spare - kMinBandBytes ? kMinBandBytes : std::min(kBandBytes, spare - held);
+}
+
+}  // namespace
+
+// The finest level whole, or for a large output in bands.
+Image synthesize_pixels(const Image& example, const AppearanceSpace& space, const CoherenceSets& sets,
+                        const CoherentOptions& options, AppearanceSpace* by_level_space,
+                        CoherenceSets* by_level_sets) {
+    LevelPasses passes(space, sets, options);
+    passes.by_level_space = by_level_space;
+    passes.by_level_sets = by_level_sets;
+    const int margin = passes.band_margin();
+    const int band = band_rows(options, example.channels, margin, band_bytes(example, space, sets.k));
+    if (band == 0)
+        return read_positions(example, passes.levels_down_to(0), options.roll, options.threads, options.blend,
+                              space.wraps);
+    return synthesize_in_bands(example, passes, band, margin);
+}
+
+}  // namespace coherent
+
+uint64_t coherent_output_memory(uint64_t width, uint64_t height, int channels) {
+    // Whole: max(6.25, 4 + channels, 2 x channels) bytes a pixel. In bands
+    // (from 6 > 2 x channels bytes a pixel only): at most 1 + channels + 6
+    // with the band (whose change flags add a 24th to kBandBytes), or 2 x
+    // channels + 6 at the end, plus kBandBytes: within the 6 + 2 x channels
+    // bytes a pixel counted.
+    return width * height * (6 + 2 * uint64_t(channels)) + coherent::kBandBytes;
+}
+
+}  // namespace vqtex

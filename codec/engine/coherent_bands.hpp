@@ -1,0 +1,23 @@
+// coherent_bands.hpp - the memory plan of the still coherent engine's
+// output: the finest level synthesised whole and read through its
+// positions, or for a large output in bands of rows read as they are done,
+// so that neither its positions nor a second image are ever whole (the
+// same bytes either way; Lefebvre & Hoppe 2005's passes read only a window
+// around each pixel, so a band's inner rows are exact).
+#pragma once
+
+#include "common/image.hpp"
+#include "engine/appearance.hpp"
+#include "engine/coherence_sets.hpp"
+#include "engine/coherent_synthesis.hpp"
+
+namespace vqtex::coherent {
+
+// The output of `options`' size from the example's analysis. When the
+// analysis is made level by level, `by_level_space` and `by_level_sets`
+// are `space` and `sets`, whose levels the synthesis fills and empties.
+Image synthesize_pixels(const Image& example, const AppearanceSpace& space, const CoherenceSets& sets,
+                        const CoherentOptions& options, AppearanceSpace* by_level_space = nullptr,
+                        CoherenceSets* by_level_sets = nullptr);
+
+}  // namespace vqtex::coherent

@@ -1,0 +1,30 @@
+// coherent_torus.hpp - where the coherent engine cuts its output torus
+// open (Lefebvre & Hoppe 2005 synthesise on a torus, so the output tiles
+// with no scan seam; it must be cut somewhere to be shown). Left at the
+// coarsest level's grid, the edges lay where coherent copies tend to meet,
+// and on 6 of 23 corpus textures the wrap was a visible line: the cut is
+// made at the column and the row across which the pixels change least,
+// summed over every frame of an animation (cut per frame, the motion would
+// jump).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/image.hpp"
+
+namespace vqtex::coherent {
+
+// Cuts the torus of `planes` (frames of w x h pixels of `channels` bytes,
+// rows packed) open in place: pixel (x, y) of each becomes the one at
+// (x + ox, y + oy), where column ox and row oy are the first across which
+// the pixels change least (the sum of their channels' differences, wrapped,
+// over all the planes).
+void cut_torus(const std::vector<uint8_t*>& planes, int w, int h, int channels, int threads);
+
+// The same for one image.
+inline void cut_torus(Image& image, int threads) {
+    cut_torus({image.pixels.data()}, image.width, image.height, image.channels, threads);
+}
+
+}  // namespace vqtex::coherent
