@@ -831,8 +831,12 @@ int main(int argc, char** argv) {
         for (int quality : rates ? points : std::vector<int>{}) {
             vqtex_encode_params ep;
             vqtex_encode_params_init(&ep);
-            if (target_sizes.empty()) vqtex_encode_params_preset(&ep, quality);
-            else ep.target_size = uint64_t(quality);
+            if (target_sizes.empty()) {
+                ep.quality = uint32_t(quality);
+                vqtex_encode_params_preset(&ep, quality);
+            } else {
+                ep.target_size = uint64_t(quality);
+            }
             if (atlas) ep.codebook = VQTEX_CODEBOOK_ATLAS;
             ep.threads = 1;
             const std::string file = (scratch / "vqtex.vqt").string();

@@ -184,12 +184,12 @@ TEST(Codec, LargeDecode8192) {
     // A tiny model keeps this quick; nothing in the decoder limits the size.
     const vqtex::Image ex = load_corpus("checks_p16_64.png");
     vqtex_encode_params p = fast_encode_params();
-    p.model.levels = 1;
-    p.model.shapes[0] = vqtex_shape{3, 3, 1};
-    p.model.codewords[0] = 16;
-    p.model.entries_per_leaf = 1;
-    p.model.seam_closing = 0;
-    p.backtrack = 1;
+    p.levels = 1;
+    p.trees.shapes[0] = vqtex_shape{3, 3, 1};
+    p.trees.tsvq.codewords[0] = 16;
+    p.trees.tsvq.entries_per_leaf = 1;
+    p.trees.tsvq.seam_closing = 0;
+    p.trees.backtrack = 1;
     const auto bytes = encode(ex, p);
     const vqtex::Image out = decode(bytes, decode_params(8192, 8192, 3, 2));
     EXPECT_EQ(out.width, 8192);
@@ -229,9 +229,9 @@ TEST(Codec, EntriesAllowedButEveryLeafHasOneStillRoundTrips) {
         for (int x = 0; x < 48; ++x) std::copy(full.at(x, y), full.at(x, y) + 3, small.at(x, y));
     vqtex_encode_params p = fast_encode_params();
     vqtex_encode_params_preset(&p, 60);
-    p.model.levels = 3;
-    p.model.entries_per_leaf = 8;
-    for (auto& k : p.model.codewords) k = 100000;  // one leaf per vector
+    p.levels = 3;
+    p.trees.tsvq.entries_per_leaf = 8;
+    for (auto& k : p.trees.tsvq.codewords) k = 100000;  // one leaf per vector
     const auto bytes = encode(small, p);
     vqtex_status st;
     vqtex_error err{};

@@ -64,8 +64,10 @@ inline Image image_from_c(const vqtex_image* in, const char* what) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has " +
                                                std::to_string(in->channels) +
                                                " channels; 1 to 4 are supported");
-    if (in->width > 65536 || in->height > 65536 || uint64_t(in->width) * in->height > (uint64_t(1) << 30))
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, std::string(what) + " is larger than 65536 on a side or 2^30 pixels");
+    if (in->width > VQTEX_MAX_SIDE || in->height > VQTEX_MAX_SIDE ||
+        uint64_t(in->width) * in->height > (uint64_t(1) << 30))
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, std::string(what) + " is larger than " + std::to_string(VQTEX_MAX_SIDE) +
+                                             " on a side or 2^30 pixels");
     if (!in->pixels) fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has no pixels");
     Image img(int(in->width), int(in->height), int(in->channels));
     std::memcpy(img.pixels.data(), in->pixels, img.byte_count());
@@ -92,9 +94,10 @@ inline Volume volume_from_c(const vqtex_volume* in) {
     if (in->channels < 1 || in->channels > 4)
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "example sequence has " + std::to_string(in->channels) + " channels; 1 to 4 are supported");
-    if (in->width > 65536 || in->height > 65536 || in->frames > 65536 ||
+    if (in->width > VQTEX_MAX_SIDE || in->height > VQTEX_MAX_SIDE || in->frames > VQTEX_MAX_SIDE ||
         uint64_t(in->width) * in->height * in->frames > (uint64_t(1) << 28))
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example sequence is larger than 65536 on a side or in frames, or 2^28 pixels in all");
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example sequence is larger than " + std::to_string(VQTEX_MAX_SIDE) +
+                                             " on a side or in frames, or 2^28 pixels in all");
     if (!in->pixels) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence has no pixels");
     Volume v(int(in->width), int(in->height), int(in->frames), int(in->channels));
     std::memcpy(v.stack.pixels.data(), in->pixels, v.byte_count());
@@ -116,18 +119,6 @@ inline int resolve_threads(uint32_t threads) { return threads ? int(threads) : h
 inline ProgressFn stage_progress(vqtex_progress_fn fn, void* user, vqtex_stage stage) {
     if (!fn) return {};
     return [fn, user, stage](uint64_t done, uint64_t total) { return fn(user, stage, done, total) != 0; };
-}
-
-// How the file coder should write what the caller asked for.
-inline EncodeSettings encode_settings_of(const vqtex_encode_params& p) {
-    EncodeSettings s;
-    s.precision = int(p.precision);
-    s.pixel_precision = int(p.pixel_precision);
-    s.smoothing = int(p.smoothing);
-    s.backtrack = uint8_t(p.backtrack);
-    s.init = p.init == VQTEX_INIT_NOISE ? LevelInit::Noise : LevelInit::Parent;
-    s.seed = p.seed;
-    return s;
 }
 
 inline std::size_t memory_limit_of(const vqtex_decode_params* p) {

@@ -13,7 +13,7 @@ namespace vqtex {
 namespace {
 
 constexpr char kTagVolume[4] = {'V', 'O', 'L', 'U'};
-constexpr uint32_t kMaxExemplarFrames = 65536;
+constexpr uint32_t kMaxExemplarFrames = VQTEX_MAX_SIDE;
 constexpr uint8_t kTimeFactor = 2;
 
 TreeLayout tree_layout_of(const NeighborhoodLayout3& layout) {
