@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include <cstring>
+#include <string>
 
 #include "test_support.hpp"
 #include "vqtex/vqtex.h"
@@ -59,6 +60,42 @@ TEST(Api, RejectsBadArgumentsWithDetail) {
     EXPECT_EQ(out.pixels, nullptr);
     EXPECT_EQ(vqtex_synthesize(&p, nullptr, &out, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(vqtex_synthesize(&p, &in, nullptr, nullptr, nullptr), VQTEX_ERROR_INVALID_ARGUMENT);
+}
+
+TEST(Api, StructFromAnotherHeaderIsRefusedWithADetail) {
+    // A struct whose size is not this header's, as from a caller built
+    // against another vqtex.h: refused, and the detail says to rebuild.
+    const vqtex::Image ex = vqtex_test::make_random(16, 16, 3, 1);
+    vqtex_image in{16, 16, 3, const_cast<uint8_t*>(ex.pixels.data())};
+    vqtex_synth_params p = vqtex_test::default_params(16, 16);
+    p.struct_size = uint32_t(sizeof p - 8);
+    vqtex_image out{};
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_synthesize(&p, &in, &out, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(err.detail, "vqtex_synth_params_init"), nullptr) << err.detail;
+    EXPECT_NE(std::strstr(err.detail, "another vqtex.h"), nullptr) << err.detail;
+    vqtex_decode_params d;
+    vqtex_decode_params_init(&d);
+    d.struct_size = 0;
+    EXPECT_EQ(vqtex_decode(&d, ex.pixels.data(), ex.pixels.size(), &out, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(err.detail, "vqtex_decode_params_init"), nullptr) << err.detail;
+}
+
+TEST(Api, LargestExampleSideIsOneConstant) {
+    // One pixel more than VQTEX_MAX_SIDE on a side is refused before any
+    // pixel is read; the same for an example sequence's frames.
+    uint8_t pixel = 0;
+    vqtex_image wide{VQTEX_MAX_SIDE + 1, 1, 1, &pixel};
+    vqtex_synth_params p = vqtex_test::default_params(16, 16);
+    vqtex_image out{};
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_synthesize(&p, &wide, &out, nullptr, &err), VQTEX_ERROR_LIMIT_EXCEEDED);
+    EXPECT_NE(std::strstr(err.detail, std::to_string(VQTEX_MAX_SIDE).c_str()), nullptr) << err.detail;
+    p.engine = VQTEX_ENGINE_COHERENT;
+    vqtex_volume long_one{1, 1, VQTEX_MAX_SIDE + 1, 1, &pixel};
+    vqtex_volume vout{};
+    EXPECT_EQ(vqtex_synthesize_volume(&p, &long_one, 0, &vout, nullptr, &err), VQTEX_ERROR_LIMIT_EXCEEDED);
+    EXPECT_NE(std::strstr(err.detail, std::to_string(VQTEX_MAX_SIDE).c_str()), nullptr) << err.detail;
 }
 
 TEST(Api, ImageSmallerThanTheNeighbourhoodIsAClearError) {

@@ -124,6 +124,55 @@ TEST(Codec, TargetSizeIsRespectedAndUsesTheBudget) {
     EXPECT_NE(std::string(err.detail).find("target-size"), std::string::npos) << err.detail;
 }
 
+TEST(Codec, StatsSayWhatQualityTheFileWasMadeAt) {
+    // The quality is an input the preset never writes; the stats report it
+    // for trees and atlas files alike, the preset the target-size search
+    // chose for trees, and none for an atlas chosen for its bytes.
+    const vqtex::Image ex = load_corpus("grey_noise_64.png");
+    vqtex_encode_params p = fast_encode_params();
+    vqtex_encode_params_preset(&p, 0);
+    EXPECT_EQ(p.quality, 10u);
+    vqtex_encode_stats st{};
+    const std::size_t smallest = encode(ex, p, &st).size();
+    EXPECT_EQ(st.quality, 10u);
+    p.target_size = smallest * 2;
+    encode(ex, p, &st);
+    EXPECT_GT(st.quality, 0u);
+    vqtex_encode_params chosen = fast_encode_params();
+    chosen.quality = st.quality;
+    vqtex_encode_params_preset(&chosen, int(st.quality));
+    EXPECT_EQ(encode(ex, chosen), encode(ex, p));  // the preset reported is the one used
+    vqtex_encode_params atlas;
+    vqtex_encode_params_init(&atlas);
+    atlas.threads = 1;
+    atlas.quality = 40;
+    encode(ex, atlas, &st);
+    EXPECT_EQ(st.quality, 40u);
+    atlas.target_size = 2000;
+    encode(ex, atlas, &st);
+    EXPECT_EQ(st.quality, 0u);
+}
+
+TEST(Codec, AnimationPresetIsTheStillPresetsTrees) {
+    vqtex_volume_encode_params v;
+    vqtex_volume_encode_params_init(&v);
+    EXPECT_FLOAT_EQ(v.tsvq.train_fraction, 0.1f);
+    for (int q : {0, 45, 100}) {
+        vqtex_encode_params still;
+        vqtex_encode_params_init(&still);
+        ASSERT_EQ(vqtex_encode_params_preset(&still, q), VQTEX_OK);
+        ASSERT_EQ(vqtex_volume_encode_params_preset(&v, q), VQTEX_OK);
+        for (int l = 0; l < VQTEX_MAX_LEVELS; ++l) EXPECT_EQ(v.tsvq.codewords[l], still.trees.tsvq.codewords[l]) << q;
+        EXPECT_EQ(v.tsvq.entries_per_leaf, still.trees.tsvq.entries_per_leaf) << q;
+        EXPECT_EQ(v.tsvq.closing_divisor, still.trees.tsvq.closing_divisor) << q;
+        EXPECT_EQ(v.precision, still.trees.precision) << q;
+        EXPECT_EQ(v.pixel_precision, still.trees.pixel_precision) << q;
+        EXPECT_EQ(v.smoothing, still.trees.smoothing) << q;
+        EXPECT_FLOAT_EQ(v.tsvq.train_fraction, 0.1f) << q;  // the paper's 10%, untouched
+    }
+    EXPECT_EQ(vqtex_volume_encode_params_preset(&v, 101), VQTEX_ERROR_INVALID_ARGUMENT);
+}
+
 TEST(Codec, InspectDescribesTheFile) {
     const auto& bytes = cellular_file();
     vqtex_file_info info{};
