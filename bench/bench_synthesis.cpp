@@ -97,13 +97,13 @@ int main(int argc, char** argv) {
         vqtex_image out{};
         vqtex_synth_stats st{};
         if (!skip_exhaustive) {
-            p.search = VQTEX_SEARCH_EXHAUSTIVE;
+            p.paper.search = VQTEX_SEARCH_EXHAUSTIVE;
             if (!synth(p, ex, out, st)) return 1;
             r.exhaustive = st.analyse_seconds + st.synthesise_seconds;
             r.exhaustive_synth = st.synthesise_seconds;
             vqtex_image_free(&out);
         }
-        p.search = VQTEX_SEARCH_TSVQ;
+        p.paper.search = VQTEX_SEARCH_TSVQ;
         std::vector<double> train_runs, synth_runs;
         for (unsigned run = 0; run < runs; ++run) {
             if (!synth(p, ex, out, st)) return 1;
@@ -139,9 +139,9 @@ int main(int argc, char** argv) {
             for (int i = 0; i < 4; ++i) {
                 vqtex_synth_params q = p;
                 if (ks[i]) {
-                    for (auto& k : q.model.codewords) k = ks[i];
+                    for (auto& k : q.paper.tsvq.codewords) k = ks[i];
                 } else {
-                    q.model.codeword_fraction = 1.0f;
+                    q.paper.tsvq.codeword_fraction = 1.0f;
                 }
                 if (!synth(q, ex, out, st)) return 1;
                 paste(out, i + 1);

@@ -105,8 +105,12 @@ bool run_rate_points(TextureRun& t) {
     for (int quality : t.o.rates() ? points : std::vector<int>{}) {
         vqtex_encode_params ep;
         vqtex_encode_params_init(&ep);
-        if (t.o.target_sizes.empty()) vqtex_encode_params_preset(&ep, quality);
-        else ep.target_size = uint64_t(quality);
+        if (t.o.target_sizes.empty()) {
+            ep.quality = uint32_t(quality);
+            vqtex_encode_params_preset(&ep, quality);
+        } else {
+            ep.target_size = uint64_t(quality);
+        }
         if (t.o.atlas) ep.codebook = VQTEX_CODEBOOK_ATLAS;
         ep.threads = 1;
         const std::string file = (t.scratch / "vqtex.vqt").string();

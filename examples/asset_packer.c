@@ -43,6 +43,7 @@ int main(void) {
 
     vqtex_encode_params ep;
     vqtex_encode_params_init(&ep);
+    ep.quality = 20;
     vqtex_encode_params_preset(&ep, 20);
     ep.progress = cancel_never;
     vqtex_image example = {w, h, 3, pixels};

@@ -25,36 +25,38 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const uint32_t channels = in.next() % 6;  // 0 and 5 are invalid on purpose
     vqtex_encode_params p;
     vqtex_encode_params_init(&p);
-    vqtex_encode_params_preset(&p, in.next() % 101);
+    const int quality = in.next() % 101;
+    p.quality = uint32_t(quality);
+    vqtex_encode_params_preset(&p, quality);
     p.threads = 1;
-    p.model.levels = in.next() % 6;  // 0 = automatic, 5 is too many for tiny images
+    p.levels = in.next() % 6;  // 0 = automatic, 5 is too many for tiny images
     const uint8_t shape = in.next();
     if (shape & 0x80) {
         // Any window, odd or not: the encoder must refuse what it cannot code.
-        p.model.shapes[0] = vqtex_shape{uint8_t(shape % 8), uint8_t((shape >> 3) % 8), uint8_t(1 + (shape >> 6) % 2)};
-        p.model.shapes[1] = vqtex_shape{0, 0, 0};
+        p.trees.shapes[0] = vqtex_shape{uint8_t(shape % 8), uint8_t((shape >> 3) % 8), uint8_t(1 + (shape >> 6) % 2)};
+        p.trees.shapes[1] = vqtex_shape{0, 0, 0};
     }
     const uint8_t codewords = in.next();
-    if (codewords) p.model.codewords[0] = codewords;
-    p.model.entries_per_leaf = in.next() % 70;  // above 64 is invalid
+    if (codewords) p.trees.tsvq.codewords[0] = codewords;
+    p.trees.tsvq.entries_per_leaf = in.next() % 70;  // above 64 is invalid
     const uint8_t flags = in.next();
-    p.model.no_entry_keys = flags & 1;
-    p.model.seam_closing = (flags >> 1) & 1;
-    p.model.example_tileable = (flags >> 2) & 1;
-    p.model.leaf = (flags >> 3) & 1 ? VQTEX_LEAF_CENTROID : VQTEX_LEAF_MEDOID;
-    p.init = (flags >> 4) & 1 ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
-    p.model.closing_divisor = (flags >> 5) % 4;
-    // Both file kinds: the atlas (format 5, the default) and the trees.
+    p.trees.tsvq.no_entry_keys = flags & 1;
+    p.trees.tsvq.seam_closing = (flags >> 1) & 1;
+    p.example_tileable = (flags >> 2) & 1;
+    p.trees.tsvq.leaf = (flags >> 3) & 1 ? VQTEX_LEAF_CENTROID : VQTEX_LEAF_MEDOID;
+    p.trees.init = (flags >> 4) & 1 ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
+    p.trees.tsvq.closing_divisor = (flags >> 5) % 4;
+    // Both file kinds: the atlas (the default) and the trees.
     p.codebook = (flags >> 7) & 1 ? VQTEX_CODEBOOK_TREES : VQTEX_CODEBOOK_ATLAS;
-    p.model.closing_window = in.next() % 8;
+    p.trees.tsvq.closing_window = in.next() % 8;
     const uint8_t precision = in.next();
     if (precision & 0x80) {
-        p.precision = precision % 10;
-        p.pixel_precision = (precision >> 4) % 10;
+        p.trees.precision = precision % 10;
+        p.trees.pixel_precision = (precision >> 4) % 10;
     }
-    p.smoothing = 1 + in.next() % 4;
-    p.backtrack = 1 + in.next() % 4;
-    p.model.train_fraction = float(1 + in.next() % 4) / 4.0f;
+    p.trees.smoothing = 1 + in.next() % 4;
+    p.trees.backtrack = 1 + in.next() % 4;
+    p.trees.tsvq.train_fraction = float(1 + in.next() % 4) / 4.0f;
     in.next();  // reserved
     in.next();  // reserved
 

@@ -85,16 +85,17 @@ int main(int argc, char** argv) {
             std::vector<uint8_t> pixels = crop(img, side, channels);
             vqtex_encode_params p;
             vqtex_encode_params_init(&p);
+            p.quality = uint32_t(var.quality);
             vqtex_encode_params_preset(&p, var.quality);
             p.codebook = VQTEX_CODEBOOK_TREES;  // these are the v1 seeds (atlases: below, 16x16 and 12x12)
             p.threads = 1;
-            p.model.no_entry_keys = var.keys ? 0 : 1;
-            p.model.seam_closing = var.closing ? 1 : 0;
-            p.model.levels = var.levels;
-            p.model.closing_window = var.closing_window;
-            p.init = var.noise_init ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
-            p.backtrack = var.backtrack;
-            if (var.precision) p.precision = p.pixel_precision = var.precision;
+            p.trees.tsvq.no_entry_keys = var.keys ? 0 : 1;
+            p.trees.tsvq.seam_closing = var.closing ? 1 : 0;
+            p.levels = var.levels;
+            p.trees.tsvq.closing_window = var.closing_window;
+            p.trees.init = var.noise_init ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
+            p.trees.backtrack = var.backtrack;
+            if (var.precision) p.trees.precision = p.trees.pixel_precision = var.precision;
             const vqtex_image example{side, side, channels, pixels.data()};
             uint8_t* data = nullptr;
             size_t size = 0;

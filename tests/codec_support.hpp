@@ -19,6 +19,7 @@ inline vqtex_encode_params fast_encode_params() {
     vqtex_encode_params p;
     vqtex_encode_params_init(&p);
     p.codebook = VQTEX_CODEBOOK_TREES;
+    p.quality = 10;
     vqtex_encode_params_preset(&p, 10);
     p.threads = 1;
     return p;

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include <cstring>
+#include <string>
 
 #include "test_support.hpp"
 #include "vqtex/vqtex.h"
@@ -23,10 +24,10 @@ TEST(Api, InitGivesPaperDefaults) {
     std::memset(&p, 0xAB, sizeof p);
     vqtex_synth_params_init(&p);
     EXPECT_EQ(p.struct_size, sizeof p);
-    EXPECT_EQ(p.search, VQTEX_SEARCH_TSVQ);
-    EXPECT_EQ(p.model.levels, 0u);
-    EXPECT_EQ(p.model.leaf, VQTEX_LEAF_MEDOID);
-    EXPECT_GT(p.backtrack, 0u);
+    EXPECT_EQ(p.paper.search, VQTEX_SEARCH_TSVQ);
+    EXPECT_EQ(p.levels, 0u);
+    EXPECT_EQ(p.paper.tsvq.leaf, VQTEX_LEAF_MEDOID);
+    EXPECT_GT(p.paper.backtrack, 0u);
     vqtex_image_free(nullptr);  // accepted
 }
 
@@ -54,11 +55,47 @@ TEST(Api, RejectsBadArgumentsWithDetail) {
     EXPECT_NE(std::strstr(err.detail, "out of range"), nullptr) << err.detail;
 
     vqtex_synth_params bad_shape = p;
-    bad_shape.model.shapes[0] = vqtex_shape{4, 4, 2};
+    bad_shape.paper.shapes[0] = vqtex_shape{4, 4, 2};
     EXPECT_EQ(vqtex_synthesize(&bad_shape, &in, &out, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(out.pixels, nullptr);
     EXPECT_EQ(vqtex_synthesize(&p, nullptr, &out, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(vqtex_synthesize(&p, &in, nullptr, nullptr, nullptr), VQTEX_ERROR_INVALID_ARGUMENT);
+}
+
+TEST(Api, StructFromAnotherHeaderIsRefusedWithADetail) {
+    // A struct whose size is not this header's, as from a caller built
+    // against another vqtex.h: refused, and the detail says to rebuild.
+    const vqtex::Image ex = vqtex_test::make_random(16, 16, 3, 1);
+    vqtex_image in{16, 16, 3, const_cast<uint8_t*>(ex.pixels.data())};
+    vqtex_synth_params p = vqtex_test::default_params(16, 16);
+    p.struct_size = uint32_t(sizeof p - 8);
+    vqtex_image out{};
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_synthesize(&p, &in, &out, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(err.detail, "vqtex_synth_params_init"), nullptr) << err.detail;
+    EXPECT_NE(std::strstr(err.detail, "another vqtex.h"), nullptr) << err.detail;
+    vqtex_decode_params d;
+    vqtex_decode_params_init(&d);
+    d.struct_size = 0;
+    EXPECT_EQ(vqtex_decode(&d, ex.pixels.data(), ex.pixels.size(), &out, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::strstr(err.detail, "vqtex_decode_params_init"), nullptr) << err.detail;
+}
+
+TEST(Api, LargestExampleSideIsOneConstant) {
+    // One pixel more than VQTEX_MAX_SIDE on a side is refused before any
+    // pixel is read; the same for an example sequence's frames.
+    uint8_t pixel = 0;
+    vqtex_image wide{VQTEX_MAX_SIDE + 1, 1, 1, &pixel};
+    vqtex_synth_params p = vqtex_test::default_params(16, 16);
+    vqtex_image out{};
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_synthesize(&p, &wide, &out, nullptr, &err), VQTEX_ERROR_LIMIT_EXCEEDED);
+    EXPECT_NE(std::strstr(err.detail, std::to_string(VQTEX_MAX_SIDE).c_str()), nullptr) << err.detail;
+    p.engine = VQTEX_ENGINE_COHERENT;
+    vqtex_volume long_one{1, 1, VQTEX_MAX_SIDE + 1, 1, &pixel};
+    vqtex_volume vout{};
+    EXPECT_EQ(vqtex_synthesize_volume(&p, &long_one, 0, &vout, nullptr, &err), VQTEX_ERROR_LIMIT_EXCEEDED);
+    EXPECT_NE(std::strstr(err.detail, std::to_string(VQTEX_MAX_SIDE).c_str()), nullptr) << err.detail;
 }
 
 TEST(Api, ImageSmallerThanTheNeighbourhoodIsAClearError) {
@@ -67,13 +104,13 @@ TEST(Api, ImageSmallerThanTheNeighbourhoodIsAClearError) {
     vqtex_image out{};
     vqtex_error err{};
     vqtex_synth_params p = vqtex_test::default_params(32, 32);
-    p.model.shapes[0] = vqtex_shape{9, 9, 1};
+    p.paper.shapes[0] = vqtex_shape{9, 9, 1};
     EXPECT_EQ(vqtex_synthesize(&p, &in, &out, nullptr, &err), VQTEX_ERROR_IMAGE_TOO_SMALL);
     EXPECT_NE(std::strstr(err.detail, "too small"), nullptr) << err.detail;
     EXPECT_NE(std::strstr(err.detail, "6x6"), nullptr) << err.detail;
     EXPECT_EQ(out.pixels, nullptr);
     // Treating it as tileable makes every position valid.
-    p.model.example_tileable = 1;
+    p.example_tileable = 1;
     EXPECT_EQ(vqtex_synthesize(&p, &in, &out, nullptr, &err), VQTEX_OK) << err.detail;
     vqtex_image_free(&out);
 }
@@ -105,14 +142,14 @@ TEST(Api, CppWrapperThrowsWithStatus) {
     const vqtex::Image tiny = vqtex_test::make_random(4, 4, 1, 1);
     vqtex_image in{4, 4, 1, const_cast<uint8_t*>(tiny.pixels.data())};
     vqtex_synth_params p = vqtex_test::default_params(16, 16);
-    p.model.shapes[0] = vqtex_shape{9, 9, 1};
+    p.paper.shapes[0] = vqtex_shape{9, 9, 1};
     try {
         vqtex_cpp::synthesize(p, in);
         FAIL() << "expected an exception";
     } catch (const vqtex_cpp::Error& e) {
         EXPECT_EQ(e.status(), VQTEX_ERROR_IMAGE_TOO_SMALL);
     }
-    p.model.shapes[0] = vqtex_shape{3, 3, 1};
+    p.paper.shapes[0] = vqtex_shape{3, 3, 1};
     vqtex_synth_stats stats{};
     vqtex_cpp::Image out = vqtex_cpp::synthesize(p, in, &stats);
     EXPECT_EQ(out.width(), 16u);
@@ -159,14 +196,14 @@ TEST(Validation, EveryInvalidValueIsRefusedBeforeAnyWork) {
 
     using SynthEdit = void (*)(vqtex_synth_params&);
     const std::pair<SynthEdit, const char*> synth_cases[] = {
-        {[](vqtex_synth_params& p) { p.init = vqtex_init(7); }, "unknown init mode"},
-        {[](vqtex_synth_params& p) { p.backtrack = 0; }, "backtrack must be 1"},
-        {[](vqtex_synth_params& p) { p.model.entries_per_leaf = 65; }, "entries per leaf must be 1 to 64"},
-        {[](vqtex_synth_params& p) { p.model.closing_window = 4; }, "closing window must be odd"},
-        {[](vqtex_synth_params& p) { p.model.levels = 9; }, "levels must be 1 to 8"},
-        {[](vqtex_synth_params& p) { p.model.leaf = vqtex_leaf(3); }, "unknown leaf representative"},
-        {[](vqtex_synth_params& p) { p.tolerance = 5000; }, "tolerance must be 0 to 4096"},
-        {[](vqtex_synth_params& p) { p.search = vqtex_search(9); }, "unknown search kind"},
+        {[](vqtex_synth_params& p) { p.paper.init = vqtex_init(7); }, "unknown init mode"},
+        {[](vqtex_synth_params& p) { p.paper.backtrack = 0; }, "backtrack must be 1"},
+        {[](vqtex_synth_params& p) { p.paper.tsvq.entries_per_leaf = 65; }, "entries per leaf must be 1 to 64"},
+        {[](vqtex_synth_params& p) { p.paper.tsvq.closing_window = 4; }, "closing window must be odd"},
+        {[](vqtex_synth_params& p) { p.levels = 9; }, "levels must be 1 to 8"},
+        {[](vqtex_synth_params& p) { p.paper.tsvq.leaf = vqtex_leaf(3); }, "unknown leaf representative"},
+        {[](vqtex_synth_params& p) { p.paper.tolerance = 5000; }, "tolerance must be 0 to 4096"},
+        {[](vqtex_synth_params& p) { p.paper.search = vqtex_search(9); }, "unknown search kind"},
         {[](vqtex_synth_params& p) { p.width = 0; }, "out of range"},
     };
     for (const auto& item : synth_cases) {
@@ -183,27 +220,40 @@ TEST(Validation, EveryInvalidValueIsRefusedBeforeAnyWork) {
         });
     }
 
-    using EncodeEdit = void (*)(vqtex_encode_params&);
-    const std::pair<EncodeEdit, const char*> encode_cases[] = {
-        {[](vqtex_encode_params& p) { p.init = vqtex_init(7); }, "unknown init mode"},
-        {[](vqtex_encode_params& p) { p.backtrack = 0; }, "backtrack must be 1 to 255"},
-        {[](vqtex_encode_params& p) { p.backtrack = 256; }, "backtrack must be 1 to 255"},
-        {[](vqtex_encode_params& p) { p.precision = 0; }, "precision and pixel precision must be 1 to 8"},
-        {[](vqtex_encode_params& p) { p.pixel_precision = 9; }, "precision and pixel precision must be 1 to 8"},
-        {[](vqtex_encode_params& p) { p.smoothing = 0; }, "smoothing must be 1 to 8"},
-        {[](vqtex_encode_params& p) { p.model.entries_per_leaf = 100; }, "entries per leaf must be 1 to 64"},
-        {[](vqtex_encode_params& p) { p.model.closing_window = 65; }, "closing window must be odd"},
+    // The trees fields both encoders have, under the same names: a still
+    // texture's params.trees and the animation's params.
+    const std::pair<int, const char*> encode_cases[] = {
+        {0, "unknown init mode"},
+        {1, "backtrack must be 1 to 255"},
+        {2, "backtrack must be 1 to 255"},
+        {3, "precision and pixel precision must be 1 to 8"},
+        {4, "precision and pixel precision must be 1 to 8"},
+        {5, "smoothing must be 1 to 8"},
+        {6, "entries per leaf must be 1 to 64"},
+        {7, "closing window must be odd"},
+    };
+    const auto edit_trees = [](int which, auto& t) {
+        switch (which) {
+            case 0: t.init = vqtex_init(7); break;
+            case 1: t.backtrack = 0; break;
+            case 2: t.backtrack = 256; break;
+            case 3: t.precision = 0; break;
+            case 4: t.pixel_precision = 9; break;
+            case 5: t.smoothing = 0; break;
+            case 6: t.tsvq.entries_per_leaf = 100; break;
+            case 7: t.tsvq.closing_window = 65; break;
+        }
     };
     for (const auto& item : encode_cases) {
         // Named references: clang 14 cannot capture structured bindings.
-        const auto& edit = std::get<0>(item);
+        const int which = std::get<0>(item);
         const auto& detail = std::get<1>(item);
         expect_refused_before_work("encode", detail, [&](WorkSeen* seen, vqtex_error* err) {
             vqtex_encode_params p;
             vqtex_encode_params_init(&p);
             p.progress = &WorkSeen::note;
             p.progress_user = seen;
-            edit(p);
+            edit_trees(which, p.trees);
             uint8_t* data = nullptr;
             size_t size = 0;
             return vqtex_encode(&p, &in, &data, &size, nullptr, err);
@@ -212,9 +262,9 @@ TEST(Validation, EveryInvalidValueIsRefusedBeforeAnyWork) {
         expect_refused_before_work("encode_volume", detail, [&](WorkSeen* seen, vqtex_error* err) {
             vqtex_volume_encode_params p;
             vqtex_volume_encode_params_init(&p);
-            p.codec.progress = &WorkSeen::note;
-            p.codec.progress_user = seen;
-            edit(p.codec);
+            p.progress = &WorkSeen::note;
+            p.progress_user = seen;
+            edit_trees(which, p);
             vqtex_volume vin{32, 32, 1, 3, const_cast<uint8_t*>(ex.pixels.data())};
             uint8_t* data = nullptr;
             size_t size = 0;

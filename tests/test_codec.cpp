@@ -124,6 +124,55 @@ TEST(Codec, TargetSizeIsRespectedAndUsesTheBudget) {
     EXPECT_NE(std::string(err.detail).find("target-size"), std::string::npos) << err.detail;
 }
 
+TEST(Codec, StatsSayWhatQualityTheFileWasMadeAt) {
+    // The quality is an input the preset never writes; the stats report it
+    // for trees and atlas files alike, the preset the target-size search
+    // chose for trees, and none for an atlas chosen for its bytes.
+    const vqtex::Image ex = load_corpus("grey_noise_64.png");
+    vqtex_encode_params p = fast_encode_params();
+    vqtex_encode_params_preset(&p, 0);
+    EXPECT_EQ(p.quality, 10u);
+    vqtex_encode_stats st{};
+    const std::size_t smallest = encode(ex, p, &st).size();
+    EXPECT_EQ(st.quality, 10u);
+    p.target_size = smallest * 2;
+    encode(ex, p, &st);
+    EXPECT_GT(st.quality, 0u);
+    vqtex_encode_params chosen = fast_encode_params();
+    chosen.quality = st.quality;
+    vqtex_encode_params_preset(&chosen, int(st.quality));
+    EXPECT_EQ(encode(ex, chosen), encode(ex, p));  // the preset reported is the one used
+    vqtex_encode_params atlas;
+    vqtex_encode_params_init(&atlas);
+    atlas.threads = 1;
+    atlas.quality = 40;
+    encode(ex, atlas, &st);
+    EXPECT_EQ(st.quality, 40u);
+    atlas.target_size = 2000;
+    encode(ex, atlas, &st);
+    EXPECT_EQ(st.quality, 0u);
+}
+
+TEST(Codec, AnimationPresetIsTheStillPresetsTrees) {
+    vqtex_volume_encode_params v;
+    vqtex_volume_encode_params_init(&v);
+    EXPECT_FLOAT_EQ(v.tsvq.train_fraction, 0.1f);
+    for (int q : {0, 45, 100}) {
+        vqtex_encode_params still;
+        vqtex_encode_params_init(&still);
+        ASSERT_EQ(vqtex_encode_params_preset(&still, q), VQTEX_OK);
+        ASSERT_EQ(vqtex_volume_encode_params_preset(&v, q), VQTEX_OK);
+        for (int l = 0; l < VQTEX_MAX_LEVELS; ++l) EXPECT_EQ(v.tsvq.codewords[l], still.trees.tsvq.codewords[l]) << q;
+        EXPECT_EQ(v.tsvq.entries_per_leaf, still.trees.tsvq.entries_per_leaf) << q;
+        EXPECT_EQ(v.tsvq.closing_divisor, still.trees.tsvq.closing_divisor) << q;
+        EXPECT_EQ(v.precision, still.trees.precision) << q;
+        EXPECT_EQ(v.pixel_precision, still.trees.pixel_precision) << q;
+        EXPECT_EQ(v.smoothing, still.trees.smoothing) << q;
+        EXPECT_FLOAT_EQ(v.tsvq.train_fraction, 0.1f) << q;  // the paper's 10%, untouched
+    }
+    EXPECT_EQ(vqtex_volume_encode_params_preset(&v, 101), VQTEX_ERROR_INVALID_ARGUMENT);
+}
+
 TEST(Codec, InspectDescribesTheFile) {
     const auto& bytes = cellular_file();
     vqtex_file_info info{};
@@ -184,12 +233,12 @@ TEST(Codec, LargeDecode8192) {
     // A tiny model keeps this quick; nothing in the decoder limits the size.
     const vqtex::Image ex = load_corpus("checks_p16_64.png");
     vqtex_encode_params p = fast_encode_params();
-    p.model.levels = 1;
-    p.model.shapes[0] = vqtex_shape{3, 3, 1};
-    p.model.codewords[0] = 16;
-    p.model.entries_per_leaf = 1;
-    p.model.seam_closing = 0;
-    p.backtrack = 1;
+    p.levels = 1;
+    p.trees.shapes[0] = vqtex_shape{3, 3, 1};
+    p.trees.tsvq.codewords[0] = 16;
+    p.trees.tsvq.entries_per_leaf = 1;
+    p.trees.tsvq.seam_closing = 0;
+    p.trees.backtrack = 1;
     const auto bytes = encode(ex, p);
     const vqtex::Image out = decode(bytes, decode_params(8192, 8192, 3, 2));
     EXPECT_EQ(out.width, 8192);
@@ -229,9 +278,9 @@ TEST(Codec, EntriesAllowedButEveryLeafHasOneStillRoundTrips) {
         for (int x = 0; x < 48; ++x) std::copy(full.at(x, y), full.at(x, y) + 3, small.at(x, y));
     vqtex_encode_params p = fast_encode_params();
     vqtex_encode_params_preset(&p, 60);
-    p.model.levels = 3;
-    p.model.entries_per_leaf = 8;
-    for (auto& k : p.model.codewords) k = 100000;  // one leaf per vector
+    p.levels = 3;
+    p.trees.tsvq.entries_per_leaf = 8;
+    for (auto& k : p.trees.tsvq.codewords) k = 100000;  // one leaf per vector
     const auto bytes = encode(small, p);
     vqtex_status st;
     vqtex_error err{};

@@ -122,8 +122,8 @@ TEST(Coherent, DefaultsSelectTheCoherentEngine) {
     vqtex_synth_params p;
     vqtex_synth_params_init(&p);
     EXPECT_EQ(p.engine, VQTEX_ENGINE_COHERENT);
-    EXPECT_GE(p.coherence, 1u);
-    EXPECT_GE(p.passes, 1u);
+    EXPECT_GE(p.coherent.coherence, 1u);
+    EXPECT_GE(p.coherent.passes, 1u);
 }
 
 TEST(Coherent, PrincipalAxesAreOrthonormalAndOrdered) {
@@ -416,7 +416,7 @@ TEST(Coherent, EveryOutputPixelIsAnExamplePixel) {
     // example lacks, hence no blur and no invented noise.
     const Image ex = textured(64, 48, 4);
     vqtex_synth_params params = coherent_params(100, 70, 3);
-    params.blend = 0;
+    params.coherent.blend = 0;
     const Image out = vqtex_test::synthesize(ex, params);
     std::vector<uint32_t> colours;
     for (int y = 0; y < ex.height; ++y)
@@ -439,10 +439,10 @@ TEST(Coherent, InvalidParametersRefused) {
     vqtex_image out{};
     vqtex_error err{};
     for (auto tweak :
-         {+[](vqtex_synth_params& p) { p.coherence = 0; }, +[](vqtex_synth_params& p) { p.coherence = 17; },
-          +[](vqtex_synth_params& p) { p.passes = 0; }, +[](vqtex_synth_params& p) { p.jitter = 1025; },
-          +[](vqtex_synth_params& p) { p.blend = 4; }, +[](vqtex_synth_params& p) { p.relocate = 1025; },
-          +[](vqtex_synth_params& p) { p.edge_guard = 65; },
+         {+[](vqtex_synth_params& p) { p.coherent.coherence = 0; }, +[](vqtex_synth_params& p) { p.coherent.coherence = 17; },
+          +[](vqtex_synth_params& p) { p.coherent.passes = 0; }, +[](vqtex_synth_params& p) { p.coherent.jitter = 1025; },
+          +[](vqtex_synth_params& p) { p.coherent.blend = 4; }, +[](vqtex_synth_params& p) { p.coherent.relocate = 1025; },
+          +[](vqtex_synth_params& p) { p.coherent.edge_guard = 65; },
           +[](vqtex_synth_params& p) { p.engine = vqtex_engine(7); }}) {
         vqtex_synth_params p = coherent_params(32, 32, 1);
         tweak(p);
@@ -473,19 +473,19 @@ TEST(Coherent, GoldenHash) {
     const Image ex = brick_wall(96, 96, 7);
     const auto hash_of = [&](uint32_t blend, uint32_t relocate, uint32_t edge_guard = 0) {
         vqtex_synth_params p = coherent_params(150, 110, 9);
-        p.blend = blend;
-        p.relocate = relocate;
-        p.edge_guard = edge_guard;
+        p.coherent.blend = blend;
+        p.coherent.relocate = relocate;
+        p.coherent.edge_guard = edge_guard;
         uint64_t h = 0xcbf29ce484222325ull;
         for (uint8_t v : vqtex_test::synthesize(ex, p).pixels) h = (h ^ v) * 0x100000001b3ull;
         return h;
     };
     EXPECT_EQ(hash_of(0, 0), 0x217a760a4b8cbd8dull) << std::hex << hash_of(0, 0);
     EXPECT_EQ(hash_of(2, 0), 0xe57f22f79c9296b9ull) << std::hex << hash_of(2, 0);
-    EXPECT_EQ(coherent_params(1, 1, 1).blend, 2u);
-    EXPECT_EQ(coherent_params(1, 1, 1).relocate, 64u);
+    EXPECT_EQ(coherent_params(1, 1, 1).coherent.blend, 2u);
+    EXPECT_EQ(coherent_params(1, 1, 1).coherent.relocate, 64u);
     EXPECT_EQ(hash_of(2, 64), 0x83b06954069c3180ull) << std::hex << hash_of(2, 64);
-    EXPECT_EQ(coherent_params(1, 1, 1).edge_guard, 8u);
+    EXPECT_EQ(coherent_params(1, 1, 1).coherent.edge_guard, 8u);
     EXPECT_EQ(hash_of(2, 64, 8), 0xc49dfaedd9457d81ull) << std::hex << hash_of(2, 64, 8);
 }
 
@@ -704,10 +704,10 @@ TEST(Coherent, TileableExampleKeepsItsPeriod) {
                 ex.at(x, y)[c] = uint8_t((((x / 8) + (y / 8)) % 2 ? 200 : 60) + int(rng.below(20)));
     auto agreement = [&](bool tileable) {
         vqtex_synth_params p = coherent_params(160, 144, 5);
-        p.model.example_tileable = tileable ? 1 : 0;
+        p.example_tileable = tileable ? 1 : 0;
         // The copy relocation leaves a tileable example's copies alone (they
         // wrap); off for both, the two engines compared are the same one.
-        p.relocate = 0;
+        p.coherent.relocate = 0;
         const Image out = vqtex_test::synthesize(ex, p);
         std::size_t same = 0;
         for (int y = 0; y < out.height; ++y)

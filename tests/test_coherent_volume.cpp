@@ -203,8 +203,8 @@ TEST(CoherentVolume, InvalidArgumentsRefused) {
     vqtex_volume out{};
     vqtex_error err{};
     for (auto tweak : {+[](vqtex_synth_params& p) { p.engine = VQTEX_ENGINE_PAPER; },
-                       +[](vqtex_synth_params& p) { p.coherence = 2; }, +[](vqtex_synth_params& p) { p.jitter = 8; },
-                       +[](vqtex_synth_params& p) { p.width = 0; }, +[](vqtex_synth_params& p) { p.passes = 9; },
+                       +[](vqtex_synth_params& p) { p.coherent.coherence = 2; }, +[](vqtex_synth_params& p) { p.coherent.jitter = 8; },
+                       +[](vqtex_synth_params& p) { p.width = 0; }, +[](vqtex_synth_params& p) { p.coherent.passes = 9; },
                        +[](vqtex_synth_params& p) { p.struct_size = 0; }}) {
         vqtex_synth_params p = volume_params(32, 32, 1);
         tweak(p);

@@ -82,8 +82,8 @@ Results run_all(const vqtex::Image& example, uint32_t threads) {
 
     vqtex_synth_params sp = default_params(24, 24, 3);
     sp.threads = threads;
-    sp.model.levels = 2;
-    sp.model.codeword_fraction = 0.25f;
+    sp.levels = 2;
+    sp.paper.tsvq.codeword_fraction = 0.25f;
     r.synthesised = synthesize(example, sp);
 
     vqtex_encode_params ap;

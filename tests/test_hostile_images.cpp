@@ -214,7 +214,7 @@ TEST(HostileImages, TinyAndThinImagesEncodeOrSayWhatToDo) {
                 SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + "x" + std::to_string(ch) +
                              (tileable ? " tileable" : ""));
                 vqtex_encode_params p = fast_encode_params();
-                p.model.example_tileable = tileable;
+                p.example_tileable = tileable;
                 const Encoded e = try_encode(w, h, ch, p);
                 if (e.status == VQTEX_ERROR_IMAGE_TOO_SMALL) {
                     EXPECT_FALSE(tileable) << e.detail;
@@ -261,13 +261,13 @@ TEST(HostileImages, FlatAndTwoColourImagesEncode) {
 TEST(HostileImages, ClosingWindowOutsideTheFormatIsRefusedUpFront) {
     for (uint32_t window : {1u, 2u, 4u, 65u}) {
         vqtex_encode_params p = fast_encode_params();
-        p.model.closing_window = window;
+        p.trees.tsvq.closing_window = window;
         const Encoded e = try_encode(24, 24, 2, p);
         EXPECT_EQ(e.status, VQTEX_ERROR_INVALID_ARGUMENT) << window;
         EXPECT_NE(e.detail.find("closing window must be odd, 3 to 63"), std::string::npos) << e.detail;
     }
     vqtex_encode_params p = fast_encode_params();
-    p.model.closing_window = 3;
+    p.trees.tsvq.closing_window = 3;
     const Encoded e = try_encode(24, 24, 2, p);
     ASSERT_EQ(e.status, VQTEX_OK) << e.detail;
     EXPECT_EQ(decode(e.file, decode_params(16, 16)).width, 16);
@@ -280,9 +280,9 @@ TEST(HostileImages, NarrowWindowsMakeDecodableFiles) {
     for (const vqtex_shape shape : {vqtex_shape{7, 1, 2}, vqtex_shape{1, 7, 2}, vqtex_shape{1, 3, 1}}) {
         SCOPED_TRACE(std::to_string(shape.rows) + "x" + std::to_string(shape.cols));
         vqtex_encode_params p = fast_encode_params();
-        p.model.levels = 2;
-        p.model.shapes[0] = shape;
-        p.model.shapes[1] = vqtex_shape{0, 0, 0};
+        p.levels = 2;
+        p.trees.shapes[0] = shape;
+        p.trees.shapes[1] = vqtex_shape{0, 0, 0};
         const Encoded e = try_encode(28, 30, 4, p);
         ASSERT_EQ(e.status, VQTEX_OK) << e.detail;
         vqtex_status st;

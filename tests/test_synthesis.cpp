@@ -32,7 +32,7 @@ TEST(Synthesis, PeriodicInputGivesPeriodicOutput) {
     const Image stripes = vqtex_test::load_corpus("stripes_p8_128.png");
     for (vqtex_search search : {VQTEX_SEARCH_EXHAUSTIVE, VQTEX_SEARCH_TSVQ}) {
         vqtex_synth_params p = default_params(96, 80, 3);
-        p.search = search;
+        p.paper.search = search;
         const Image out = synthesize(stripes, p);
         // Every column period 8 apart agrees (96 is a multiple of 8, so the
         // torus can hold the period), and no shorter shift agrees more often
@@ -112,7 +112,7 @@ TEST(Synthesis, SeamClosingHelps) {
         for (int seed = 1; seed <= 8; ++seed) {
             vqtex_synth_params p = default_params(128, 112, uint64_t(seed));
             closed_rank += vqtex_test::seam_stats(synthesize(ex, p)).rank_y / 8;
-            p.model.seam_closing = 0;
+            p.paper.tsvq.seam_closing = 0;
             open_rank += vqtex_test::seam_stats(synthesize(ex, p)).rank_y / 8;
         }
         EXPECT_GT(open_rank, 0.8) << name;
@@ -136,7 +136,7 @@ TEST(Synthesis, SameBytesForAnyThreadCount) {
     const Image ex = vqtex_test::load_corpus("bricks_128.png");
     for (vqtex_search search : {VQTEX_SEARCH_TSVQ, VQTEX_SEARCH_EXHAUSTIVE}) {
         vqtex_synth_params p = default_params(150, 90, 4);
-        p.search = search;
+        p.paper.search = search;
         p.threads = 1;
         const Image one = synthesize(ex, p);
         for (uint32_t t : {2u, 3u, 8u}) {
@@ -161,10 +161,10 @@ TEST(Synthesis, VeryLargeOutput4096) {
     // the point is that nothing in the engine limits the size.
     const Image ex = vqtex_test::load_corpus("checks_p16_64.png");
     vqtex_synth_params p = default_params(4096, 4096, 2);
-    p.model.levels = 1;
-    p.model.shapes[0] = vqtex_shape{3, 3, 1};
-    p.model.codewords[0] = 32;
-    p.backtrack = 1;
+    p.levels = 1;
+    p.paper.shapes[0] = vqtex_shape{3, 3, 1};
+    p.paper.tsvq.codewords[0] = 32;
+    p.paper.backtrack = 1;
     p.threads = 2;
     const Image out = synthesize(ex, p);
     EXPECT_EQ(out.width, 4096);
@@ -182,8 +182,7 @@ TEST(Synthesis, CurrentLevelNeighbourhoodIsCausal) {
     // rows (into the bottom rows, still noise) or left of the row's first
     // visited pixel (into the end of its own row, still noise).
     const Image ex = vqtex_test::load_corpus("cellular_128.png");
-    vqtex_model_params mp;
-    vqtex_model_params_init(&mp);
+    const ModelParams mp;
     AnalysisResult a = analyse_example(ex, mp, VQTEX_SEARCH_TSVQ, 2, 1, nullptr);
     SynthesisTrace trace;
     SynthesisOptions opt;

@@ -61,9 +61,8 @@ LoopStats loop_stats(const Volume& v) {
     return s;
 }
 
-vqtex_model_params temporal_params() {
-    vqtex_model_params p;
-    vqtex_model_params_init(&p);
+ModelParams temporal_params() {
+    ModelParams p;
     p.levels = 3;
     p.train_fraction = 0.1f;
     p.codeword_fraction = 1.0f;
@@ -206,7 +205,7 @@ TEST(TemporalSynthesis, CausalInSpaceAndTime) {
     // initial values read through the temporal wrap (frame 0 reading the
     // last frames), the top wrap of a frame, or a row's own wrap.
     const Volume ex = load_sequence("advected_32_anim", 16);
-    vqtex_model_params p = temporal_params();
+    ModelParams p = temporal_params();
     p.seam_closing = 0;
     const VolumeAnalysis a = analyse_volume(ex, p, {}, VQTEX_SEARCH_TSVQ, 2, 1, {});
     std::vector<std::vector<uint32_t>> trace;
@@ -265,7 +264,7 @@ TEST(TemporalSynthesis, LoopsSeamlesslyInTime) {
     for (const char* name : {"waves_48_anim", "advected_32_anim", "flicker_32_anim"}) {
         const Volume ex = load_sequence(name);
         for (int closing = 0; closing < 2; ++closing) {
-            vqtex_model_params p = temporal_params();
+            ModelParams p = temporal_params();
             p.train_fraction = 0.25f;
             p.seam_closing = uint32_t(closing);
             const VolumeAnalysis a = analyse_volume(ex, p, {}, VQTEX_SEARCH_TSVQ, 2, 2, {});
@@ -418,8 +417,8 @@ std::vector<uint8_t> encode_corpus(const char* name, int quality = 30) {
     const Volume ex = load_sequence(name);
     vqtex_volume_encode_params p;
     vqtex_volume_encode_params_init(&p);
-    EXPECT_EQ(vqtex_encode_params_preset(&p.codec, quality), VQTEX_OK);
-    p.codec.threads = 2;
+    EXPECT_EQ(vqtex_volume_encode_params_preset(&p, quality), VQTEX_OK);
+    p.threads = 2;
     const vqtex_volume in{uint32_t(ex.width), uint32_t(ex.height), uint32_t(ex.frames), uint32_t(ex.channels),
                           const_cast<uint8_t*>(ex.stack.pixels.data())};
     vqtex_cpp::Buffer b = vqtex_cpp::encode_volume(p, in);
@@ -589,8 +588,8 @@ TEST(TemporalCodec, StillSequenceDecodesStill) {
         const Volume ex = still_sequence(32, noise);
         vqtex_volume_encode_params p;
         vqtex_volume_encode_params_init(&p);
-        ASSERT_EQ(vqtex_encode_params_preset(&p.codec, 30), VQTEX_OK);
-        p.codec.threads = 2;
+        ASSERT_EQ(vqtex_volume_encode_params_preset(&p, 30), VQTEX_OK);
+        p.threads = 2;
         const vqtex_volume in{uint32_t(ex.width), uint32_t(ex.height), uint32_t(ex.frames), uint32_t(ex.channels),
                               const_cast<uint8_t*>(ex.stack.pixels.data())};
         const vqtex_cpp::Buffer file = vqtex_cpp::encode_volume(p, in);
@@ -635,7 +634,7 @@ TEST(TemporalCodec, DefaultsEncodeSmallAndShortSequences) {
         for (auto& v : pixels) v = uint8_t(rng.below(256));
         vqtex_volume_encode_params p;
         vqtex_volume_encode_params_init(&p);
-        p.codec.threads = 2;
+        p.threads = 2;
         const vqtex_volume in{uint32_t(w), uint32_t(h), uint32_t(f), 3, pixels.data()};
         uint8_t* data = nullptr;
         std::size_t bytes = 0;

@@ -158,11 +158,11 @@ TEST(Tsvq, FullCodebookWithFullBacktrackingSynthesisesExactlyLikeExhaustive) {
     for (const char* name : {"checks_p16_64.png", "grey_noise_64.png", "leaves_rgba_64.png"}) {
         const Image ex = vqtex_test::load_corpus(name);
         vqtex_synth_params p = vqtex_test::default_params(48, 40, 21);
-        p.search = VQTEX_SEARCH_EXHAUSTIVE;
+        p.paper.search = VQTEX_SEARCH_EXHAUSTIVE;
         const Image exhaustive = vqtex_test::synthesize(ex, p);
-        p.search = VQTEX_SEARCH_TSVQ;
-        p.model.codeword_fraction = 1.0f;
-        p.backtrack = 1u << 30;  // visit every leaf
+        p.paper.search = VQTEX_SEARCH_TSVQ;
+        p.paper.tsvq.codeword_fraction = 1.0f;
+        p.paper.backtrack = 1u << 30;  // visit every leaf
         const Image tsvq = vqtex_test::synthesize(ex, p);
         EXPECT_EQ(tsvq, exhaustive) << name;
     }
@@ -181,8 +181,7 @@ TEST(Tsvq, TrainingSubsetIsDeterministicAndSized) {
 
 TEST(Tsvq, TrainFractionLimitsTheTrainingSet) {
     const Image ex = vqtex_test::load_corpus("cellular_128.png");
-    vqtex_model_params mp;
-    vqtex_model_params_init(&mp);
+    ModelParams mp;
     mp.train_fraction = 0.1f;
     mp.codeword_fraction = 1.0f;
     const AnalysisResult a = analyse_example(ex, mp, VQTEX_SEARCH_TSVQ, 1, 1, nullptr);
@@ -196,14 +195,14 @@ TEST(Tsvq, NearTieChoiceIsTheSameForTsvqAndExhaustive) {
     // a full codebook searched fully picks exactly what exhaustive search picks.
     const Image ex = vqtex_test::load_corpus("grey_noise_64.png");
     vqtex_synth_params p = vqtex_test::default_params(40, 40, 5);
-    p.tolerance = 64;
-    p.search = VQTEX_SEARCH_EXHAUSTIVE;
+    p.paper.tolerance = 64;
+    p.paper.search = VQTEX_SEARCH_EXHAUSTIVE;
     const Image exhaustive = vqtex_test::synthesize(ex, p);
-    p.search = VQTEX_SEARCH_TSVQ;
-    p.model.codeword_fraction = 1.0f;
-    p.backtrack = 1u << 30;
+    p.paper.search = VQTEX_SEARCH_TSVQ;
+    p.paper.tsvq.codeword_fraction = 1.0f;
+    p.paper.backtrack = 1u << 30;
     EXPECT_EQ(vqtex_test::synthesize(ex, p), exhaustive);
-    p.tolerance = 0;
+    p.paper.tolerance = 0;
     EXPECT_NE(vqtex_test::synthesize(ex, p), exhaustive);  // the tolerance does something
 }
 
@@ -220,10 +219,10 @@ TEST(Tsvq, EntriesKeepRareContinuationsAlive) {
         return colours.size();
     };
     vqtex_synth_params p = vqtex_test::default_params(128, 128, 3);
-    p.model.codeword_fraction = 0.03f;
-    p.model.entries_per_leaf = 1;
+    p.paper.tsvq.codeword_fraction = 0.03f;
+    p.paper.tsvq.entries_per_leaf = 1;
     const std::size_t one = distinct(vqtex_test::synthesize(ex, p));
-    p.model.entries_per_leaf = 16;
+    p.paper.tsvq.entries_per_leaf = 16;
     const Image many = vqtex_test::synthesize(ex, p);
     EXPECT_GT(distinct(many), 2 * one);
     // Entries are real example pixels: every output colour exists in the example.

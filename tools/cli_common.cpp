@@ -25,7 +25,7 @@ void parse_size(const std::string& text, uint32_t& width, uint32_t& height) {
     height = uint32_t(h);
 }
 
-void parse_shapes(const std::string& text, vqtex_model_params& params) {
+void parse_shapes(const std::string& text, vqtex_shape (&shapes)[VQTEX_MAX_LEVELS]) {
     std::stringstream ss(text);
     std::string item;
     int level = 0;
@@ -38,11 +38,11 @@ void parse_shapes(const std::string& text, vqtex_model_params& params) {
             c > 63 || k > 8)
             throw std::invalid_argument("shape '" + item +
                                         "' is not RxC:k with odd R, C up to 63 (e.g. 9x9:2)");
-        params.shapes[level++] = vqtex_shape{uint8_t(r), uint8_t(c), uint8_t(k)};
+        shapes[level++] = vqtex_shape{uint8_t(r), uint8_t(c), uint8_t(k)};
     }
 }
 
-void parse_codewords(const std::string& text, vqtex_model_params& params) {
+void parse_codewords(const std::string& text, vqtex_tsvq_params& params) {
     if (text.find('.') != std::string::npos) {
         char* end = nullptr;
         const double f = std::strtod(text.c_str(), &end);

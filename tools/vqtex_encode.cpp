@@ -29,8 +29,8 @@ FileReport encode_animation(const std::string& input, const std::string& output,
     LoadedSequence seq = load_sequence(input);
     if (!seq.notice.empty() && !quiet) write_stderr("vqtex-encode: note: " + input + ": " + seq.notice + "\n");
     if (bar) {
-        p.codec.progress = ProgressBar::callback;
-        p.codec.progress_user = bar;
+        p.progress = ProgressBar::callback;
+        p.progress_user = bar;
     }
     const vqtex_volume v{seq.width, seq.height, seq.frames, seq.channels, seq.pixels.data()};
     uint8_t* data = nullptr;
@@ -61,8 +61,6 @@ FileReport encode_animation(const std::string& input, const std::string& output,
 struct Settings {
     vqtex_encode_params params;  // without threads and progress
     std::string shapes;
-    int quality = VQTEX_QUALITY_DEFAULT;
-    bool levels_given = false;
     bool atlas_asked = false;  // --atlas given (the default for still textures)
     bool quiet = false;
 };
@@ -78,17 +76,26 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
             throw std::invalid_argument("--target-size is not supported for animations: use --quality");
         if (s.atlas_asked)
             throw std::invalid_argument("--atlas is for still textures (animations store trees)");
-        p.codebook = VQTEX_CODEBOOK_TREES;
+        // The still texture's trees (preset and options), trained as the
+        // animation defaults say.
         vqtex_volume_encode_params vp;
         vqtex_volume_encode_params_init(&vp);
-        const float train_fraction = vp.codec.model.train_fraction;
-        vp.codec = p;
-        vp.codec.model.train_fraction = train_fraction;
-        if (!s.levels_given) vp.codec.model.levels = 0;
+        vp.levels = p.levels;
+        vp.example_tileable = p.example_tileable;
+        vp.seed = p.seed;
+        vp.threads = p.threads;
+        const float train_fraction = vp.tsvq.train_fraction;
+        vp.tsvq = p.trees.tsvq;
+        vp.tsvq.train_fraction = train_fraction;
+        vp.precision = p.trees.precision;
+        vp.pixel_precision = p.trees.pixel_precision;
+        vp.smoothing = p.trees.smoothing;
+        vp.backtrack = p.trees.backtrack;
+        vp.init = p.trees.init;
         if (!s.shapes.empty()) parse_shapes3(s.shapes, vp.shapes);
         return encode_animation(input, output, vp, s.quiet, bar);
     }
-    if (!s.shapes.empty()) parse_shapes(s.shapes, p.model);
+    if (!s.shapes.empty()) parse_shapes(s.shapes, p.trees.shapes);
     LoadedImage example = load_image(input);
     if (!example.notice.empty() && !s.quiet)
         write_stderr("vqtex-encode: note: " + input + ": " + example.notice + "\n");
@@ -111,7 +118,7 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
     const double pixels = double(example.width) * example.height;
     // An atlas found for a target size comes from no preset: no quality to report.
     const bool preset_free = p.target_size && p.codebook == VQTEX_CODEBOOK_ATLAS;
-    const int quality = p.target_size ? int(stats.quality) : s.quality;
+    const int quality = int(stats.quality);
     FileReport r;
     char line[2048];
     r.json = {{"input", input},
@@ -202,26 +209,28 @@ int main(int argc, char** argv) {
     try {
         vqtex_encode_params p;
         vqtex_encode_params_init(&p);
+        p.quality = uint32_t(quality);
         vqtex_encode_params_preset(&p, quality);
+        vqtex_trees_params& t = p.trees;
         if (!codewords.empty()) {
             if (codewords.find('.') != std::string::npos)
                 throw std::invalid_argument("--codewords takes counts for the codec (e.g. 512 or 512,256)");
-            parse_codewords(codewords, p.model);
+            parse_codewords(codewords, t.tsvq);
         }
-        if (entries) p.model.entries_per_leaf = entries;
-        if (precision) p.precision = precision;
-        if (pixel_precision) p.pixel_precision = pixel_precision;
-        if (levels) p.model.levels = levels;
-        if (smoothing) p.smoothing = smoothing;
-        if (no_entry_keys) p.model.no_entry_keys = 1;
-        if (closing_divisor) p.model.closing_divisor = closing_divisor;
+        if (entries) t.tsvq.entries_per_leaf = entries;
+        if (precision) t.precision = precision;
+        if (pixel_precision) t.pixel_precision = pixel_precision;
+        p.levels = levels;
+        if (smoothing) t.smoothing = smoothing;
+        if (no_entry_keys) t.tsvq.no_entry_keys = 1;
+        if (closing_divisor) t.tsvq.closing_divisor = closing_divisor;
         if (closing_window) {
             if (closing_window % 2 == 0) throw std::invalid_argument("--closing-window must be odd");
-            p.model.closing_window = closing_window;
+            t.tsvq.closing_window = closing_window;
         }
-        if (backtrack) p.backtrack = backtrack;
-        if (no_closing) p.model.seam_closing = 0;
-        p.model.example_tileable = tileable ? 1 : 0;
+        if (backtrack) t.backtrack = backtrack;
+        if (no_closing) t.tsvq.seam_closing = 0;
+        p.example_tileable = tileable ? 1 : 0;
         p.seed = seed;
         p.target_size = target_size;
         // Options that only a trees file has make no sense for an atlas.
@@ -235,8 +244,6 @@ int main(int argc, char** argv) {
         Settings s;
         s.params = p;
         s.shapes = shapes;
-        s.quality = quality;
-        s.levels_given = levels != 0;
         s.atlas_asked = atlas;
         s.quiet = quiet;
 

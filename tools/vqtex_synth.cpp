@@ -248,30 +248,32 @@ int main(int argc, char** argv) {
         vqtex_synth_params params;
         vqtex_synth_params_init(&params);
         params.engine = engine == "paper" ? VQTEX_ENGINE_PAPER : VQTEX_ENGINE_COHERENT;
-        if (coherence) params.coherence = coherence;
-        if (passes) params.passes = passes;
-        if (jitter_opt->count()) params.jitter = jitter;
-        if (blend_opt->count()) params.blend = blend;
-        if (relocate_opt->count()) params.relocate = relocate;
-        if (edge_guard_opt->count()) params.edge_guard = edge_guard;
+        vqtex_coherent_params& c = params.coherent;
+        if (coherence) c.coherence = coherence;
+        if (passes) c.passes = passes;
+        if (jitter_opt->count()) c.jitter = jitter;
+        if (blend_opt->count()) c.blend = blend;
+        if (relocate_opt->count()) c.relocate = relocate;
+        if (edge_guard_opt->count()) c.edge_guard = edge_guard;
         if (paper) {
             init = "noise";
             no_seam_closing = true;
         }
         parse_size(size, params.width, params.height);
         params.seed = seed;
-        params.model.levels = levels;
-        if (!shapes.empty()) parse_shapes(shapes, params.model);
-        if (!codewords.empty()) parse_codewords(codewords, params.model);
-        if (backtrack) params.backtrack = backtrack;
-        params.model.train_fraction = float(train_fraction);
-        params.model.entries_per_leaf = entries;
-        params.model.leaf = leaf == "centroid" ? VQTEX_LEAF_CENTROID : VQTEX_LEAF_MEDOID;
-        params.model.example_tileable = tileable ? 1 : 0;
-        params.search = exhaustive ? VQTEX_SEARCH_EXHAUSTIVE : VQTEX_SEARCH_TSVQ;
-        params.tolerance = tolerance;
-        params.model.seam_closing = no_seam_closing ? 0 : 1;
-        params.init = init == "noise" ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
+        params.levels = levels;
+        params.example_tileable = tileable ? 1 : 0;
+        vqtex_paper_params& pp = params.paper;
+        if (!shapes.empty()) parse_shapes(shapes, pp.shapes);
+        if (!codewords.empty()) parse_codewords(codewords, pp.tsvq);
+        if (backtrack) pp.backtrack = backtrack;
+        pp.tsvq.train_fraction = float(train_fraction);
+        pp.tsvq.entries_per_leaf = entries;
+        pp.tsvq.leaf = leaf == "centroid" ? VQTEX_LEAF_CENTROID : VQTEX_LEAF_MEDOID;
+        pp.search = exhaustive ? VQTEX_SEARCH_EXHAUSTIVE : VQTEX_SEARCH_TSVQ;
+        pp.tolerance = tolerance;
+        pp.tsvq.seam_closing = no_seam_closing ? 0 : 1;
+        pp.init = init == "noise" ? VQTEX_INIT_NOISE : VQTEX_INIT_PARENT;
 
         if (!*out_dir_opt) {
             require_single_pair(files, "OUTPUT image", "synthesise", "examples");

@@ -20,7 +20,7 @@ constexpr std::size_t kMinTraining = 2048;
 
 // The matcher of a level's tree; kind: 0 the causal tree, 1 loop closing,
 // 2 frame-seam closing.
-BuiltMatcher build_volume_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, const vqtex_model_params& params,
+BuiltMatcher build_volume_matcher(ExampleSet& set, const NeighborhoodLayout3& layout, const ModelParams& params,
                                   vqtex_search search, uint32_t backtrack, int threads, int level, int kind) {
     const int predecessor = layout.predecessor_offset();
     if (search == VQTEX_SEARCH_EXHAUSTIVE && predecessor >= 0) {
@@ -70,7 +70,7 @@ int odd_at_most(int limit, int n) { return std::max(1, std::min(limit, n % 2 ? n
 // window no larger than its volume (fewer frames in time, then a smaller
 // square), then fewer levels. A sequence of 64x64x16 frames read its
 // coarsest level (16x16x4) with a 5-frame window and could not be encoded.
-void fit_default_plan(const Volume& example, const vqtex_model_params& params, ModelPlan& plan,
+void fit_default_plan(const Volume& example, const ModelParams& params, ModelPlan& plan,
                       std::vector<Volume>& pyramid) {
     for (;;) {
         bool fits = true;
@@ -87,7 +87,7 @@ void fit_default_plan(const Volume& example, const vqtex_model_params& params, M
                 fits = false;
         }
         if (fits || plan.levels == 1) return;
-        vqtex_model_params fewer = params;
+        ModelParams fewer = params;
         fewer.levels = uint32_t(plan.levels - 1);
         plan = plan_model(fewer, {}, example.width, example.height, example.frames);
         pyramid = build_volume_pyramid(example, plan.levels, EdgeMode::Mirror);
@@ -96,7 +96,7 @@ void fit_default_plan(const Volume& example, const vqtex_model_params& params, M
 
 }  // namespace
 
-VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& params,
+VolumeAnalysis analyse_volume(const Volume& example, const ModelParams& params,
                               const std::vector<Shape>& shapes, vqtex_search search, uint32_t backtrack,
                               int threads, const ProgressFn& progress) {
     if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence is empty");

@@ -25,7 +25,7 @@ struct VolumeAnalysis {
 
 // params.seam_closing builds the loop-closing and frame-seam matchers; params.shapes is
 // ignored (3D shapes come in `shapes`, [0] = finest, may be empty).
-VolumeAnalysis analyse_volume(const Volume& example, const vqtex_model_params& params,
+VolumeAnalysis analyse_volume(const Volume& example, const ModelParams& params,
                               const std::vector<Shape>& shapes, vqtex_search search, uint32_t backtrack,
                               int threads, const ProgressFn& progress);
 

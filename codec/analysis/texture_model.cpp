@@ -24,7 +24,7 @@ int automatic_volume_levels(int width, int height, int frames) {
     return levels;
 }
 
-ModelPlan plan_model(const vqtex_model_params& params, const std::vector<Shape>& shapes, int width, int height,
+ModelPlan plan_model(const ModelParams& params, const std::vector<Shape>& shapes, int width, int height,
                      int frames) {
     const bool still = frames == 0;
     ModelPlan plan;
@@ -62,13 +62,13 @@ ModelPlan plan_model(const vqtex_model_params& params, const std::vector<Shape>&
     return plan;
 }
 
-std::vector<Shape> still_shapes_of(const vqtex_model_params& params) {
+std::vector<Shape> still_shapes_of(const ModelParams& params) {
     std::vector<Shape> shapes;
     for (const vqtex_shape& s : params.shapes) shapes.push_back(Shape{s.rows, s.cols, s.levels});
     return shapes;
 }
 
-uint32_t codewords_for_level(const vqtex_model_params& params, int level,
+uint32_t codewords_for_level(const ModelParams& params, int level,
                              std::size_t training_vectors) {
     uint64_t k = params.codewords[level];
     if (k == 0) {
@@ -80,7 +80,7 @@ uint32_t codewords_for_level(const vqtex_model_params& params, int level,
     return uint32_t(std::clamp<uint64_t>(k, 1, training_vectors));
 }
 
-TrainParams train_params_for(const vqtex_model_params& params, int level, std::size_t training_vectors,
+TrainParams train_params_for(const ModelParams& params, int level, std::size_t training_vectors,
                              bool closing, int threads) {
     TrainParams tp;
     const uint32_t divisor = closing ? std::max<uint32_t>(1, params.closing_divisor) : 1;
@@ -98,7 +98,7 @@ TrainParams train_params_for(const vqtex_model_params& params, int level, std::s
     return tp;
 }
 
-BuiltMatcher build_matcher(ExampleSet& set, const vqtex_model_params& params, vqtex_search search,
+BuiltMatcher build_matcher(ExampleSet& set, const ModelParams& params, vqtex_search search,
                            uint32_t backtrack, int threads, int level, bool closing, const MatcherRecipe& recipe) {
     BuiltMatcher built;
     if (search == VQTEX_SEARCH_EXHAUSTIVE) {
@@ -122,7 +122,7 @@ BuiltMatcher build_matcher(ExampleSet& set, const vqtex_model_params& params, vq
     return built;
 }
 
-AnalysisResult analyse_example(const Image& example, const vqtex_model_params& params,
+AnalysisResult analyse_example(const Image& example, const ModelParams& params,
                                vqtex_search search, uint32_t backtrack, int threads,
                                const ProgressFn& progress) {
     if (example.empty()) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example image is empty (0x0)");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/synthesis.hpp"
+#include "analysis/model_params.hpp"
 #include "tsvq/tsvq_train.hpp"
 #include "tsvq/tsvq_tree.hpp"
 #include "vqtex/vqtex.h"
@@ -30,14 +31,14 @@ int automatic_volume_levels(int width, int height, int frames);
 // all-zero one means the default. The two kinds differ only in their
 // defaults (automatic depth, default shapes) and in the largest window their
 // files hold; throws a clear error when a shape is out of range.
-ModelPlan plan_model(const vqtex_model_params& params, const std::vector<Shape>& shapes, int width, int height,
+ModelPlan plan_model(const ModelParams& params, const std::vector<Shape>& shapes, int width, int height,
                      int frames);
 
 // The still shapes params.shapes asks for, [0] = finest.
-std::vector<Shape> still_shapes_of(const vqtex_model_params& params);
+std::vector<Shape> still_shapes_of(const ModelParams& params);
 
 // Leaves wanted at `level` for `training_vectors` vectors.
-uint32_t codewords_for_level(const vqtex_model_params& params, int level,
+uint32_t codewords_for_level(const ModelParams& params, int level,
                              std::size_t training_vectors);
 
 // Exhaustive candidates or a trained codebook for one level's example set.
@@ -50,7 +51,7 @@ struct BuiltMatcher {
 // The training settings of a level's tree from the model parameters:
 // leaves (closing trees get fewer), stopping threshold, leaf representative
 // and entries per leaf. Callers add the entry keys their shapes define.
-TrainParams train_params_for(const vqtex_model_params& params, int level, std::size_t training_vectors,
+TrainParams train_params_for(const ModelParams& params, int level, std::size_t training_vectors,
                              bool closing, int threads);
 
 // What differs between the trees of still and animated levels.
@@ -66,7 +67,7 @@ struct MatcherRecipe {
 // The matcher of one level and tree from its example set: the set itself
 // for the exhaustive search (moved out of `set`), or a TSVQ codebook trained
 // on a seeded subset of it.
-BuiltMatcher build_matcher(ExampleSet& set, const vqtex_model_params& params, vqtex_search search,
+BuiltMatcher build_matcher(ExampleSet& set, const ModelParams& params, vqtex_search search,
                            uint32_t backtrack, int threads, int level, bool closing, const MatcherRecipe& recipe);
 
 struct AnalysisResult {
@@ -77,7 +78,7 @@ struct AnalysisResult {
     std::size_t model_bytes = 0;
 };
 
-AnalysisResult analyse_example(const Image& example, const vqtex_model_params& params,
+AnalysisResult analyse_example(const Image& example, const ModelParams& params,
                                vqtex_search search, uint32_t backtrack, int threads,
                                const ProgressFn& progress);
 

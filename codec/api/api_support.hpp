@@ -63,8 +63,10 @@ inline Image image_from_c(const vqtex_image* in, const char* what) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has " +
                                                std::to_string(in->channels) +
                                                " channels; 1 to 4 are supported");
-    if (in->width > 65536 || in->height > 65536 || uint64_t(in->width) * in->height > (uint64_t(1) << 30))
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, std::string(what) + " is larger than 65536 on a side or 2^30 pixels");
+    if (in->width > VQTEX_MAX_SIDE || in->height > VQTEX_MAX_SIDE ||
+        uint64_t(in->width) * in->height > (uint64_t(1) << 30))
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, std::string(what) + " is larger than " + std::to_string(VQTEX_MAX_SIDE) +
+                                             " on a side or 2^30 pixels");
     if (!in->pixels) fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has no pixels");
     Image img(int(in->width), int(in->height), int(in->channels));
     std::memcpy(img.pixels.data(), in->pixels, img.byte_count());
@@ -91,9 +93,10 @@ inline Volume volume_from_c(const vqtex_volume* in) {
     if (in->channels < 1 || in->channels > 4)
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "example sequence has " + std::to_string(in->channels) + " channels; 1 to 4 are supported");
-    if (in->width > 65536 || in->height > 65536 || in->frames > 65536 ||
+    if (in->width > VQTEX_MAX_SIDE || in->height > VQTEX_MAX_SIDE || in->frames > VQTEX_MAX_SIDE ||
         uint64_t(in->width) * in->height * in->frames > (uint64_t(1) << 28))
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example sequence is larger than 65536 on a side or in frames, or 2^28 pixels in all");
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example sequence is larger than " + std::to_string(VQTEX_MAX_SIDE) +
+                                             " on a side or in frames, or 2^28 pixels in all");
     if (!in->pixels) fail(VQTEX_ERROR_INVALID_ARGUMENT, "example sequence has no pixels");
     Volume v(int(in->width), int(in->height), int(in->frames), int(in->channels));
     std::memcpy(v.stack.pixels.data(), in->pixels, v.byte_count());

@@ -35,31 +35,63 @@ void check_output_memory(uint64_t needed, std::size_t limit, const std::string& 
                                              " MiB: raise memory_limit (--memory-limit)");
 }
 
-// The requested output size, or the exemplar's when none is given.
-std::pair<uint32_t, uint32_t> output_size(const vqtex_decode_params* p, uint32_t exemplar_width,
-                                          uint32_t exemplar_height) {
-    const uint32_t w = p->width ? p->width : exemplar_width;
-    const uint32_t h = p->height ? p->height : exemplar_height;
-    if (w > kMaxOutputSide || h > kMaxOutputSide)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) +
+struct OutputSize {
+    uint32_t width = 0, height = 0;
+    uint32_t frames = 0;  // 0 for a still texture
+    // "a 64x64 output", "a 64x64 animation of 32 frames"
+    std::string name() const {
+        const std::string size = std::to_string(width) + "x" + std::to_string(height);
+        return frames ? "a " + size + " animation of " + std::to_string(frames) + " frames" : "a " + size + " output";
+    }
+};
+
+// The requested output size, or the exemplar's where none is given. For an
+// animation (exemplar_frames > 0) also the frame count: `frames`, or the
+// example's when 0.
+OutputSize output_size(const vqtex_decode_params* p, const FileHeader& header, uint32_t frames = 0,
+                       uint32_t exemplar_frames = 0) {
+    OutputSize o;
+    o.width = p->width ? p->width : header.exemplar_width;
+    o.height = p->height ? p->height : header.exemplar_height;
+    o.frames = frames ? frames : exemplar_frames;
+    if (o.width > kMaxOutputSide || o.height > kMaxOutputSide || o.frames > kMaxOutputFrames)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                                               (exemplar_frames ? "x" + std::to_string(o.frames) : std::string()) +
                                                " is out of range: give an explicit size");
-    return {w, h};
+    return o;
 }
 
-// A format v3, v4 or v5 file (docs/FORMAT.md section 8): the atlas decoded, then the
+uint64_t seed_of(const vqtex_decode_params* p, const FileHeader& header) {
+    return p->seed == VQTEX_SEED_FROM_FILE ? header.seed : p->seed;
+}
+
+// The options a trees file's synthesis takes the same way for still and
+// animated textures: size, seed, threads, how each level starts, progress.
+template <typename Options>
+Options tree_options(const vqtex_decode_params* p, const FileHeader& header, LevelInit init, const OutputSize& size) {
+    Options opt;
+    opt.width = int(size.width);
+    opt.height = int(size.height);
+    opt.seed = seed_of(p, header);
+    opt.threads = resolve_threads(p->threads);
+    opt.init = init;
+    opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
+    return opt;
+}
+
+// An atlas file (docs/FORMAT.md section 8): the atlas decoded, then the
 // coherent engine synthesises from it exactly as vqtex_synthesize would
 // from that image. Returns the texture alone: the engine has no pyramid of
 // pixels, so a mip chain is downsampled from it.
 std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
     const std::size_t limit = memory_limit_of(p);
     const AtlasFile f = decode_atlas_file(data, size, limit);
-    const std::pair<uint32_t, uint32_t> size_out = output_size(p, f.header.exemplar_width, f.header.exemplar_height);
-    const uint32_t w = size_out.first, h = size_out.second;
+    const OutputSize out_size = output_size(p, f.header);
+    const uint32_t w = out_size.width, h = out_size.height;
     check_output_memory(f.input_bytes + atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels,
                                                             f.header.levels, f.params.coherence, w, h),
-                        limit, "a " + std::to_string(w) + "x" + std::to_string(h) + " output");
-    CoherentOptions opt = coherent_options(f.params, int(w), int(h),
-                                           p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed);
+                        limit, out_size.name());
+    CoherentOptions opt = coherent_options(f.params, int(w), int(h), seed_of(p, f.header));
     opt.threads = resolve_threads(p->threads);
     opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
     std::vector<Image> out;
@@ -74,20 +106,13 @@ std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* d
     if (is_atlas_file(data, size)) return decode_atlas_texture(p, data, size);
     const std::size_t limit = memory_limit_of(p);
     const DecodedFile f = decode_file(data, size, limit);
-    const std::pair<uint32_t, uint32_t> size_out = output_size(p, f.header.exemplar_width, f.header.exemplar_height);
-    const uint32_t w = size_out.first, h = size_out.second;
+    const OutputSize out_size = output_size(p, f.header);
     // The output pyramid is at most 4/3 of the texture; check it against
     // what the trees left of the limit before allocating it.
-    check_output_memory(uint64_t(w) * h * f.header.channels * 4 / 3 + f.model_bytes, limit,
-                        "a " + std::to_string(w) + "x" + std::to_string(h) + " output");
-    SynthesisOptions opt;
-    opt.width = int(w);
-    opt.height = int(h);
-    opt.seed = p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed;
-    opt.threads = resolve_threads(p->threads);
-    opt.init = f.init;
-    opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
-    return synthesize_pyramid(texture_model_of(f.model, f.header.backtrack), opt);
+    check_output_memory(uint64_t(out_size.width) * out_size.height * f.header.channels * 4 / 3 + f.model_bytes,
+                        limit, out_size.name());
+    return synthesize_pyramid(texture_model_of(f.model, f.header.backtrack),
+                              tree_options<SynthesisOptions>(p, f.header, f.init, out_size));
 }
 
 // vqtex_inspect for an animated texture.
@@ -209,25 +234,14 @@ vqtex_status vqtex_decode_volume(const vqtex_decode_params* p, uint32_t frames, 
                                                    std::to_string(kMaxOutputFrames) + " frames)");
         const std::size_t limit = memory_limit_of(p);
         const DecodedVolumeFile f = decode_volume_file(data, size, limit);
-        const uint32_t w = p->width ? p->width : f.header.exemplar_width;
-        const uint32_t h = p->height ? p->height : f.header.exemplar_height;
-        const uint32_t n = frames ? frames : f.model.exemplar_frames;
-        if (w > kMaxOutputSide || h > kMaxOutputSide || n > kMaxOutputFrames)
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "output size " + std::to_string(w) + "x" + std::to_string(h) + "x" +
-                                                   std::to_string(n) + " is out of range: give an explicit size");
+        const OutputSize out_size = output_size(p, f.header, frames, f.model.exemplar_frames);
         // The 3D output pyramid is at most 8/7 of the animation, plus the
         // copy handed to the caller, beside what the trees took.
-        check_output_memory(uint64_t(w) * h * n * f.header.channels * 15 / 7 + f.model_bytes, limit,
-                            "a " + std::to_string(w) + "x" + std::to_string(h) + " animation of " +
-                                std::to_string(n) + " frames");
-        VolumeSynthesisOptions opt;
-        opt.width = int(w);
-        opt.height = int(h);
-        opt.frames = int(n);
-        opt.seed = p->seed == VQTEX_SEED_FROM_FILE ? f.header.seed : p->seed;
-        opt.threads = resolve_threads(p->threads);
-        opt.init = f.init;
-        opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
+        check_output_memory(uint64_t(out_size.width) * out_size.height * out_size.frames * f.header.channels * 15 / 7 +
+                                f.model_bytes,
+                            limit, out_size.name());
+        VolumeSynthesisOptions opt = tree_options<VolumeSynthesisOptions>(p, f.header, f.init, out_size);
+        opt.frames = int(out_size.frames);
         std::vector<Volume> pyramid = synthesize_volume_pyramid(volume_model_of(f.model, f.header.backtrack), opt);
         volume_to_c(pyramid[0], out);
     });

@@ -1,7 +1,7 @@
 // synth_api.cpp - the exported synthesis calls (paper sections 2-4, and
 // 5.2 for animations): an example image or frame sequence straight to a
-// texture or animation of any size, no file in between, and the model
-// parameters it shares with the encoder. Validation and status
+// texture or animation of any size, no file in between, and the TSVQ
+// codebook parameters it shares with the encoder. Validation and status
 // mapping as everywhere at the C boundary (api_support.hpp).
 #include <chrono>
 #include <cstdio>
@@ -31,21 +31,22 @@ namespace {
 
 void synthesize_coherent_api(const vqtex_synth_params& params, const Image& example, int threads,
                              vqtex_image* out, vqtex_synth_stats* stats) {
-    const int levels = params.model.levels ? int(params.model.levels) : coherent_levels(example.width, example.height);
+    const vqtex_coherent_params& c = params.coherent;
+    const int levels = params.levels ? int(params.levels) : coherent_levels(example.width, example.height);
     // The engine's parameters as an atlas file would store them, so that
     // both become options in one place (coherent_options.hpp).
     AtlasSynthesisParams engine;
-    engine.passes = int(params.passes);
-    engine.coarse_passes = std::max(4, int(params.passes));
-    engine.jitter = int(params.jitter);
-    engine.blend = int(params.blend);
-    engine.relocate = int(params.relocate);
-    engine.edge_guard = int(params.edge_guard);
+    engine.passes = int(c.passes);
+    engine.coarse_passes = std::max(4, int(c.passes));
+    engine.jitter = int(c.jitter);
+    engine.blend = int(c.blend);
+    engine.relocate = int(c.relocate);
+    engine.edge_guard = int(c.edge_guard);
     CoherentOptions opt = coherent_options(engine, int(params.width), int(params.height), params.seed);
     opt.threads = threads;
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
-    CoherentResult r = synthesize_coherent(example, levels, params.model.example_tileable != 0, int(params.coherence),
-                                           opt, stage_progress(params.progress, params.progress_user, VQTEX_STAGE_ANALYSE));
+    CoherentResult r = synthesize_coherent(example, levels, params.example_tileable != 0, int(c.coherence), opt,
+                                           stage_progress(params.progress, params.progress_user, VQTEX_STAGE_ANALYSE));
     if (stats) {
         *stats = vqtex_synth_stats{};
         stats->levels = uint32_t(levels);
@@ -69,25 +70,24 @@ constexpr uint64_t kMaxVolumeOutputBytes = uint64_t(1) << 30;
 void synthesize_volume_coherent(const vqtex_synth_params& params, const Volume& example, uint32_t frames, int threads,
                                 vqtex_volume* out, vqtex_synth_stats* stats) {
     using Clock = std::chrono::steady_clock;
-    if (example.width > 65535 || example.height > 65535 || example.frames > 65535 ||
-        uint64_t(example.voxel_count()) > kMaxVolumeExampleVoxels)
+    if (uint64_t(example.voxel_count()) > kMaxVolumeExampleVoxels)
         fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example sequence " + std::to_string(example.width) + "x" +
                                              std::to_string(example.height) + "x" + std::to_string(example.frames) +
-                                             " is larger than the coherent engine takes (2^22 voxels, 65535 a side)");
+                                             " is larger than the coherent engine takes (2^22 voxels)");
     const uint32_t n = frames ? frames : uint32_t(example.frames);
     const uint64_t bytes_out = uint64_t(params.width) * params.height * n * uint64_t(example.channels);
     if (bytes_out > kMaxVolumeOutputBytes)
         fail(VQTEX_ERROR_LIMIT_EXCEEDED, "a " + std::to_string(params.width) + "x" + std::to_string(params.height) +
                                              " animation of " + std::to_string(n) + " frames needs " +
                                              std::to_string(bytes_out >> 20) + " MiB, more than 1024");
-    const int levels = params.model.levels ? int(params.model.levels) : coherent_levels(example.width, example.height);
+    const int levels = params.levels ? int(params.levels) : coherent_levels(example.width, example.height);
     const auto t0 = Clock::now();
     const ProgressFn analyse = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_ANALYSE);
     if (analyse && !analyse(0, 1)) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     std::vector<Image> example_frames;
     for (int t = 0; t < example.frames; ++t) example_frames.push_back(example.frame(t));
     const std::vector<AppearanceSpace> space =
-        build_appearance_frames(example_frames, levels, params.model.example_tileable != 0, threads);
+        build_appearance_frames(example_frames, levels, params.example_tileable != 0, threads);
     if (analyse && !analyse(1, 1)) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     const auto t1 = Clock::now();
     VolumeCoherentOptions opt;
@@ -96,8 +96,8 @@ void synthesize_volume_coherent(const vqtex_synth_params& params, const Volume& 
     opt.frames = int(n);
     opt.seed = params.seed;
     opt.threads = threads;
-    opt.passes = int(params.passes);
-    opt.coarse_passes = std::max(4, int(params.passes));
+    opt.passes = int(params.coherent.passes);
+    opt.coarse_passes = std::max(4, int(params.coherent.passes));
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
     const Volume result = synthesize_volume_coherent(space, example_frames, opt);
     const auto t2 = Clock::now();
@@ -122,56 +122,50 @@ void synthesize_volume_coherent(const vqtex_synth_params& params, const Volume& 
 
 extern "C" {
 
-void vqtex_model_params_init(vqtex_model_params* p) {
+void vqtex_tsvq_params_init(vqtex_tsvq_params* p) {
     if (!p) return;
-    *p = vqtex_model_params{};
-    // Every example neighbourhood becomes a leaf: smaller codebooks lose
-    // rare continuations and the texture drifts into its commonest patterns
-    // (measured in bench/; the paper's "under 10% without visible loss" does
-    // not hold for our corpus).
-    p->codeword_fraction = 1.0f;
-    p->seam_closing = 1;
-    p->train_fraction = 1.0f;
-    p->leaf = VQTEX_LEAF_MEDOID;
+    *p = tsvq_params_of(ModelParams{});  // the defaults, and why: analysis/model_params.hpp
 }
 
 void vqtex_synth_params_init(vqtex_synth_params* p) {
     if (!p) return;
     *p = vqtex_synth_params{};
     p->struct_size = sizeof(vqtex_synth_params);
-    vqtex_model_params_init(&p->model);
     p->engine = VQTEX_ENGINE_COHERENT;
+    p->width = 256;
+    p->height = 256;
+    p->seed = 1;
+    vqtex_coherent_params& c = p->coherent;
     // Measured over the corpus (docs/SYNTHESIS.md): with the coherence bias,
     // k-coherence alternatives (coherence > 1) never beat a continuation and
     // cost seconds of analysis; jitter cut coherent copies into fragments.
     // Variety comes from the coarsest level's seeded positions.
-    p->coherence = 1;
-    p->passes = 2;
-    p->jitter = 0;
+    c.coherence = 1;
+    c.passes = 2;
+    c.jitter = 0;
     // Seams blended over 2 pixels either side: on the corpus's photographs
     // every score improves, for the decoder's atlases and for exemplars
     // alike; radius 3 scores within 0.05 of it for twice the taps
-    // (docs/SYNTHESIS.md). The same default as format version 5's.
-    p->blend = kDefaultBlendRadius;
+    // (docs/SYNTHESIS.md). The atlas files' default too.
+    c.blend = kDefaultBlendRadius;
     // Copies moved whole to where they fit their neighbours, 64 positions
     // tried per copy: completeness -1.0%, SWD -0.2%, coherence -4% on the
-    // corpus's photographs for 6% of a 512x512 synthesis (docs/SYNTHESIS.md
-    // "Session 11"). The same default as format version 6's.
-    p->relocate = kDefaultRelocationPositions;
+    // corpus's photographs for 6% of a 512x512 synthesis (docs/SYNTHESIS.md,
+    // copy relocation). The atlas files' default too.
+    c.relocate = kDefaultRelocationPositions;
     // A copy cut off by the example's edge ends in a seam instead of a
     // stutter of its last columns: coherence -13%, completeness and SWD
-    // the same on the corpus's photographs (docs/SYNTHESIS.md "Session
-    // 12"). The same default as format version 7's.
-    p->edge_guard = kDefaultEdgeGuard;
-    p->search = VQTEX_SEARCH_TSVQ;
+    // the same on the corpus's photographs (docs/SYNTHESIS.md, edge guard).
+    // The atlas files' default too.
+    c.edge_guard = kDefaultEdgeGuard;
+    vqtex_paper_params& paper = p->paper;
+    vqtex_tsvq_params_init(&paper.tsvq);
+    paper.search = VQTEX_SEARCH_TSVQ;
     // Two leaves. One (a single descent) is faster and on 10 photographed
     // corpus textures scores as well (sliced Wasserstein 8.8 against 9.2),
     // but breaks exactly periodic textures: the checkerboard of
     // tests/test_synthesis.cpp loses its period with one leaf, keeps it with two.
-    p->backtrack = 2;
-    p->width = 256;
-    p->height = 256;
-    p->seed = 1;
+    paper.backtrack = 2;
 }
 
 vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_image* example,
@@ -190,15 +184,17 @@ vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const vqtex_imag
             stage_progress(params->progress, params->progress_user, VQTEX_STAGE_ANALYSE);
         const ProgressFn synth_progress =
             stage_progress(params->progress, params->progress_user, VQTEX_STAGE_SYNTHESISE);
-        AnalysisResult analysis = analyse_example(ex, params->model, params->search,
-                                                  params->backtrack, threads, analyse_progress);
+        const vqtex_paper_params& paper = params->paper;
+        AnalysisResult analysis =
+            analyse_example(ex, model_params_of(params->levels, params->example_tileable, paper.shapes, paper.tsvq),
+                            paper.search, paper.backtrack, threads, analyse_progress);
         const auto t1 = Clock::now();
         SynthesisOptions opt;
         opt.width = int(params->width);
         opt.height = int(params->height);
         opt.seed = params->seed;
-        opt.tolerance = params->tolerance;
-        opt.init = params->init == VQTEX_INIT_NOISE ? LevelInit::Noise : LevelInit::Parent;
+        opt.tolerance = paper.tolerance;
+        opt.init = paper.init == VQTEX_INIT_NOISE ? LevelInit::Noise : LevelInit::Parent;
         opt.threads = threads;
         opt.progress = synth_progress;
         std::vector<Image> pyramid = synthesize_pyramid(analysis.model, opt);

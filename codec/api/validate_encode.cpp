@@ -1,13 +1,10 @@
-// validate_encode.cpp - the checks of validate_encode.hpp, one function per
-// params struct of the encoder library's calls.
-#include "api/validate_encode.hpp"
-
-#include <cstring>
-#include <initializer_list>
+// validate_encode.cpp - the checks of validate.hpp for the calls only the
+// full library has: synthesis, encoding and filling params.
 #include <string>
 
 #include "api/api_support.hpp"
 #include "api/validate.hpp"
+#include "api/validate_encode.hpp"
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/copy_relocation.hpp"
@@ -17,19 +14,6 @@
 
 namespace vqtex {
 namespace {
-
-// Whether an enum field holds one of `values`. A C caller may store any int
-// in it, and C++ may not load an enum outside its range (UBSan reports it),
-// so the field is read as the int it is.
-template <typename Enum>
-bool is_one_of(const Enum& field, std::initializer_list<Enum> values) {
-    int raw;
-    static_assert(sizeof raw == sizeof field);
-    std::memcpy(&raw, &field, sizeof raw);
-    for (Enum v : values)
-        if (raw == int(v)) return true;
-    return false;
-}
 
 void check_init(const vqtex_init& init) {
     if (!is_one_of(init, {VQTEX_INIT_PARENT, VQTEX_INIT_NOISE})) fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown init mode");
@@ -52,14 +36,13 @@ void check_tolerance(uint32_t tolerance) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "tolerance must be 0 to 4096 (in 1/256 of the best distance)");
 }
 
-constexpr uint32_t kNoLimit = ~uint32_t(0);
-
-}  // namespace
-
-void validate(const vqtex_model_params& p) {
-    if (p.levels > uint32_t(kMaxLevels))
+void check_levels(uint32_t levels) {
+    if (levels > uint32_t(kMaxLevels))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "levels must be 1 to " + std::to_string(kMaxLevels) + " (got " +
-                                               std::to_string(p.levels) + ")");
+                                               std::to_string(levels) + ")");
+}
+
+void check_tsvq(const vqtex_tsvq_params& p) {
     // The file stores closing windows of 3 to 63, odd; a 1x1 one reads no pixel.
     if (p.closing_window && (p.closing_window % 2 == 0 || p.closing_window < 3 || p.closing_window > 63))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
@@ -70,34 +53,52 @@ void validate(const vqtex_model_params& p) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown leaf representative");
 }
 
+// What a trees file stores beside its codebooks: the same for still and
+// animated textures.
+void check_tree_coding(uint32_t precision, uint32_t pixel_precision, uint32_t smoothing, uint32_t backtrack,
+                       const vqtex_init& init) {
+    if (precision < 1 || precision > 8 || pixel_precision < 1 || pixel_precision > 8)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision and pixel precision must be 1 to 8 bits");
+    if (smoothing < 1 || smoothing > 8) fail(VQTEX_ERROR_INVALID_ARGUMENT, "smoothing must be 1 to 8");
+    check_backtrack(backtrack, 255, " for an encoded file");
+    check_init(init);
+}
+
+constexpr uint32_t kNoLimit = ~uint32_t(0);
+
+}  // namespace
+
 void validate(const vqtex_synth_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_synth_params))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_synth_params not initialised with vqtex_synth_params_init()");
+    if (!p) fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_synth_params not initialised with vqtex_synth_params_init()");
+    check_struct_size(p->struct_size, sizeof(vqtex_synth_params), "vqtex_synth_params");
     if (!is_one_of(p->engine, {VQTEX_ENGINE_COHERENT, VQTEX_ENGINE_PAPER}))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown synthesis engine");
-    if (p->coherence < 1 || p->coherence > 16)
+    const vqtex_coherent_params& c = p->coherent;
+    if (c.coherence < 1 || c.coherence > 16)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "coherence must be 1 to 16 candidates per neighbour");
-    if (p->passes < 1 || p->passes > 8)
+    if (c.passes < 1 || c.passes > 8)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "passes must be 1 to 8 correction passes per level");
-    if (p->jitter > 1024) fail(VQTEX_ERROR_INVALID_ARGUMENT, "jitter must be 0 to 1024 (1/256 of a level's spacing)");
-    if (p->blend > uint32_t(kMaxBlendRadius))
+    if (c.jitter > 1024) fail(VQTEX_ERROR_INVALID_ARGUMENT, "jitter must be 0 to 1024 (1/256 of a level's spacing)");
+    if (c.blend > uint32_t(kMaxBlendRadius))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "blend must be 0 to " + std::to_string(kMaxBlendRadius) +
                                                " (the radius of the blend at seams, in pixels; got " +
-                                               std::to_string(p->blend) + ")");
-    if (p->relocate > uint32_t(kMaxRelocationPositions))
+                                               std::to_string(c.blend) + ")");
+    if (c.relocate > uint32_t(kMaxRelocationPositions))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "relocate must be 0 to " + std::to_string(kMaxRelocationPositions) +
                                                " (positions tried per copy by the copy relocation; got " +
-                                               std::to_string(p->relocate) + ")");
-    if (p->edge_guard > uint32_t(kMaxEdgeGuard))
+                                               std::to_string(c.relocate) + ")");
+    if (c.edge_guard > uint32_t(kMaxEdgeGuard))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "edge_guard must be 0 to " + std::to_string(kMaxEdgeGuard) +
                                                " (example pixels kept free beside a copy cut off by the edge; got " +
-                                               std::to_string(p->edge_guard) + ")");
-    validate(p->model);
-    check_search(p->search);
-    check_backtrack(p->backtrack, kNoLimit, "");
+                                               std::to_string(c.edge_guard) + ")");
+    check_levels(p->levels);
+    const vqtex_paper_params& paper = p->paper;
+    check_tsvq(paper.tsvq);
+    check_search(paper.search);
+    check_backtrack(paper.backtrack, kNoLimit, "");
     check_output_side(p->width, p->height, 1);
-    check_init(p->init);
-    check_tolerance(p->tolerance);
+    check_init(paper.init);
+    check_tolerance(paper.tolerance);
 }
 
 void validate_volume_synthesis(const vqtex_synth_params* p, uint32_t frames) {
@@ -106,43 +107,42 @@ void validate_volume_synthesis(const vqtex_synth_params* p, uint32_t frames) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "animations synthesise with the coherent engine only (the paper's engine: vqtex_encode_volume, then "
              "vqtex_decode_volume)");
-    if (p->coherence != 1)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "coherence must be 1 for an animation (got " + std::to_string(p->coherence) + ")");
-    if (p->jitter != 0)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "jitter must be 0 for an animation (got " + std::to_string(p->jitter) + ")");
+    if (p->coherent.coherence != 1)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT,
+             "coherence must be 1 for an animation (got " + std::to_string(p->coherent.coherence) + ")");
+    if (p->coherent.jitter != 0)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT,
+             "jitter must be 0 for an animation (got " + std::to_string(p->coherent.jitter) + ")");
     if (frames > kMaxOutputFrames)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "frames must be 0 (the example's count) to " +
                                                std::to_string(kMaxOutputFrames) + " (got " + std::to_string(frames) + ")");
 }
 
 void validate(const vqtex_encode_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_encode_params))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_encode_params not initialised with vqtex_encode_params_init()");
-    validate(p->model);
-    if (p->precision < 1 || p->precision > 8 || p->pixel_precision < 1 || p->pixel_precision > 8)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "precision and pixel precision must be 1 to 8 bits");
-    if (p->smoothing < 1 || p->smoothing > 8) fail(VQTEX_ERROR_INVALID_ARGUMENT, "smoothing must be 1 to 8");
-    check_backtrack(p->backtrack, 255, " for an encoded file");
-    check_init(p->init);
+    if (!p) fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_encode_params not initialised with vqtex_encode_params_init()");
+    check_struct_size(p->struct_size, sizeof(vqtex_encode_params), "vqtex_encode_params");
+    check_levels(p->levels);
+    const vqtex_trees_params& t = p->trees;
+    check_tsvq(t.tsvq);
+    check_tree_coding(t.precision, t.pixel_precision, t.smoothing, t.backtrack, t.init);
     if (!is_one_of(p->codebook, {VQTEX_CODEBOOK_TREES, VQTEX_CODEBOOK_ATLAS}))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown codebook kind: VQTEX_CODEBOOK_TREES or VQTEX_CODEBOOK_ATLAS");
+    if (p->quality > 100) fail(VQTEX_ERROR_INVALID_ARGUMENT, "quality must be 0 to 100");
 }
 
 void validate(const vqtex_volume_encode_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_volume_encode_params) ||
-        p->codec.struct_size != sizeof(vqtex_encode_params))
+    if (!p)
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "vqtex_volume_encode_params not initialised with vqtex_volume_encode_params_init()");
-    validate(&p->codec);
-    if (p->codec.target_size != 0)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "a target size is not supported for animated textures: choose a quality");
-    if (p->codec.codebook != VQTEX_CODEBOOK_TREES)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "animated textures store TSVQ trees: an atlas is for still textures");
+    check_struct_size(p->struct_size, sizeof(vqtex_volume_encode_params), "vqtex_volume_encode_params");
+    check_levels(p->levels);
+    check_tsvq(p->tsvq);
+    check_tree_coding(p->precision, p->pixel_precision, p->smoothing, p->backtrack, p->init);
 }
 
 void validate(const vqtex_fill_params* p) {
-    if (!p || p->struct_size != sizeof(vqtex_fill_params))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_fill_params not initialised with vqtex_fill_params_init()");
+    if (!p) fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_fill_params not initialised with vqtex_fill_params_init()");
+    check_struct_size(p->struct_size, sizeof(vqtex_fill_params), "vqtex_fill_params");
     check_search(p->search);
     if (!is_one_of(p->method, {VQTEX_FILL_TWO_PASS, VQTEX_FILL_CAUSAL}))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown fill method");

@@ -9,7 +9,6 @@
 
 namespace vqtex {
 
-void validate(const vqtex_model_params& p);
 void validate(const vqtex_synth_params* p);
 // The synthesis of an animation of `frames` frames (0 = the example's count).
 void validate_volume_synthesis(const vqtex_synth_params* p, uint32_t frames);

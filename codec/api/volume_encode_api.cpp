@@ -1,17 +1,17 @@
 // volume_encode_api.cpp - the exported encoder for animated textures (paper
 // section 5.2 with the codec of section 6): a frame sequence into a file.
-// Decoding is in decode_api.cpp. Validation and status mapping as in
-// encode_api.cpp.
+// Decoding is in decode_api.cpp; what it shares with the still encoder is
+// in encode_support.hpp.
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <new>
 
 #include "api/api_support.hpp"
+#include "api/encode_support.hpp"
 #include "api/validate_encode.hpp"
 #include "common/error.hpp"
 #include "analysis/temporal_model.hpp"
-#include "api/encode_support.hpp"
 #include "writer/volume_writer.hpp"
 #include "vqtex/vqtex.h"
 
@@ -21,32 +21,46 @@ extern "C" {
 
 void vqtex_volume_encode_params_init(vqtex_volume_encode_params* p) {
     if (!p) return;
+    // The codebook sizes and precision of a still texture's default preset.
+    vqtex_encode_params still;
+    vqtex_encode_params_init(&still);
     *p = vqtex_volume_encode_params{};
     p->struct_size = sizeof(vqtex_volume_encode_params);
-    vqtex_encode_params_init(&p->codec);
-    p->codec.codebook = VQTEX_CODEBOOK_TREES;  // format 2: animations have no atlas yet
+    p->seed = still.seed;
+    p->tsvq = still.trees.tsvq;
+    p->precision = still.trees.precision;
+    p->pixel_precision = still.trees.pixel_precision;
+    p->smoothing = still.trees.smoothing;
+    p->backtrack = still.trees.backtrack;
+    p->init = still.trees.init;
     // The paper's setting: codebooks from a random 10% of the example's
     // neighbourhoods; 3 levels (automatic_volume_levels).
-    p->codec.model.levels = 0;
-    p->codec.model.train_fraction = 0.1f;
+    p->levels = 0;
+    p->tsvq.train_fraction = 0.1f;
+}
+
+vqtex_status vqtex_volume_encode_params_preset(vqtex_volume_encode_params* p, int quality) {
+    if (!p) return VQTEX_ERROR_INVALID_ARGUMENT;
+    if (quality < 0 || quality > 100) return VQTEX_ERROR_INVALID_ARGUMENT;
+    apply_tree_preset(*p, quality);
+    return VQTEX_OK;
 }
 
 vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const vqtex_volume* example,
                                  uint8_t** data, size_t* size, vqtex_encode_stats* stats, vqtex_error* error) {
     return guarded(error, [&] {
-        if (!data || !size) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output pointers are NULL");
-        *data = nullptr;
-        *size = 0;
+        clear_output(data, size);
         validate(params);
         const Volume ex = volume_from_c(example);
-        const vqtex_encode_params& c = params->codec;
+        const vqtex_volume_encode_params& p = *params;
         std::vector<Shape> shapes;
-        for (const vqtex_shape3& s : params->shapes)
+        for (const vqtex_shape3& s : p.shapes)
             shapes.push_back(Shape{.rows = s.rows, .cols = s.cols, .levels = s.levels, .frames = s.frames});
         const auto t0 = std::chrono::steady_clock::now();
-        const int threads = resolve_threads(c.threads);
-        const VolumeAnalysis a = analyse_volume(ex, c.model, shapes, VQTEX_SEARCH_TSVQ, c.backtrack, threads,
-                                                stage_progress(c.progress, c.progress_user, VQTEX_STAGE_ANALYSE));
+        const int threads = resolve_threads(p.threads);
+        const VolumeAnalysis a = analyse_volume(ex, model_params_of(p.levels, p.example_tileable, nullptr, p.tsvq),
+                                                shapes, VQTEX_SEARCH_TSVQ, p.backtrack, threads,
+                                                stage_progress(p.progress, p.progress_user, VQTEX_STAGE_ANALYSE));
         VolumeCodecModel model;
         model.channels = ex.channels;
         model.exemplar_width = uint32_t(ex.width);
@@ -63,20 +77,11 @@ vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const
             lv.seam_shape = a.model.levels[l].seam_shape;
             model.levels.push_back(lv);
         }
-        const std::vector<uint8_t> bytes = encode_volume_model(model, encode_settings_of(c));
+        const std::vector<uint8_t> bytes = encode_volume_model(
+            model, tree_settings(p.precision, p.pixel_precision, p.smoothing, p.backtrack, p.init, p.seed));
         const auto t1 = std::chrono::steady_clock::now();
         copy_out(bytes, data, size);
-        if (stats) {
-            *stats = vqtex_encode_stats{};
-            stats->bytes = bytes.size();
-            stats->levels = uint32_t(a.codebooks.size());
-            for (std::size_t l = 0; l < a.codebooks.size() && l < VQTEX_MAX_LEVELS; ++l) {
-                stats->codewords[l] = uint32_t(a.codebooks[l]->leaf_count());
-                stats->entries[l] = uint32_t(a.codebooks[l]->total_entries());
-            }
-            stats->attempts = 1;
-            stats->seconds = std::chrono::duration<double>(t1 - t0).count();
-        }
+        tree_stats(stats, bytes.size(), a.codebooks, 0, 1, seconds_since(t0, t1));
     });
 }
 

@@ -63,8 +63,9 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
                                    const CoherentOptions& options,
                                    const std::function<bool(uint64_t, uint64_t)>& analyse_progress) {
     using Clock = std::chrono::steady_clock;
-    if (example.width > 65535 || example.height > 65535)
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "example larger than 65535 pixels on a side");
+    if (example.width > VQTEX_MAX_SIDE || example.height > VQTEX_MAX_SIDE)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED,
+             "example larger than " + std::to_string(VQTEX_MAX_SIDE) + " pixels on a side");
     const auto t0 = Clock::now();
     if (analyse_progress && !analyse_progress(0, 1))
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");

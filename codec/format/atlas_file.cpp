@@ -96,8 +96,8 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
     const int aw = int(r.varint_in("atlas width", kMinAtlasSide, kMaxAtlasSide));
     const int ah = int(r.varint_in("atlas height", kMinAtlasSide, kMaxAtlasSide));
     if (packed & kPackedExemplarSize) {
-        h.exemplar_width = uint32_t(r.varint_in("exemplar width", 1, 65536));
-        h.exemplar_height = uint32_t(r.varint_in("exemplar height", 1, 65536));
+        h.exemplar_width = uint32_t(r.varint_in("exemplar width", 1, VQTEX_MAX_SIDE));
+        h.exemplar_height = uint32_t(r.varint_in("exemplar height", 1, VQTEX_MAX_SIDE));
         if (h.exemplar_width == uint32_t(aw) && h.exemplar_height == uint32_t(ah))
             r.corrupt("the exemplar size is stored but is the atlas's (packed bit 5 must then be 0)");
     } else {

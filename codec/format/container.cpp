@@ -132,7 +132,8 @@ Container read_container(const uint8_t* data, std::size_t size, std::size_t memo
         fail(VQTEX_ERROR_CORRUPT, "header declares " + std::to_string(h.levels) + " levels (1 to 8)");
     if (h.init > 1) fail(VQTEX_ERROR_CORRUPT, "unknown init mode " + std::to_string(h.init));
     if (h.backtrack < 1) fail(VQTEX_ERROR_CORRUPT, "backtrack must be at least 1");
-    if (h.exemplar_width < 1 || h.exemplar_height < 1 || h.exemplar_width > 65536 || h.exemplar_height > 65536)
+    if (h.exemplar_width < 1 || h.exemplar_height < 1 || h.exemplar_width > VQTEX_MAX_SIDE ||
+        h.exemplar_height > VQTEX_MAX_SIDE)
         fail(VQTEX_ERROR_CORRUPT, "exemplar size " + std::to_string(h.exemplar_width) + "x" +
                                       std::to_string(h.exemplar_height) + " is out of range");
     std::size_t total_raw = 0;

@@ -13,7 +13,7 @@
 namespace vqtex {
 namespace {
 
-constexpr uint32_t kMaxExemplarFrames = 65536;
+constexpr uint32_t kMaxExemplarFrames = VQTEX_MAX_SIDE;
 
 }  // namespace
 

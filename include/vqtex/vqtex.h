@@ -8,16 +8,45 @@
  *   what went wrong, where, and what to do.
  * - Params structs are filled with defaults by their *_init function, then
  *   tweaked. The init function stamps the struct size, so a library can tell
- *   a caller built against another version of this header.
+ *   a caller built against another version of this header: such a struct is
+ *   refused with VQTEX_ERROR_INVALID_ARGUMENT and a detail saying so.
  * - Images are 8-bit, 1 to 4 channels interleaved (grey, grey+alpha, RGB,
- *   RGBA), rows packed with no padding. Images the library returns are freed
- *   with vqtex_image_free().
+ *   RGBA), rows packed with no padding, at most VQTEX_MAX_SIDE on a side.
+ *   Images the library returns are freed with vqtex_image_free().
  * - Calls on different data may run concurrently. The only process-wide
  *   state is set once and holds no data of any call: the SIMD kernels
  *   (chosen at first use from the CPU and VQTEX_SIMD) and the worker
  *   threads (see threads below).
  * - Determinism: output bytes depend only on the inputs, the parameters and
  *   the seed; never on the thread count, the CPU's SIMD level or the run.
+ *
+ * Libraries
+ * - vqtex_decoder, the decoder library, provides: vqtex_version,
+ *   vqtex_version_string, vqtex_status_message, vqtex_image_free,
+ *   vqtex_free, vqtex_volume_free, vqtex_decode_params_init, vqtex_decode,
+ *   vqtex_decode_mips, vqtex_inspect and vqtex_decode_volume.
+ * - vqtex, the full library, holds the decoder's calls and every other:
+ *   synthesis (vqtex_synthesize, vqtex_synthesize_volume), encoding
+ *   (vqtex_encode, vqtex_encode_volume), filling (vqtex_fill, vqtex_extend)
+ *   and their *_init and *_preset functions.
+ *
+ * Changes in this version of the header
+ * - vqtex_synth_params: the fields both engines read are at the top level
+ *   (width, height, seed, levels, example_tileable, threads, progress); the
+ *   coherent engine's are in .coherent, the paper engine's in .paper
+ *   (shapes, tsvq, search, backtrack, init, tolerance).
+ * - The model params are split: levels and example_tileable are common
+ *   fields of the params that use them, the 2D shapes are .paper.shapes or
+ *   .trees.shapes, and the codebook fields are vqtex_tsvq_params
+ *   (vqtex_tsvq_params_init).
+ * - vqtex_encode_params: quality is an input only (the preset no longer
+ *   writes it); the fields only a trees file uses are in .trees, which
+ *   vqtex_encode_params_preset fills. vqtex_encode_stats.quality says what
+ *   the file was made at, for trees files and atlas files alike.
+ *   vqtex_volume_encode_params_preset fills an animation's the same way.
+ * - vqtex_volume_encode_params holds its own fields instead of a nested
+ *   vqtex_encode_params: no target size, codebook kind or 2D shapes.
+ * - VQTEX_MAX_SIDE: the largest example side (and example frame count).
  */
 #ifndef VQTEX_H
 #define VQTEX_H
@@ -81,6 +110,11 @@ typedef struct vqtex_image {
 /* Frees pixels the library allocated and zeroes the struct; NULL is fine. */
 VQTEX_API void vqtex_image_free(vqtex_image* image);
 
+/* The largest side of an example, and the most frames of an example
+ * sequence: positions in the example are stored as 16-bit coordinates. An
+ * example image also has at most 2^30 pixels. */
+#define VQTEX_MAX_SIDE 65536
+
 #define VQTEX_MAX_LEVELS 8
 
 /* A multiresolution neighbourhood {RxC,k} (paper section 2.3): the causal
@@ -119,12 +153,10 @@ typedef enum vqtex_stage {
  * VQTEX_ERROR_CANCELLED and writes no output). */
 typedef int (*vqtex_progress_fn)(void* user, vqtex_stage stage, uint64_t done, uint64_t total);
 
-/* How an example becomes a model: pyramid, neighbourhoods, codebooks.
- * Zero in any field means "the default". CLI flags in brackets. */
-typedef struct vqtex_model_params {
-    uint32_t levels;                          /* pyramid depth; 0 = automatic [--levels] */
-    vqtex_shape shapes[VQTEX_MAX_LEVELS];     /* [0] = finest; {0,0,0} = default [--shapes] */
-    uint32_t example_tileable;                /* 1: the example wraps (toroidal neighbourhoods) [--tileable-example] */
+/* How the paper's TSVQ codebooks are trained from an example's
+ * neighbourhoods (paper section 4), for the paper's engine, trees files and
+ * animations. Zero in any field means "the default". CLI flags in brackets. */
+typedef struct vqtex_tsvq_params {
     uint32_t codewords[VQTEX_MAX_LEVELS];     /* leaves per level, [0] finest; 0 = codeword_fraction [--codewords] */
     float codeword_fraction;                  /* leaves as a fraction of the training vectors [--codewords] */
     float train_fraction;                     /* train on this fraction of the vectors (1 = all) [--train-fraction] */
@@ -139,28 +171,28 @@ typedef struct vqtex_model_params {
     uint32_t closing_window;                  /* seam-closing window size, odd (0 = the causal window's) */
     uint32_t seam_closing;                    /* 1: also build symmetric matchers that re-match
                                                  the rows around the top/bottom wrap (default) [--no-seam-closing] */
-} vqtex_model_params;
+} vqtex_tsvq_params;
 
-VQTEX_API void vqtex_model_params_init(vqtex_model_params* params);
+/* Defaults: every example neighbourhood a leaf, all of them trained on,
+ * medoid leaves, seam closing on. */
+VQTEX_API void vqtex_tsvq_params_init(vqtex_tsvq_params* params);
 
 typedef enum vqtex_engine {
     /* Synthesis of example coordinates, coarse to fine, each pixel choosing
      * among the k-coherence candidates of its neighbours by appearance-space
      * neighbourhoods (Lefebvre & Hoppe 2005, 2006; Tong et al. 2002): keeps
-     * the example's structure (default). Uses model.levels and
-     * model.example_tileable; the search fields below do not apply. */
+     * the example's structure (default). Reads the common fields and
+     * `coherent`. */
     VQTEX_ENGINE_COHERENT = 0,
     /* Wei & Levoy's per-pixel search over causal neighbourhoods (paper
-     * sections 2-4), with the search, init, tolerance and model fields
-     * below. With init = VQTEX_INIT_NOISE and model.seam_closing = 0 it is
+     * sections 2-4). Reads the common fields and `paper`. With
+     * paper.init = VQTEX_INIT_NOISE and paper.tsvq.seam_closing = 0 it is
      * the paper's algorithm exactly [--paper]. */
     VQTEX_ENGINE_PAPER = 1
 } vqtex_engine;
 
-typedef struct vqtex_synth_params {
-    uint32_t struct_size;      /* set by vqtex_synth_params_init */
-    vqtex_engine engine;       /* [--paper] */
-    /* Coherent engine. */
+/* The coherent engine's own parameters. */
+typedef struct vqtex_coherent_params {
     uint32_t coherence;        /* candidates per neighbour: its shifted source and the example
                                   positions that look most like it, 1 to 16 [--coherence] */
     uint32_t passes;           /* correction passes per level (the finest: one fewer, then a colour pass), 1 to 8 [--passes] */
@@ -173,23 +205,37 @@ typedef struct vqtex_synth_params {
                                   them; 0 (none) to 1024, default 64 [--relocate] */
     uint32_t edge_guard;       /* still textures: a copy cut off by the example's edge ends in a seam:
                                   no position within this many example pixels of where it would go
-                                  on is taken beside it; 0 (formats 3 to 6's edges) to 64, default 8
-                                  [--edge-guard] */
-    /* Paper engine (the coherent one reads model.levels and
-     * model.example_tileable only). */
-    vqtex_model_params model;
+                                  on is taken beside it; 0 (none) to 64, default 8 [--edge-guard] */
+} vqtex_coherent_params;
+
+/* The paper's engine's own parameters. */
+typedef struct vqtex_paper_params {
+    vqtex_shape shapes[VQTEX_MAX_LEVELS]; /* [0] = finest; {0,0,0} = default [--shapes] */
+    vqtex_tsvq_params tsvq;    /* how the matchers are built (the codeword and training
+                                  fields: search = VQTEX_SEARCH_TSVQ only) */
     vqtex_search search;       /* [--tsvq / --exhaustive] */
     uint32_t backtrack;        /* TSVQ leaves visited per search, L [--backtrack] */
-    uint32_t width, height;    /* output size, 1 to 16384 each [--size] */
-    uint64_t seed;             /* [--seed] */
     vqtex_init init;           /* [--init parent|noise] */
     uint32_t tolerance;        /* near-ties within best*(1+tolerance/256) are chosen among at
                                   random (seeded, per pixel); 0 = nearest only [--tolerance] */
+} vqtex_paper_params;
+
+typedef struct vqtex_synth_params {
+    uint32_t struct_size;      /* set by vqtex_synth_params_init */
+    vqtex_engine engine;       /* [--paper] */
+    /* Common to both engines. */
+    uint32_t width, height;    /* output size, 1 to 16384 each [--size] */
+    uint64_t seed;             /* [--seed] */
+    uint32_t levels;           /* pyramid depth, 1 to VQTEX_MAX_LEVELS; 0 = automatic [--levels] */
+    uint32_t example_tileable; /* 1: the example wraps (toroidal neighbourhoods) [--tileable-example] */
     uint32_t threads;          /* 0 = all cores [--threads]. Worker threads are kept for the
                                   process's life, idle between calls, and shared by every
                                   call; a call that finds them busy starts its own. */
     vqtex_progress_fn progress;
     void* progress_user;
+    /* Each engine's own; the other engine's are not read. */
+    vqtex_coherent_params coherent;
+    vqtex_paper_params paper;
 } vqtex_synth_params;
 
 VQTEX_API void vqtex_synth_params_init(vqtex_synth_params* params);
@@ -221,50 +267,63 @@ VQTEX_API vqtex_status vqtex_synthesize(const vqtex_synth_params* params, const 
 #define VQTEX_QUALITY_DEFAULT 50
 
 typedef enum vqtex_codebook {
-    /* TSVQ codebooks (paper section 6), format version 1, decoded by the
-     * paper's engine: the paper's literal codec, for comparison [--trees].
-     * Animations (vqtex_encode_volume) always store trees (format 2). */
+    /* TSVQ codebooks (paper section 6), decoded by the paper's engine: the
+     * paper's literal codec, for comparison [--trees]. Uses the common
+     * fields and `trees`. Animations (vqtex_encode_volume) always store
+     * trees. */
     VQTEX_CODEBOOK_TREES = 0,
-    /* An atlas: the example (or a crop of it) as an AV1 image, format
-     * version 7 (versions 3 to 6 still decode), decoded by the coherent
-     * engine, which keeps the example's structure (default for still
-     * textures). Uses quality (a byte budget:
-     * 4 KB per 128x128 pixels at 50, doubling every 25 points) or
-     * target_size, seed, model.levels, model.example_tileable and threads;
-     * the other model and precision fields do not apply [--atlas]. */
+    /* An atlas: the example (or a crop of it) as an AV1 image, decoded by
+     * the coherent engine, which keeps the example's structure (default for
+     * still textures). Uses the common fields only [--atlas]. */
     VQTEX_CODEBOOK_ATLAS = 1
 } vqtex_codebook;
 
-typedef struct vqtex_encode_params {
-    uint32_t struct_size;       /* set by vqtex_encode_params_init */
-    vqtex_model_params model;   /* filled by the quality preset; tweak after */
+/* What a trees file is made of: its neighbourhoods, codebooks and the
+ * precision they are stored at. vqtex_encode_params_preset fills it. */
+typedef struct vqtex_trees_params {
+    vqtex_shape shapes[VQTEX_MAX_LEVELS]; /* [0] = finest; {0,0,0} = default [--shapes] */
+    vqtex_tsvq_params tsvq;     /* [--codewords, --entries, --no-entry-keys, --closing-*] */
     uint32_t precision;         /* bits per codeword and key sample, 1 to 8 [--precision] */
-    uint32_t pixel_precision;   /* bits per output pixel sample, 1 to 8 */
+    uint32_t pixel_precision;   /* bits per output pixel sample, 1 to 8 [--pixel-precision] */
     uint32_t smoothing;         /* 1 = exact codewords; 2..8 = taps away from the pixel averaged in
                                    blocks of that size (smaller file, coarser matching) [--smoothing] */
-    uint32_t backtrack;         /* TSVQ leaves the decoder visits per search [--backtrack] */
+    uint32_t backtrack;         /* TSVQ leaves the decoder visits per search, 1 to 255 [--backtrack] */
     vqtex_init init;            /* how decoding starts each level */
+} vqtex_trees_params;
+
+typedef struct vqtex_encode_params {
+    uint32_t struct_size;       /* set by vqtex_encode_params_init */
+    vqtex_codebook codebook;    /* what the file stores: an atlas (default) or TSVQ trees [--trees] */
+    /* Common to both codebooks. */
+    uint32_t quality;           /* 0 (smallest file) to 100 (best texture), default
+                                   VQTEX_QUALITY_DEFAULT [--quality]. An atlas: its byte budget, 4 KB
+                                   per 128x128 pixels at 50, doubling every 25 points. Trees: reported
+                                   in the stats only; `trees` holds what the preset made of it */
+    uint64_t target_size;       /* bytes; nonzero: instead of quality, the best atlas or trees preset
+                                   whose file fits [--target-size] */
+    uint32_t levels;            /* pyramid depth, 1 to VQTEX_MAX_LEVELS; 0 = automatic [--levels] */
+    uint32_t example_tileable;  /* 1: the example wraps [--tileable-example] */
     uint64_t seed;              /* default decoding seed stored in the file [--seed] */
-    uint64_t target_size;       /* bytes; nonzero: the best quality preset whose file fits [--target-size] */
     uint32_t threads;           /* 0 = all cores [--threads] */
     vqtex_progress_fn progress;
     void* progress_user;
-    vqtex_codebook codebook;    /* what the file stores: an atlas (v7, default) or TSVQ trees (v1) [--trees] */
-    uint32_t quality;           /* the preset last applied, 0..100: the atlas's quality when
-                                   target_size is 0 */
+    /* Trees only. */
+    vqtex_trees_params trees;
 } vqtex_encode_params;
 
-/* Defaults: the preset for VQTEX_QUALITY_DEFAULT. */
+/* Defaults: an atlas at VQTEX_QUALITY_DEFAULT, `trees` from that preset. */
 VQTEX_API void vqtex_encode_params_init(vqtex_encode_params* params);
-/* Fills the model and precision fields from a quality preset, 0 (smallest
- * file) to 100 (best texture) [--quality]. Other fields are untouched. */
+/* Fills params->trees from a quality preset, 0 (smallest file) to 100 (best
+ * texture) [--quality]. Every other field, quality included, is untouched:
+ * set quality to the same value for the stats to report it. */
 VQTEX_API vqtex_status vqtex_encode_params_preset(vqtex_encode_params* params, int quality);
 
 typedef struct vqtex_encode_stats {
     uint64_t bytes;
-    uint32_t quality;        /* trees: the preset used (with target_size, the one the search chose);
-                                atlas: params->quality, or 0 with target_size (the atlas is then
-                                chosen for the bytes, not from a preset) */
+    uint32_t quality;        /* the quality the file was made at: params->quality, or with
+                                target_size the trees preset the search chose, or 0 for an atlas
+                                chosen for a target size (its bytes, not a quality, decided it);
+                                0 for an animation */
     uint32_t levels;
     uint32_t codewords[VQTEX_MAX_LEVELS];
     uint32_t entries[VQTEX_MAX_LEVELS];
@@ -301,7 +360,7 @@ VQTEX_API vqtex_status vqtex_decode(const vqtex_decode_params* params, const uin
 /* Decodes the whole synthesised pyramid as a mip chain: levels[0] is the
  * texture, each next level half the size (rounded up) down to 1x1. For a
  * trees file the synthesised pyramid levels come first; for an atlas file
- * (formats 3 to 7) only levels[0] is synthesised. Below those, levels are
+ * only levels[0] is synthesised. Below those, levels are
  * the binomial-filtered, toroidal reduction of the one above. `levels` must hold
  * `capacity` images; *count receives how many were written. */
 VQTEX_API vqtex_status vqtex_decode_mips(const vqtex_decode_params* params, const uint8_t* data,
@@ -317,7 +376,8 @@ typedef struct vqtex_section_info {
     uint64_t raw_bytes;
     uint64_t stored_bytes;   /* in the file, including the 16-byte section header */
 } vqtex_section_info;
-/* A format 4 to 7 file (a compact atlas texture) has no sections: vqtex_inspect
+/* An atlas file in the compact layout (every atlas file this library
+ * writes) has no sections: vqtex_inspect
  * lists its two parts as "ATLS" (the AV1 bitstream) and "SYNP" (the stored
  * synthesis parameters, 0 bytes when they are the defaults), with
  * raw_bytes = stored_bytes = their bytes in the file and no section header;
@@ -337,13 +397,13 @@ typedef struct vqtex_file_info {
     vqtex_section_info sections[VQTEX_MAX_SECTIONS];
     uint32_t exemplar_frames;                      /* animated texture: frames of the example; 0 for a still one */
     uint8_t window_frames[VQTEX_MAX_LEVELS];       /* animated texture: D of each level's {RxCxD,k} */
-    uint32_t atlas_width, atlas_height;            /* atlas texture (format 3 to 7): the atlas's size; 0 otherwise */
-    uint32_t blend;                                /* atlas texture: radius of the blend at seams (format 5 to
-                                                      7); 0 otherwise */
+    uint32_t atlas_width, atlas_height;            /* atlas texture: the atlas's size; 0 otherwise */
+    uint32_t blend;                                /* atlas texture: radius of the blend at seams the decoder
+                                                      uses (0: none); 0 otherwise */
     uint32_t relocate;                             /* atlas texture: positions tried per copy by the copy
-                                                      relocation (format 6, 7); 0 otherwise */
-    uint32_t edge_guard;                           /* atlas texture: the edge guard in atlas pixels
-                                                      (format 7); 0 otherwise */
+                                                      relocation the decoder uses (0: none); 0 otherwise */
+    uint32_t edge_guard;                           /* atlas texture: the edge guard the decoder uses, in atlas
+                                                      pixels (0: none); 0 otherwise */
 } vqtex_file_info;
 
 /* Verifies and describes a file (everything the decoder checks). */
@@ -443,17 +503,33 @@ typedef struct vqtex_shape3 {
 
 typedef struct vqtex_volume_encode_params {
     uint32_t struct_size;          /* set by vqtex_volume_encode_params_init */
-    /* Everything a still texture has (quality preset, precision, seed,
-     * threads, progress); codec.model.shapes and codec.target_size are not
-     * used. codec.model.seam_closing builds the loop-closing trees. */
-    vqtex_encode_params codec;
+    uint32_t levels;               /* pyramid depth, 1 to VQTEX_MAX_LEVELS; 0 = automatic [--levels] */
+    uint32_t example_tileable;     /* 1: the example wraps in space [--tileable-example] */
+    uint64_t seed;                 /* default decoding seed stored in the file [--seed] */
+    uint32_t threads;              /* 0 = all cores [--threads] */
+    vqtex_progress_fn progress;
+    void* progress_user;
     vqtex_shape3 shapes[VQTEX_MAX_LEVELS]; /* [0] = finest; {0,0,0,0} = default [--shapes] */
+    /* The codebooks and their precision, as a still texture's trees; its
+     * shapes are the 3D ones above. tsvq.seam_closing also builds the
+     * loop-closing trees. */
+    vqtex_tsvq_params tsvq;
+    uint32_t precision;            /* bits per codeword and key sample, 1 to 8 [--precision] */
+    uint32_t pixel_precision;      /* bits per output pixel sample, 1 to 8 [--pixel-precision] */
+    uint32_t smoothing;            /* as vqtex_trees_params.smoothing [--smoothing] */
+    uint32_t backtrack;            /* TSVQ leaves the decoder visits per search, 1 to 255 [--backtrack] */
+    vqtex_init init;               /* how decoding starts each level */
 } vqtex_volume_encode_params;
 
 /* Defaults: 3 levels (fewer for tiny examples), {5x5x5,2} and {5x5x5,1} at
  * the coarsest level, codebooks trained on a random 10% of the example's
- * neighbourhoods as the paper, loop closing on. */
+ * neighbourhoods as the paper, loop closing on; the codebook sizes and
+ * precision of the VQTEX_QUALITY_DEFAULT preset. */
 VQTEX_API void vqtex_volume_encode_params_init(vqtex_volume_encode_params* params);
+/* Fills the codebook sizes and precision from the quality preset of
+ * vqtex_encode_params_preset, 0 to 100 [--quality]; the training fraction,
+ * levels, shapes and every other field are untouched. */
+VQTEX_API vqtex_status vqtex_volume_encode_params_preset(vqtex_volume_encode_params* params, int quality);
 
 /* Encodes an example frame sequence (at least 1 frame; the paper uses 32). */
 VQTEX_API vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const vqtex_volume* example,
@@ -474,10 +550,10 @@ VQTEX_API vqtex_status vqtex_decode_volume(const vqtex_decode_params* params, ui
  * in time) and is corrected with neighbourhoods of the current and the
  * previous frame. The output tiles in space; its last frame is matched
  * against its first, so it loops in time (docs/ANIMATION.md says how well).
- * Uses params->engine (VQTEX_ENGINE_COHERENT only), passes,
- * model.levels, model.example_tileable, seed, threads and progress;
- * coherence must be 1 and jitter 0; blend is not used (frames are not
- * blended at seams). The same bytes for any thread count.
+ * Uses params->engine (VQTEX_ENGINE_COHERENT only), the common fields
+ * and coherent.passes; coherent.coherence must be 1 and coherent.jitter 0;
+ * blend, relocate and edge_guard are not used (frames are not blended at
+ * seams nor relocated). The same bytes for any thread count.
  * `out` receives a new volume (free with vqtex_volume_free); stats and error
  * may be NULL. */
 VQTEX_API vqtex_status vqtex_synthesize_volume(const vqtex_synth_params* params, const vqtex_volume* example,
