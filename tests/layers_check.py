@@ -39,6 +39,7 @@ ENCODE_FILES = {
 API_DECODE_SIDE = {
     "api/api.cpp", "api/decode_api.cpp", "api/api_support.hpp",
     "api/validate.hpp", "api/validate_decode.cpp",
+    "api/coherent_options.hpp", "api/coherent_options.cpp",
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
