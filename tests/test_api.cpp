@@ -2,7 +2,11 @@
 // clear errors, cancellation, no output on failure.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <tuple>
+#include <vector>
 
 #include <cstring>
 
@@ -263,4 +267,53 @@ TEST(Validation, DecodeParamsAreCheckedBeforeTheFile) {
     vqtex_decode_params uninit{};
     EXPECT_EQ(vqtex_decode(&uninit, junk, sizeof junk, &out, &err), VQTEX_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::strstr(err.detail, "vqtex_decode_params_init"), nullptr) << err.detail;
+}
+
+// Straight alpha through the library: a constant colour under an alpha ramp,
+// encoded at quality 100 and decoded, keeps its colour within 3 levels
+// wherever alpha is at least 1, and alpha keeps the ramp's spread.
+TEST(Api, ColourUnderAnAlphaRampSurvivesTheCodec) {
+    constexpr int n = 128;
+    const uint8_t colour[3] = {200, 100, 50};
+    std::vector<uint8_t> px(std::size_t(n) * n * 4);
+    for (std::size_t p = 0; p < px.size(); p += 4) {
+        std::copy(colour, colour + 3, &px[p]);
+        px[p + 3] = uint8_t((int((p / 4) % n) * 255 + n / 2) / (n - 1));
+    }
+    vqtex_encode_params ep;
+    vqtex_encode_params_init(&ep);
+    vqtex_encode_params_preset(&ep, 100);
+    const vqtex_image in{n, n, 4, px.data()};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    ASSERT_EQ(vqtex_encode(&ep, &in, &data, &size, nullptr, &err), VQTEX_OK) << err.detail;
+    const vqtex_cpp::Buffer file(data, size);
+    vqtex_decode_params dp;
+    vqtex_decode_params_init(&dp);
+    vqtex_image out{};
+    ASSERT_EQ(vqtex_decode(&dp, file.data(), file.size(), &out, &err), VQTEX_OK) << err.detail;
+    const vqtex_cpp::Image owned(out);
+    ASSERT_EQ(out.channels, 4u);
+    int worst = 0, lo = 255, hi = 0;
+    uint64_t sum = 0;
+    std::size_t covered = 0;
+    const std::size_t samples = std::size_t(out.width) * out.height * 4;
+    for (std::size_t p = 0; p < samples; p += 4) {
+        const uint8_t a = out.pixels[p + 3];
+        sum += a;
+        lo = std::min(lo, int(a));
+        hi = std::max(hi, int(a));
+        if (a == 0) continue;
+        ++covered;
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(out.pixels[p + std::size_t(c)]) - colour[c]));
+    }
+    const double mean = double(sum) / double(samples / 4);
+    std::printf("library: %zu bytes; colour error under alpha >= 1 at most %d over %zu pixels; alpha %d..%d, mean %.1f\n",
+                size, worst, covered, lo, hi, mean);
+    EXPECT_GT(covered, samples / 32);
+    EXPECT_LE(worst, 3);
+    EXPECT_LE(lo, 8);
+    EXPECT_GE(hi, 247);
+    EXPECT_NEAR(mean, 127.5, 24.0);
 }
