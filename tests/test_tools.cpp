@@ -348,7 +348,7 @@ TEST(Tools, AnimationRoundTrip) {
     EXPECT_FALSE(fs::exists(dir / "out_06.png"));
     // A folder of frames works too, and gives the same file.
     const std::string file2 = (dir / "flicker2.vqt").string();
-    ASSERT_EQ(encode_tool(corpus + "/flicker_32_anim " + file2 + " --quality 10 -j 1").status, 0);
+    ASSERT_EQ(encode_tool(corpus + "/flicker_32_anim " + file2 + " --animation --quality 10 -j 1").status, 0);
     EXPECT_EQ(vqtex_tools::load_bytes(file), vqtex_tools::load_bytes(file2));
     // Still decoding of an animation, and a missing frame field: one-line errors, nothing written.
     r = decode_tool(file + " " + (dir / "still.png").string());
@@ -366,7 +366,7 @@ TEST(Tools, AnimationRoundTrip) {
     fs::create_directories(dir / "mixed");
     fs::copy_file(corpus + "/flicker_32_anim/frame_000.png", dir / "mixed/a.png");
     fs::copy_file(corpus + "/checks_p16_64.png", dir / "mixed/b.png");
-    r = encode_tool((dir / "mixed").string() + " " + (dir / "mixed.vqt").string());
+    r = encode_tool((dir / "mixed").string() + " " + (dir / "mixed.vqt").string() + " --animation");
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.output.find("all frames must match"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir / "mixed.vqt"));
@@ -620,7 +620,7 @@ TEST(ToolsBatch, SynthBatchGivesTheBytesOfSingleCalls) {
     }
 }
 
-// ---- straight alpha, MIP-mapped files ------------------------------------
+// ---- straight alpha, MIP-mapped files, folders -----------------------------
 
 namespace {
 
@@ -768,4 +768,36 @@ TEST(Tools, MipChainGoesToOneFileWhereTheFormatHoldsLevels) {
         ASSERT_EQ(decode_tool(vqt + " " + plain + " --size 75x50 --quiet").status, 0);
         EXPECT_EQ(vqtex_tools::load_image(out).pixels, vqtex_tools::load_image(plain).pixels) << ext;
     }
+}
+
+// A folder without -o is not silently read as an animation of its images:
+// the error says how to ask for an animation or for a batch.
+TEST(Tools, AFolderWithoutOutputDirNeedsAnimation) {
+    const fs::path dir = scratch_dir() / "folder";
+    fs::create_directories(dir / "textures");
+    fs::copy_file(corpus + "/weave_128.png", dir / "textures/a.png", fs::copy_options::overwrite_existing);
+    fs::copy_file(corpus + "/cellular_128.png", dir / "textures/b.png", fs::copy_options::overwrite_existing);
+    const std::string folder = (dir / "textures").string();
+    for (const ToolRun& r : {encode_tool(folder + " " + (dir / "t.vqt").string() + " -q 0"),
+                             run_tool(folder + " " + (dir / "t.png").string() + " --size 32")}) {
+        EXPECT_EQ(r.status, 1);
+        EXPECT_NE(r.output.find("is a folder"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("--animation"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("-o DIR"), std::string::npos) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "t.vqt"));
+    EXPECT_FALSE(fs::exists(dir / "t.png"));
+    // --animation on a still image, and with -o: refused.
+    ToolRun r = encode_tool(corpus + "/weave_128.png " + (dir / "s.vqt").string() + " --animation");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.output.find("is not an animation"), std::string::npos) << r.output;
+    r = encode_tool(folder + " -o " + (dir / "batch").string() + " --animation");
+    EXPECT_NE(r.status, 0);
+    EXPECT_FALSE(fs::exists(dir / "s.vqt"));
+    // With -o DIR the folder is a batch, one texture per image.
+    r = encode_tool(folder + " -o " + (dir / "batch").string() + " -q 0 --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "batch/a.vqt"));
+    EXPECT_TRUE(fs::exists(dir / "batch/b.vqt"));
 }
