@@ -317,3 +317,50 @@ TEST(Api, ColourUnderAnAlphaRampSurvivesTheCodec) {
     EXPECT_GE(hi, 247);
     EXPECT_NEAR(mean, 127.5, 24.0);
 }
+
+// The mip chain of straight-alpha texture: colour is averaged weighted by
+// alpha, so red squares on transparent black stay red at their edges at
+// every coarser level instead of darkening toward the black under them.
+TEST(Api, MipChainOfStraightAlphaHasNoDarkFringes) {
+    constexpr int n = 128;
+    const uint8_t red[3] = {230, 40, 20};
+    std::vector<uint8_t> px(std::size_t(n) * n * 4, 0);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            if ((x / 16 + y / 16) % 2 == 0) {
+                uint8_t* p = &px[(std::size_t(y) * n + std::size_t(x)) * 4];
+                std::copy(red, red + 3, p);
+                p[3] = 255;
+            }
+    vqtex_encode_params ep;
+    vqtex_encode_params_init(&ep);
+    vqtex_encode_params_preset(&ep, 100);
+    const vqtex_image in{n, n, 4, px.data()};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    ASSERT_EQ(vqtex_encode(&ep, &in, &data, &size, nullptr, &err), VQTEX_OK) << err.detail;
+    const vqtex_cpp::Buffer file(data, size);
+    vqtex_decode_params dp;
+    vqtex_decode_params_init(&dp);
+    vqtex_image levels[16]{};
+    uint32_t count = 0;
+    ASSERT_EQ(vqtex_decode_mips(&dp, file.data(), file.size(), levels, 16, &count, &err), VQTEX_OK) << err.detail;
+    std::vector<vqtex_cpp::Image> owned;
+    for (uint32_t i = 0; i < count; ++i) owned.emplace_back(levels[i]);
+    ASSERT_GE(count, 4u);
+    for (uint32_t l = 0; l < 4; ++l) {
+        const vqtex_image& img = levels[l];
+        int worst = 0;
+        std::size_t partial = 0;
+        for (std::size_t p = 0; p < std::size_t(img.width) * img.height * 4; p += 4) {
+            if (img.pixels[p + 3] < 32) continue;
+            partial += img.pixels[p + 3] < 224;
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(img.pixels[p + std::size_t(c)]) - red[c]));
+        }
+        std::printf("level %u: colour error where alpha >= 32 at most %d (%zu partly transparent pixels)\n", l, worst,
+                    partial);
+        EXPECT_LE(worst, 12) << "level " << l;
+        if (l > 0) EXPECT_GT(partial, 0u) << "level " << l;
+    }
+}
