@@ -2,7 +2,11 @@
 // clear errors, cancellation, no output on failure.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <tuple>
+#include <vector>
 
 #include <cstring>
 #include <string>
@@ -313,4 +317,118 @@ TEST(Validation, DecodeParamsAreCheckedBeforeTheFile) {
     vqtex_decode_params uninit{};
     EXPECT_EQ(vqtex_decode(&uninit, junk, sizeof junk, &out, &err), VQTEX_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::strstr(err.detail, "vqtex_decode_params_init"), nullptr) << err.detail;
+}
+
+// Straight alpha through the library: a constant colour under an alpha ramp,
+// encoded at quality 100 and decoded, keeps its colour within 3 levels
+// wherever alpha is at least 1, and alpha keeps the ramp's spread.
+TEST(Api, ColourUnderAnAlphaRampSurvivesTheCodec) {
+    constexpr int n = 128;
+    const uint8_t colour[3] = {200, 100, 50};
+    std::vector<uint8_t> px(std::size_t(n) * n * 4);
+    for (std::size_t p = 0; p < px.size(); p += 4) {
+        std::copy(colour, colour + 3, &px[p]);
+        px[p + 3] = uint8_t((int((p / 4) % n) * 255 + n / 2) / (n - 1));
+    }
+    vqtex_encode_params ep;
+    vqtex_encode_params_init(&ep);
+    vqtex_encode_params_preset(&ep, 100);
+    const vqtex_image in{n, n, 4, px.data()};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    ASSERT_EQ(vqtex_encode(&ep, &in, &data, &size, nullptr, &err), VQTEX_OK) << err.detail;
+    const vqtex_cpp::Buffer file(data, size);
+    vqtex_decode_params dp;
+    vqtex_decode_params_init(&dp);
+    vqtex_image out{};
+    ASSERT_EQ(vqtex_decode(&dp, file.data(), file.size(), &out, &err), VQTEX_OK) << err.detail;
+    const vqtex_cpp::Image owned(out);
+    ASSERT_EQ(out.channels, 4u);
+    int worst = 0, lo = 255, hi = 0;
+    uint64_t sum = 0;
+    std::size_t covered = 0;
+    const std::size_t samples = std::size_t(out.width) * out.height * 4;
+    for (std::size_t p = 0; p < samples; p += 4) {
+        const uint8_t a = out.pixels[p + 3];
+        sum += a;
+        lo = std::min(lo, int(a));
+        hi = std::max(hi, int(a));
+        if (a == 0) continue;
+        ++covered;
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(out.pixels[p + std::size_t(c)]) - colour[c]));
+    }
+    const double mean = double(sum) / double(samples / 4);
+    std::printf("library: %zu bytes; colour error under alpha >= 1 at most %d over %zu pixels; alpha %d..%d, mean %.1f\n",
+                size, worst, covered, lo, hi, mean);
+    EXPECT_GT(covered, samples / 32);
+    EXPECT_LE(worst, 3);
+    EXPECT_LE(lo, 8);
+    EXPECT_GE(hi, 247);
+    EXPECT_NEAR(mean, 127.5, 24.0);
+    // Synthesis moves pixels, so alpha is compared as a distribution: the
+    // decoded alpha values, sorted, against the example's, sorted (the
+    // output has the example's size): apart only by the coding error.
+    ASSERT_EQ(samples, px.size());
+    std::vector<int> decoded_alpha, example_alpha;
+    for (std::size_t p = 3; p < samples; p += 4) {
+        decoded_alpha.push_back(out.pixels[p]);
+        example_alpha.push_back(px[p]);
+    }
+    std::sort(decoded_alpha.begin(), decoded_alpha.end());
+    std::sort(example_alpha.begin(), example_alpha.end());
+    int alpha_error = 0;
+    for (std::size_t i = 0; i < decoded_alpha.size(); ++i)
+        alpha_error = std::max(alpha_error, std::abs(decoded_alpha[i] - example_alpha[i]));
+    std::printf("library: alpha quantiles within %d of the example's\n", alpha_error);
+    EXPECT_LE(alpha_error, 3);
+}
+
+// The mip chain of straight-alpha texture: colour is averaged weighted by
+// alpha, so red squares on transparent black stay red at their edges at
+// every coarser level instead of darkening toward the black under them.
+TEST(Api, MipChainOfStraightAlphaHasNoDarkFringes) {
+    constexpr int n = 128;
+    const uint8_t red[3] = {230, 40, 20};
+    std::vector<uint8_t> px(std::size_t(n) * n * 4, 0);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            if ((x / 16 + y / 16) % 2 == 0) {
+                uint8_t* p = &px[(std::size_t(y) * n + std::size_t(x)) * 4];
+                std::copy(red, red + 3, p);
+                p[3] = 255;
+            }
+    vqtex_encode_params ep;
+    vqtex_encode_params_init(&ep);
+    vqtex_encode_params_preset(&ep, 100);
+    const vqtex_image in{n, n, 4, px.data()};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    ASSERT_EQ(vqtex_encode(&ep, &in, &data, &size, nullptr, &err), VQTEX_OK) << err.detail;
+    const vqtex_cpp::Buffer file(data, size);
+    vqtex_decode_params dp;
+    vqtex_decode_params_init(&dp);
+    vqtex_image levels[16]{};
+    uint32_t count = 0;
+    ASSERT_EQ(vqtex_decode_mips(&dp, file.data(), file.size(), levels, 16, &count, &err), VQTEX_OK) << err.detail;
+    std::vector<vqtex_cpp::Image> owned;
+    for (uint32_t i = 0; i < count; ++i) owned.emplace_back(levels[i]);
+    ASSERT_GE(count, 4u);
+    for (uint32_t l = 0; l < 4; ++l) {
+        const vqtex_image& img = levels[l];
+        int worst = 0;
+        std::size_t partial = 0;
+        for (std::size_t p = 0; p < std::size_t(img.width) * img.height * 4; p += 4) {
+            if (img.pixels[p + 3] < 32) continue;
+            partial += img.pixels[p + 3] < 224;
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(img.pixels[p + std::size_t(c)]) - red[c]));
+        }
+        std::printf("level %u: colour error where alpha >= 32 at most %d (%zu partly transparent pixels)\n", l, worst,
+                    partial);
+        EXPECT_LE(worst, 12) << "level " << l;
+        if (l > 0) {
+            EXPECT_GT(partial, 0u) << "level " << l;
+        }
+    }
 }

@@ -138,3 +138,38 @@ TEST(FillTool, ShortQIsNotQuiet) {
     EXPECT_NE(r.status, 0) << r.output;
     EXPECT_FALSE(fs::exists(out));
 }
+
+// An image with straight alpha (a constant colour under an alpha ramp):
+// every pixel outside the hole comes back as it was, colour under low alpha
+// included, and the filled pixels keep the colour.
+TEST(FillTool, KeepsColourUnderStraightAlpha) {
+    constexpr int n = 128;
+    std::vector<uint8_t> px(std::size_t(n) * n * 4);
+    for (std::size_t p = 0; p < px.size(); p += 4) {
+        px[p] = 200;
+        px[p + 1] = 100;
+        px[p + 2] = 50;
+        px[p + 3] = uint8_t(((p / 4) % n) * 2);
+    }
+    const std::string in = (scratch_dir() / "ramp.png").string();
+    vqtex_tools::save_image(in, n, n, 4, px.data());
+    const std::string mask = save_box_mask("ramp_box.png", n, n, 50, 40, 30, 30);
+    const std::string out = (scratch_dir() / "ramp_filled.png").string();
+    const ToolRun r = fill_tool(in + " " + mask + " " + out + " --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const vqtex_tools::LoadedImage a = vqtex_tools::load_image(in), b = vqtex_tools::load_image(out);
+    ASSERT_EQ(a.pixels, px);
+    ASSERT_EQ(b.channels, 4u);
+    std::size_t changed_outside = 0;
+    int worst = 0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const std::size_t p = (std::size_t(y) * n + std::size_t(x)) * 4;
+            const bool hole = y >= 40 && y < 70 && x >= 50 && x < 80;
+            if (!hole) changed_outside += !std::equal(&a.pixels[p], &a.pixels[p] + 4, &b.pixels[p]);
+            if (b.pixels[p + 3] == 0) continue;
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(b.pixels[p + std::size_t(c)]) - int(px[std::size_t(c)])));
+        }
+    EXPECT_EQ(changed_outside, 0u);
+    EXPECT_LE(worst, 3);
+}

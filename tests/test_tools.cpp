@@ -348,7 +348,7 @@ TEST(Tools, AnimationRoundTrip) {
     EXPECT_FALSE(fs::exists(dir / "out_06.png"));
     // A folder of frames works too, and gives the same file.
     const std::string file2 = (dir / "flicker2.vqt").string();
-    ASSERT_EQ(encode_tool(corpus + "/flicker_32_anim " + file2 + " --quality 10 -j 1").status, 0);
+    ASSERT_EQ(encode_tool(corpus + "/flicker_32_anim " + file2 + " --animation --quality 10 -j 1").status, 0);
     EXPECT_EQ(vqtex_tools::load_bytes(file), vqtex_tools::load_bytes(file2));
     // Still decoding of an animation, and a missing frame field: one-line errors, nothing written.
     r = decode_tool(file + " " + (dir / "still.png").string());
@@ -366,7 +366,7 @@ TEST(Tools, AnimationRoundTrip) {
     fs::create_directories(dir / "mixed");
     fs::copy_file(corpus + "/flicker_32_anim/frame_000.png", dir / "mixed/a.png");
     fs::copy_file(corpus + "/checks_p16_64.png", dir / "mixed/b.png");
-    r = encode_tool((dir / "mixed").string() + " " + (dir / "mixed.vqt").string());
+    r = encode_tool((dir / "mixed").string() + " " + (dir / "mixed.vqt").string() + " --animation");
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.output.find("all frames must match"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir / "mixed.vqt"));
@@ -618,4 +618,206 @@ TEST(ToolsBatch, SynthBatchGivesTheBytesOfSingleCalls) {
         EXPECT_EQ(vqtex_test::load_file((out / (stem + "_v.tif")).string()), vqtex_test::load_file(single.string()))
             << stem;
     }
+}
+
+// ---- straight alpha, MIP-mapped files, folders -----------------------------
+
+namespace {
+
+// The colour under every pixel of the alpha ramp below.
+constexpr uint8_t kRampColour[3] = {200, 100, 50};
+
+// 128x128 RGBA: a constant colour under alpha rising from 0 at the left
+// edge to 255 at the right, written as straight alpha (as PNG stores it).
+void write_alpha_ramp(const std::string& path) {
+    constexpr int n = 128;
+    std::vector<uint8_t> px(std::size_t(n) * n * 4);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            uint8_t* p = &px[(std::size_t(y) * n + std::size_t(x)) * 4];
+            p[0] = kRampColour[0];
+            p[1] = kRampColour[1];
+            p[2] = kRampColour[2];
+            p[3] = uint8_t((x * 255 + n / 2) / (n - 1));
+        }
+    OIIO::ImageSpec spec(n, n, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, px.data()) && out->close());
+}
+
+// The largest distance from the ramp's colour over the pixels whose alpha
+// is at least 1, and how many such pixels there are.
+struct AlphaColourError {
+    int worst = 0;
+    std::size_t covered = 0;
+};
+AlphaColourError colour_error_under_alpha(const vqtex_tools::LoadedImage& img) {
+    AlphaColourError e;
+    for (std::size_t p = 0; p + 3 < img.pixels.size(); p += 4) {
+        if (img.pixels[p + 3] == 0) continue;
+        ++e.covered;
+        for (int c = 0; c < 3; ++c) e.worst = std::max(e.worst, std::abs(int(img.pixels[p + std::size_t(c)]) - kRampColour[c]));
+    }
+    return e;
+}
+
+}  // namespace
+
+// Colour under low alpha survives the programs: they read and write straight
+// alpha, so neither premultiplying on read nor 8-bit division on write eats
+// it, whatever format holds the texture.
+TEST(Tools, ColourUnderAnAlphaRampSurvivesEncodeAndDecode) {
+    const fs::path dir = scratch_dir() / "alpha";
+    fs::create_directories(dir);
+    const std::string ramp = (dir / "ramp.png").string(), vqt = (dir / "ramp.vqt").string();
+    write_alpha_ramp(ramp);
+    // The tools' reader gives the file's pixels back as they are.
+    const vqtex_tools::LoadedImage example = vqtex_tools::load_image(ramp);
+    ASSERT_EQ(example.channels, 4u);
+    EXPECT_EQ(colour_error_under_alpha(example).worst, 0);
+    ToolRun r = encode_tool(ramp + " " + vqt + " -q 100 --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const char* ext : {"png", "tif", "exr", "tga"}) {
+        const std::string out = (dir / (std::string("out.") + ext)).string();
+        r = decode_tool(vqt + " " + out + " --quiet");
+        ASSERT_EQ(r.status, 0) << ext << ": " << r.output;
+        const vqtex_tools::LoadedImage img = vqtex_tools::load_image(out);
+        ASSERT_EQ(img.channels, 4u) << ext;
+        const AlphaColourError e = colour_error_under_alpha(img);
+        EXPECT_GT(e.covered, img.pixels.size() / 8) << ext;
+        EXPECT_LE(e.worst, 3) << ext;
+        // Alpha keeps the example's spread: a texture of the ramp holds
+        // transparent and opaque pixels and its mean is the ramp's, within
+        // the coding error and the synthesis's choice of where to copy from.
+        uint64_t sum = 0;
+        int lo = 255, hi = 0;
+        for (std::size_t p = 3; p < img.pixels.size(); p += 4) {
+            sum += img.pixels[p];
+            lo = std::min(lo, int(img.pixels[p]));
+            hi = std::max(hi, int(img.pixels[p]));
+        }
+        const double mean = double(sum) / double(img.pixels.size() / 4);
+        std::printf("%s: colour error under alpha >= 1 at most %d over %zu pixels; alpha %d..%d, mean %.1f\n", ext,
+                    e.worst, e.covered, lo, hi, mean);
+        EXPECT_LE(lo, 8) << ext;
+        EXPECT_GE(hi, 247) << ext;
+        EXPECT_NEAR(mean, 127.5, 24.0) << ext;
+        // Synthesis moves pixels, so alpha is compared as a distribution:
+        // the decoded alpha values, sorted, against the example's, sorted
+        // (same size): apart only by the coding error.
+        std::vector<int> decoded_alpha, example_alpha;
+        for (std::size_t p = 3; p < img.pixels.size(); p += 4) decoded_alpha.push_back(img.pixels[p]);
+        for (std::size_t p = 3; p < example.pixels.size(); p += 4) example_alpha.push_back(example.pixels[p]);
+        ASSERT_EQ(decoded_alpha.size(), example_alpha.size()) << ext;
+        std::sort(decoded_alpha.begin(), decoded_alpha.end());
+        std::sort(example_alpha.begin(), example_alpha.end());
+        int alpha_error = 0;
+        for (std::size_t i = 0; i < decoded_alpha.size(); ++i)
+            alpha_error = std::max(alpha_error, std::abs(decoded_alpha[i] - example_alpha[i]));
+        std::printf("%s: alpha quantiles within %d of the example's\n", ext, alpha_error);
+        EXPECT_LE(alpha_error, 3) << ext;
+    }
+    // The PNG holds straight alpha: OpenImageIO, asked for the file's own
+    // samples, finds the ramp's colour under faint pixels.
+    OIIO::ImageSpec hint;
+    hint.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open((dir / "out.png").string(), &hint);
+    ASSERT_TRUE(in);
+    std::vector<uint8_t> raw(std::size_t(in->spec().width) * std::size_t(in->spec().height) * 4);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, raw.data()));
+    vqtex_tools::LoadedImage stored;
+    stored.pixels = raw;
+    EXPECT_LE(colour_error_under_alpha(stored).worst, 3);
+}
+
+// Synthesis straight from the example keeps the colour too.
+TEST(Tools, SynthKeepsStraightAlpha) {
+    const fs::path dir = scratch_dir() / "alpha_synth";
+    fs::create_directories(dir);
+    const std::string ramp = (dir / "ramp.png").string(), out = (dir / "synth.png").string();
+    write_alpha_ramp(ramp);
+    const ToolRun r = run_tool(ramp + " " + out + " --size 96x80 --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const vqtex_tools::LoadedImage img = vqtex_tools::load_image(out);
+    ASSERT_EQ(img.channels, 4u);
+    const AlphaColourError e = colour_error_under_alpha(img);
+    EXPECT_GT(e.covered, 0u);
+    EXPECT_LE(e.worst, 3);
+}
+
+// --mips: one MIP-mapped file for the formats that hold levels (TIFF,
+// OpenEXR), one file per level for the others; every level the right size.
+TEST(Tools, MipChainGoesToOneFileWhereTheFormatHoldsLevels) {
+    const fs::path dir = scratch_dir() / "mips";
+    fs::create_directories(dir);
+    const std::string vqt = (dir / "m.vqt").string();
+    ASSERT_EQ(encode_tool(corpus + "/weave_128.png " + vqt + " -q 0 --quiet").status, 0);
+    // 75x50 rounds up at each level: 38x25, 19x13, 10x7, 5x4, 3x2, 2x1, 1x1.
+    const std::pair<int, int> sizes[] = {{75, 50}, {38, 25}, {19, 13}, {10, 7}, {5, 4}, {3, 2}, {2, 1}, {1, 1}};
+    for (const char* ext : {"png", "jpg", "tif", "exr", "tga", "bmp"}) {
+        const std::string out = (dir / (std::string("m.") + ext)).string();
+        const ToolRun r = decode_tool(vqt + " " + out + " --size 75x50 --mips --quiet");
+        ASSERT_EQ(r.status, 0) << ext << ": " << r.output;
+        const bool one_file = std::string(ext) == "tif" || std::string(ext) == "exr";
+        for (int level = 0; level < 8; ++level) {
+            const fs::path level_file = level == 0 ? fs::path(out) : dir / ("m_mip" + std::to_string(level) + "." + ext);
+            EXPECT_EQ(fs::exists(level_file), level == 0 || !one_file) << level_file;
+            if (one_file) continue;
+            auto in = OIIO::ImageInput::open(level_file.string());
+            ASSERT_TRUE(in) << level_file;
+            EXPECT_EQ(in->spec().width, sizes[level].first) << level_file;
+            EXPECT_EQ(in->spec().height, sizes[level].second) << level_file;
+        }
+        EXPECT_FALSE(fs::exists(dir / (std::string("m_mip8.") + ext)));
+        if (!one_file) continue;
+        // One image whose MIP levels are the chain, level 0 first.
+        auto in = OIIO::ImageInput::open(out);
+        ASSERT_TRUE(in) << out;
+        EXPECT_FALSE(in->seek_subimage(1, 0)) << ext << ": the levels are not separate images";
+        int levels = 0;
+        while (in->seek_subimage(0, levels)) {
+            ASSERT_LT(levels, 8) << ext;
+            EXPECT_EQ(in->spec().width, sizes[levels].first) << ext << " level " << levels;
+            EXPECT_EQ(in->spec().height, sizes[levels].second) << ext << " level " << levels;
+            ++levels;
+        }
+        EXPECT_EQ(levels, 8) << ext;
+        // Its first level is what a decode without --mips writes.
+        const std::string plain = (dir / (std::string("plain.") + ext)).string();
+        ASSERT_EQ(decode_tool(vqt + " " + plain + " --size 75x50 --quiet").status, 0);
+        EXPECT_EQ(vqtex_tools::load_image(out).pixels, vqtex_tools::load_image(plain).pixels) << ext;
+    }
+}
+
+// A folder without -o is not silently read as an animation of its images:
+// the error says how to ask for an animation or for a batch.
+TEST(Tools, AFolderWithoutOutputDirNeedsAnimation) {
+    const fs::path dir = scratch_dir() / "folder";
+    fs::create_directories(dir / "textures");
+    fs::copy_file(corpus + "/weave_128.png", dir / "textures/a.png", fs::copy_options::overwrite_existing);
+    fs::copy_file(corpus + "/cellular_128.png", dir / "textures/b.png", fs::copy_options::overwrite_existing);
+    const std::string folder = (dir / "textures").string();
+    for (const ToolRun& r : {encode_tool(folder + " " + (dir / "t.vqt").string() + " -q 0"),
+                             run_tool(folder + " " + (dir / "t.png").string() + " --size 32")}) {
+        EXPECT_EQ(r.status, 1);
+        EXPECT_NE(r.output.find("is a folder"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("--animation"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("-o DIR"), std::string::npos) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "t.vqt"));
+    EXPECT_FALSE(fs::exists(dir / "t.png"));
+    // --animation on a still image, and with -o: refused.
+    ToolRun r = encode_tool(corpus + "/weave_128.png " + (dir / "s.vqt").string() + " --animation");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.output.find("is not an animation"), std::string::npos) << r.output;
+    r = encode_tool(folder + " -o " + (dir / "batch").string() + " --animation");
+    EXPECT_NE(r.status, 0);
+    EXPECT_FALSE(fs::exists(dir / "s.vqt"));
+    // With -o DIR the folder is a batch, one texture per image.
+    r = encode_tool(folder + " -o " + (dir / "batch").string() + " -q 0 --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "batch/a.vqt"));
+    EXPECT_TRUE(fs::exists(dir / "batch/b.vqt"));
 }

@@ -71,6 +71,18 @@ bool is_sequence(const std::string& path) {
     return fs::exists(path) && subimage_count(path) > 1;
 }
 
+void check_animation_request(const std::string& input, bool animation, const std::string& verb) {
+    std::error_code ec;
+    if (fs::is_directory(input, ec) && !animation)
+        throw std::invalid_argument("'" + input + "' is a folder: add --animation to " + verb +
+                                    " its images as the frames of one animation, or give -o DIR to " + verb +
+                                    " each image on its own into DIR");
+    if (animation && !is_sequence(input))
+        throw std::invalid_argument("--animation: '" + input +
+                                    "' is not an animation (a folder of frames, a numbered pattern such as "
+                                    "'frames/frame_%03d.png', or a multi-image file)");
+}
+
 LoadedSequence load_sequence(const std::string& path) {
     LoadedSequence seq;
     if (is_frame_pattern(path)) {

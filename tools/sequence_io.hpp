@@ -22,6 +22,15 @@ struct LoadedSequence {
 // folder, or a file holding more than one image.
 bool is_sequence(const std::string& path);
 
+// A folder is read as one animation of its images only when the caller
+// asked for that (`--animation`): given without -o DIR, a folder is as
+// likely a batch whose output folder was forgotten, and encoding unrelated
+// textures as frames would succeed silently. Throws the one-line reason,
+// saying how to ask for either (`verb` names the work, e.g. "encode"), for
+// a folder without `animation`, and for `animation` with an input that is
+// no sequence.
+void check_animation_request(const std::string& input, bool animation, const std::string& verb);
+
 // Throws std::runtime_error with a one-line message naming the file.
 LoadedSequence load_sequence(const std::string& path);
 

@@ -160,6 +160,7 @@ int main(int argc, char** argv) {
     bool no_entry_keys = false;
     uint64_t target_size = 0, seed = 1;
     bool json = false, quiet = false, no_closing = false, tileable = false, atlas = false, trees = false;
+    bool animation = false;
     app.add_option("files", files,
                    "EXAMPLE OUTPUT.vqt: an image (any format OpenImageIO reads) or an animation (a numbered "
                    "sequence 'frames/frame_%03d.png', a folder of frames, or a multi-image file); with -o: "
@@ -168,6 +169,10 @@ int main(int argc, char** argv) {
     auto* out_dir_opt = app.add_option("-o,--output-dir", out_dir,
                                        "batch: write OUTDIR/NAME[SUFFIX].vqt for every example (created if missing)");
     app.add_option("--suffix", suffix, "batch: text added to each output's name");
+    app.add_flag("--animation", animation,
+                 "EXAMPLE is an animation: needed for a folder, whose images are then its frames in name order "
+                 "(without -o)")
+        ->excludes(out_dir_opt);
     app.add_option("-q,--quality", quality,
                    "preset from 0 (smallest file) to 100 (best texture); an atlas's byte budget: 1 KB per "
                    "128x128 pixels at 0, doubling every 25 points (4 KB at 50, 16 KB at 100)")
@@ -249,6 +254,7 @@ int main(int argc, char** argv) {
 
         if (!*out_dir_opt) {
             require_single_pair(files, "OUTPUT .vqt", "encode", "examples");
+            check_animation_request(files[0], animation, "encode");
             ProgressBar bar(!quiet && !json);
             const FileReport r = encode_one(s, files[0], files[1], threads, &bar);
             print_report(r, json, quiet);

@@ -156,6 +156,11 @@ int main(int argc, char** argv) {
                                        "batch: write OUTDIR/NAME[SUFFIX].FORMAT for every example (created if missing)");
     app.add_option("--format", format, "batch: output format, as a file extension")->capture_default_str();
     app.add_option("--suffix", suffix, "batch: text added to each output's name");
+    bool animation = false;
+    app.add_flag("--animation", animation,
+                 "EXAMPLE is an animation: needed for a folder, whose images are then its frames in name order "
+                 "(without -o)")
+        ->excludes(out_dir_opt);
     uint32_t frames = 0;
     auto* frames_opt = app.add_option("--frames", frames,
                                       "animation: output frames, 1 to 16384 (default: the example's count)")
@@ -277,6 +282,7 @@ int main(int argc, char** argv) {
 
         if (!*out_dir_opt) {
             require_single_pair(files, "OUTPUT image", "synthesise", "examples");
+            check_animation_request(files[0], animation, "synthesise");
             const bool animated = is_sequence(files[0]);
             if (animated && engine == "paper")
                 throw std::invalid_argument("animations synthesise with the coherent engine only (the paper's engine: "

@@ -161,8 +161,12 @@ vqtex_status vqtex_decode_mips(const vqtex_decode_params* params, const uint8_t*
         if (!levels || !count) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output pointers are NULL");
         *count = 0;
         std::vector<Image> pyramid = decode_pyramid(params, data, size);
+        // Grey+alpha and RGBA are straight alpha: their colour is averaged
+        // weighted by alpha, or transparent pixels would fringe the levels.
+        const bool has_alpha = pyramid.back().channels == 2 || pyramid.back().channels == 4;
         while (pyramid.back().width > 1 || pyramid.back().height > 1)
-            pyramid.push_back(downsample(pyramid.back(), EdgeMode::Wrap));
+            pyramid.push_back(has_alpha ? downsample_straight_alpha(pyramid.back(), EdgeMode::Wrap)
+                                        : downsample(pyramid.back(), EdgeMode::Wrap));
         if (capacity < pyramid.size())
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "the mip chain has " + std::to_string(pyramid.size()) +
                                                    " levels; capacity is " + std::to_string(capacity));

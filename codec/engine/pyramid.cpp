@@ -49,6 +49,38 @@ Image downsample(const Image& src, EdgeMode edges) {
     return dst;
 }
 
+Image downsample_straight_alpha(const Image& src, EdgeMode edges) {
+    const int w = src.width, h = src.height, c = src.channels, alpha = c - 1;
+    const int dw = (w + 1) / 2, dh = (h + 1) / 2;
+    Image dst(dw, dh, c);
+    for (int dy = 0; dy < dh; ++dy) {
+        for (int dx = 0; dx < dw; ++dx) {
+            // Weights of the 5x5 binomial sum to 256; weighted colour sums
+            // reach 256 * 255 * 255, within 32 bits.
+            int coverage = 0;  // sum of weight * alpha
+            int plain[3] = {0, 0, 0}, weighted[3] = {0, 0, 0};
+            for (int ty = 0; ty < 5; ++ty) {
+                const int y = edge_index(2 * dy + ty - 2, h, edges);
+                for (int tx = 0; tx < 5; ++tx) {
+                    const int x = edge_index(2 * dx + tx - 2, w, edges);
+                    const int weight = kPyramidTaps[tx] * kPyramidTaps[ty];
+                    const uint8_t* p = src.at(x, y);
+                    coverage += weight * p[alpha];
+                    for (int ch = 0; ch < alpha; ++ch) {
+                        plain[ch] += weight * p[ch];
+                        weighted[ch] += weight * p[alpha] * p[ch];
+                    }
+                }
+            }
+            uint8_t* out = dst.at(dx, dy);
+            out[alpha] = uint8_t((coverage + 128) >> 8);
+            for (int ch = 0; ch < alpha; ++ch)
+                out[ch] = coverage > 0 ? uint8_t((weighted[ch] + coverage / 2) / coverage) : uint8_t((plain[ch] + 128) >> 8);
+        }
+    }
+    return dst;
+}
+
 std::vector<Image> build_pyramid(const Image& image, int levels, EdgeMode edges) {
     std::vector<Image> pyramid;
     pyramid.reserve(std::size_t(levels));

@@ -36,6 +36,13 @@ int pyramid_level_size(int size, int level);
 
 Image downsample(const Image& image, EdgeMode edges);
 
+// downsample for an image whose last channel is straight (unassociated)
+// alpha (grey+alpha, RGBA): the same filter, but colour is averaged
+// weighted by alpha, so that colour under transparent pixels (often black)
+// does not darken the edges of what is visible at coarser levels. Alpha is
+// downsample's. Where every tap is transparent, colour is downsample's.
+Image downsample_straight_alpha(const Image& image, EdgeMode edges);
+
 // levels >= 1 images, [0] the input itself.
 std::vector<Image> build_pyramid(const Image& image, int levels, EdgeMode edges);
 
