@@ -332,6 +332,7 @@ TEST(Api, ColourUnderAnAlphaRampSurvivesTheCodec) {
     }
     vqtex_encode_params ep;
     vqtex_encode_params_init(&ep);
+    ep.quality = 100;
     vqtex_encode_params_preset(&ep, 100);
     const vqtex_image in{n, n, 4, px.data()};
     uint8_t* data = nullptr;
@@ -400,6 +401,7 @@ TEST(Api, MipChainOfStraightAlphaHasNoDarkFringes) {
             }
     vqtex_encode_params ep;
     vqtex_encode_params_init(&ep);
+    ep.quality = 100;
     vqtex_encode_params_preset(&ep, 100);
     const vqtex_image in{n, n, 4, px.data()};
     uint8_t* data = nullptr;
