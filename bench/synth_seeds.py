@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The synth protocol of vqtex-bench over several seeds: an engine change
-judged on means with less noise than one seed gives (docs/SYNTHESIS.md
-"Session 11").
+judged on means with less noise than one seed gives (as in
+docs/studies/2026-11-24-copy-relocation.md).
 
 One synthesis is one random sample of the texture, and per texture the
 scores move with the seed by more than most engine changes move them

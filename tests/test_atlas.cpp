@@ -1,4 +1,4 @@
-// test_atlas.cpp - formats v3 to v7 (issue 17; docs/FORMAT.md section 8):
+// test_atlas.cpp - formats v3 to v7 (docs/FORMAT.md §2-§4, §A):
 // the atlas coder (AV1 raw OBUs, libaom and dav1d) on its own, then whole
 // files: round trip, rate control, bit-exact decoding across thread counts,
 // the decoder running the same engine as vqtex_synthesize, v5 decoding as

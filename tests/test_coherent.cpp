@@ -310,7 +310,7 @@ TEST(Coherent, RelocationMovesWholeCopiesInsideTheExample) {
     EXPECT_GT(moved_copies, 0) << "no copy found a better place among 64";
 }
 
-// Format 7's edge guard (docs/SYNTHESIS.md "Session 12"): where a copy
+// Format 7's edge guard (docs/FORMAT.md §4.7-§4.8): where a copy
 // runs into the example's edge, the pixel beside it must not show the same
 // columns or rows again a few pixels back (a stutter): the finest level's
 // pairs of neighbours where one's copy would go on past the edge and the
@@ -611,7 +611,7 @@ TEST(Coherent, PixelIndicesKeepEveryPositionInTwoThreeOrFourBytes) {
 
 TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
     // A large output's finest level runs in bands of rows with margins
-    // (issue 17's memory budget); any band height, odd heights among them
+    // (the decoder's memory budget, docs/PERFORMANCE.md); any band height, odd heights among them
     // (the subsets' parity across the torus's wrap), 1 to 3 channels, jitter,
     // more passes, no polish, no roll, k > 1, a tileable example, the edge
     // guard, and any thread count must give the bytes of the whole level.

@@ -79,7 +79,7 @@ Options tree_options(const vqtex_decode_params* p, const FileHeader& header, Lev
     return opt;
 }
 
-// An atlas file (docs/FORMAT.md section 8): the atlas decoded, then the
+// An atlas file (docs/FORMAT.md §2-§4, §A): the atlas decoded, then the
 // coherent engine synthesises from it exactly as vqtex_synthesize would
 // from that image. Returns the texture alone: the engine has no pyramid of
 // pixels, so a mip chain is downsampled from it.

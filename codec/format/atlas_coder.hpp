@@ -1,5 +1,5 @@
-// atlas_coder.hpp - the image coder of the atlas section of format v3
-// (issue 17, docs/FORMAT.md section 8, docs/ATLAS.md): the atlas, a small
+// atlas_coder.hpp - the image coder of the atlas of formats 3 to 7
+// (docs/FORMAT.md §3, docs/ATLAS.md): the atlas, a small
 // image whose windows are the synthesis engine's codebook, is stored as an
 // AV1 intra frame, raw OBUs without the AVIF container. Decoding is dav1d's,
 // single-threaded: AV1 specifies the decoded samples exactly, and the colour

@@ -1,12 +1,12 @@
-// atlas_file.hpp - format versions 3 to 7 (issue 17, docs/FORMAT.md
-// section 8): a still texture stored as an atlas, an image whose windows
+// atlas_file.hpp - format versions 3 to 7 (docs/FORMAT.md §2
+// and §A): a still texture stored as an atlas, an image whose windows
 // are the coherent engine's codebook (the exemplar or a crop of it), coded
 // as AV1 (atlas_coder.hpp), plus the engine's parameters. Version 3 holds
 // them in the container's sections (ATLS, SYNP); version 4 behind a
-// compact header (section 8.7); version 5 adds the blend at seams to
-// version 4 (section 8.8), version 6 the copy relocation to version 5
-// (section 8.9), version 7, which the encoder writes, the edge guard to
-// version 6 (section 8.10). The decoder rebuilds the appearance space from
+// compact header (§A.3); version 5 adds the blend at seams to
+// version 4 (§A.2, §4.11), version 6 the copy relocation to version 5
+// (§A.1, §4.9), version 7, which the encoder writes, the edge guard to
+// version 6 (§2, §4.7-§4.8). The decoder rebuilds the appearance space from
 // the decoded atlas and synthesises with the coherent engine
 // (api/coherent_options.hpp gives its options).
 #pragma once
@@ -76,7 +76,7 @@ struct AtlasSynthesisParams {
 inline bool clamps_children(const AtlasSynthesisParams& params) { return params.edge_guard > 0; }
 
 struct AtlasFile {
-    // Version 3, 4 or 5; levels = the engine's stack depth. A version 4 or 5 file's
+    // Version 3 to 7; levels = the engine's stack depth. A version 4 to 7 file's
     // fields are put here as version 3 would have them (init 0, backtrack 1,
     // no flags, no sections).
     FileHeader header;
