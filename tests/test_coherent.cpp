@@ -489,7 +489,7 @@ TEST(Coherent, GoldenHash) {
     EXPECT_EQ(hash_of(2, 64, 8), 0xc49dfaedd9457d81ull) << std::hex << hash_of(2, 64, 8);
 }
 
-// docs/FORMAT.md 8.8's blend, as written there, for pixel (x, y) of a map.
+// docs/FORMAT.md §4.11's blend, as written there, for pixel (x, y) of a map.
 std::vector<uint8_t> reference_blend(const Image& ex, bool wraps, int r, const PositionMap& map, int x, int y) {
     static const int weights[4][7] = {{1}, {1, 2, 1}, {1, 4, 6, 4, 1}, {1, 6, 15, 20, 15, 6, 1}};
     uint64_t sum[4] = {0, 0, 0, 0}, total = 0;
@@ -514,7 +514,7 @@ std::vector<uint8_t> reference_blend(const Image& ex, bool wraps, int r, const P
 }
 
 TEST(Coherent, BlendIsTheFormatsWeightedMeanAndChangesOnlySeams) {
-    // Every pixel against FORMAT.md 8.8's procedure, on synthesised maps
+    // Every pixel against FORMAT.md §4.11's procedure, on synthesised maps
     // (copies and seams as the engine makes them) and on maps of random
     // positions (every window a seam): mirrored and tileable examples,
     // 1 to 4 channels, every radius, outputs and examples narrower than a
@@ -680,7 +680,7 @@ TEST(Coherent, AnalysisLevelByLevelGivesTheBytesOfTheWholeStack) {
         }
     }
     // Left to its size, an example is analysed level by level when its
-    // vectors would exceed 4 MiB (FORMAT.md 8.5's M): 256x256 x 4 levels x
+    // vectors would exceed 4 MiB (FORMAT.md §4.1's M): 256x256 x 4 levels x
     // 16 bytes is 4 MiB exactly.
     EXPECT_FALSE(analysis_by_level(128, 128, 6));
     EXPECT_FALSE(analysis_by_level(256, 256, 4));

@@ -25,7 +25,7 @@ namespace vqtex {
 namespace {
 
 // dav1d's fixed allocations (its context, tables and thread data) beside the
-// frame, rounded up from what a 128x128 decode measures (docs/FORMAT.md 8.5).
+// frame, rounded up from what a 128x128 decode measures (docs/FORMAT.md §4.1).
 constexpr uint64_t kDav1dFixedBytes = 8ull << 20;
 
 AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {

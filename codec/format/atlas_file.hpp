@@ -31,19 +31,19 @@ enum class AtlasCoder : uint8_t { Av1 = 0 };
 // need more than a handful of pixels, and a tiny atlas bounds nothing.
 inline constexpr int kMinAtlasSide = 8;
 
-// The SYNP section: what the coherent engine runs with (docs/FORMAT.md 8.4).
+// The SYNP section: what the coherent engine runs with (docs/FORMAT.md §A.4).
 // Format version 5's blend when its parameters are not stored (docs/FORMAT.md
-// 8.8), and what the encoder writes. Fixed by the format, as the other
+// §2.2), and what the encoder writes. Fixed by the format, as the other
 // defaults are (atlas_file.cpp).
 inline constexpr int kV5DefaultBlend = 2;
 // Format version 6's positions tried per copy by the copy relocation when
-// its parameters are not stored (docs/FORMAT.md 8.9), and what the encoder
+// its parameters are not stored (docs/FORMAT.md §2.2), and what the encoder
 // writes; versions 3 to 5 have no relocation. The stored value is at most
 // kMaxRelocationPositions (copy_relocation.hpp), as the blend's is
 // kMaxBlendRadius.
 inline constexpr int kV6DefaultRelocation = 64;
 // Format version 7's edge guard, in atlas pixels, when its parameters are
-// not stored (docs/FORMAT.md 8.10), and what the encoder writes; versions 3
+// not stored (docs/FORMAT.md §2.2), and what the encoder writes; versions 3
 // to 6 have none (0: their edge handling). The stored value is at most
 // kMaxEdgeGuard (coherent_synthesis.hpp).
 inline constexpr int kV7DefaultEdgeGuard = 8;
@@ -104,7 +104,7 @@ AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t m
 // What decoding a file needs beside its sections, in bytes: the decoded
 // atlas, dav1d's frame buffers, the engine's appearance space and
 // coherence sets for `levels` levels, and a width x height output with its
-// position maps (docs/FORMAT.md 8.5 gives the formula).
+// position maps (docs/FORMAT.md §4.1 gives the formula).
 uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
                              uint64_t width, uint64_t height);
 

@@ -87,9 +87,9 @@ struct Container {
     std::size_t file_size = 0;
 };
 
-// Checks 1-4 of docs/FORMAT.md 2.4, which every version shares (the
+// Checks 1-4 of docs/FORMAT.md §B.4, which every version shares (the
 // signature and the version field: TRUNCATED, BAD_MAGIC,
-// UNSUPPORTED_VERSION), and returns the version, 1 to 5.
+// UNSUPPORTED_VERSION), and returns the version, 1 to 7.
 uint16_t read_format_version(const uint8_t* data, std::size_t size);
 
 // The header's fields as read, after the signature, the version and the
