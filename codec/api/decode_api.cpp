@@ -1,7 +1,9 @@
 // decode_api.cpp - the exported decoder and inspector, still and animated
 // (paper section 6: "decompression would consist of texture synthesis"):
-// validation, then format/ reads the trees, engine/ builds the matchers and
-// synthesises. Everything here is in the decoder-only library.
+// validation, then format/ reads the file (an atlas, or trees), and
+// engine/ synthesises from it (the coherent engine from an atlas, the
+// paper engine's matchers from trees). Everything here is in the decoder
+// library too.
 #include <cstdlib>
 #include <cstring>
 #include <utility>
