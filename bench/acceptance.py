@@ -1,11 +1,13 @@
 #!/usr/bin/python3
-"""Issue 17's acceptance test read over several vqtex-bench runs that differ
-only in --seed (docs/ATLAS.md "Session 9: the acceptance over two seeds").
+"""The acceptance test (docs/ATLAS.md "How the textures compare") read over
+several vqtex-bench runs that differ only in --seed
+(docs/studies/2026-11-24-acceptance-two-seeds.md).
 
 vqtex-bench's summary compares vqtex with the best PEER+synth row on one
 decode per texture. A decode is one random sample of the texture: changing
-the seed alone flips verdicts (session 8). The files do not depend on the
-seed (the encoder and the peers' coders are deterministic), only the
+the seed alone flips verdicts
+(docs/studies/2026-11-24-atlas-choice-per-texture.md). The files do not
+depend on the seed (the encoder and the peers' coders are deterministic), only the
 synthesis does, so each texture's expected score is better estimated by
 the mean over several seeds. This script takes one bench CSV per seed,
 averages every (rate, row, texture)'s completeness, SWD and coherence over
@@ -134,7 +136,8 @@ def main():
             print(f"{'':>6} {name} (over its {len(means)} textures): {line}")
             # The same test with the ceiling in vqtex's place: what a file
             # that decoded as the lossless exemplar does would score.
-            # (docs/ATLAS.md "Session 13": it fails most count tests.)
+            # (docs/studies/2026-11-24-lossless-exemplar.md: it fails most
+            # count tests.)
             verdicts = []
             for m, (label, _) in enumerate(METRICS):
                 result = best_peer(means, peers, m)

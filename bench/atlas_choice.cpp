@@ -62,7 +62,7 @@ std::vector<std::pair<int, int>> g_controls;
 // An unsharp mask of `amount` percent over a [1 2 1]^2/16 blur (edges
 // clamped), alpha untouched; a negative amount blends towards the blur.
 // Does a sharper (or smoother) atlas come through AV1 with a lower SWD?
-// (--sharpen, docs/ATLAS.md "Session 8": no.)
+// (--sharpen, docs/studies/2026-11-24-atlas-choice-per-texture.md: no.)
 Image sharpen(const Image& src, int amount) {
     if (amount == 0) return src;
     Image out = src;

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Issue 17's acceptance for atlas choices simulated offline (docs/ATLAS.md
-"Session 8"): a choice rule picks one candidate per texture from
-atlas-choice CSVs by their proxy scores (p_*, what the encoder can see),
+"""The acceptance test for atlas choices simulated offline
+(docs/studies/2026-11-24-atlas-choice-per-texture.md): a choice rule
+picks one candidate per texture from atlas-choice CSVs by their proxy
+scores (p_*, what the encoder can see),
 and its held-out scores (h_*, computed as vqtex-bench computes them) are
 compared with the PEER+synth rows of a vqtex-bench CSV, as vqtex-bench's
 summary does: per metric, the best peer is the lowest mean among the peers

@@ -2,8 +2,8 @@
 # decode_memory.sh - peak memory of decoding atlas files (format v7, what
 # `vqtex-encode --atlas` writes; v3 to v6 decode the same way with no more:
 # no edge guard, before v6 no copy relocation, before v5 no blend at seams)
-# against issue 17's
-# budget: at most twice the output (W x H x channels bytes) plus 16 MB.
+# against the decoder's budget (docs/PERFORMANCE.md "Memory"): at most
+# twice the output (W x H x channels bytes) plus 16 MB.
 #
 #   bash bench/decode_memory.sh [BUILD_DIR] [SIDES] [THREADS]
 #

@@ -1,5 +1,5 @@
 // epitome.cpp - hard-EM epitome learning (Jojic, Frey & Kannan 2003), the
-// deterministic variant issue 17's atlas needs: the patch mapping is an
+// deterministic variant an atlas needs (it must encode to the same bytes): the patch mapping is an
 // exact nearest neighbour (ties to the first position in raster order) and
 // the pixel update is an integer mean, so the epitome does not depend on
 // the thread count.

@@ -3,8 +3,8 @@
 // and shape"), learnt by hard EM: each patch of the example is mapped to
 // the epitome position that matches it best, then each epitome pixel
 // becomes the mean of the example pixels mapped onto it. The epitome is a
-// torus, so it has no border for the synthesis to stop at. Issue 17 tried
-// it as an atlas (more of the example's variety in fewer pixels, so that a
+// torus, so it has no border for the synthesis to stop at. It was tried
+// as an atlas (more of the example's variety in fewer pixels, so that a
 // byte budget codes it more finely) and did not keep it: docs/ATLAS.md
 // "Which atlas" has the measurements. Part of the study, not the codec.
 #pragma once

@@ -12,7 +12,8 @@
 namespace vqtex_tools {
 namespace {
 
-// The scores issue 17's acceptance test reads; lower is better for each.
+// The scores the acceptance test reads (docs/ATLAS.md "How the textures
+// compare"); lower is better for each.
 struct AcceptanceMetric {
     const char* label;
     double (*of)(const vqtex_metrics::Scores&);

@@ -11,7 +11,7 @@ namespace vqtex_tools {
 
 // The large protocol's summary, per rate point: the mean completeness, SWD
 // and coherence of vqtex, of every PEER+synth and PEER+gmic row and of the
-// ceilings; then vqtex against the best PEER+synth row, issue 17's
+// ceilings; then vqtex against the best PEER+synth row, the project's
 // acceptance test ("at every rate point, vqtex's mean completeness, SWD and
 // coherence are at or below the best peer + vqtex synthesis row's, and at
 // or below it on at least two thirds of the textures"), and, for

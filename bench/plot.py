@@ -5,8 +5,8 @@ PREFIX_same.png, PREFIX_large.png: mean SWD and completeness against bits
 per exemplar pixel, one line per codec (vqtex, each peer's decode, each
 peer + vqtex synthesis), one figure per protocol.
 
-PREFIX_large_synthesis.png (issue 17): mean completeness, SWD and coherence
-against the file's bytes for the large protocol's synthesis rows: vqtex,
+PREFIX_large_synthesis.png (the acceptance test's rows): mean completeness,
+SWD and coherence against the file's bytes for the large protocol's synthesis rows: vqtex,
 each PEER+synth (vqtex's engine), each PEER+gmic (G'MIC), with the ceilings
 (synthesis from the lossless exemplar) and the floor (the exemplar itself
 against the held-out crop) as horizontal lines.
@@ -77,7 +77,7 @@ def codec_figures(rows, prefix):
 
 
 def synthesis_figure(rows, prefix):
-    """The large protocol's synthesis rows against bytes (issue 17)."""
+    """The large protocol's synthesis rows against bytes (the acceptance test's)."""
     large = [r for r in rows if r["protocol"] == "large"]
     # codec -> rate (the quality column: a -q preset or a byte target) -> rows
     curves = defaultdict(lambda: defaultdict(list))

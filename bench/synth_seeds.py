@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """The synth protocol of vqtex-bench over several seeds: an engine change
-judged on means with less noise than one seed gives (docs/SYNTHESIS.md
-"Session 11").
+judged on means with less noise than one seed gives (as in
+docs/studies/2026-11-24-copy-relocation.md).
 
 One synthesis is one random sample of the texture, and per texture the
 scores move with the seed by more than most engine changes move them
-(docs/ATLAS.md "The counts are mostly noise"). The synth protocol is fast
+(docs/studies/2026-11-24-atlas-choice-per-texture.md "The counts are
+mostly noise"). The synth protocol is fast
 (about 7 s for the 23 photographs at 256x256), so three seeds cost little.
 This runs it once per seed into OUT/sSEED.csv (kept: a second call with the
 same OUT only reads them), then prints each row's mean completeness, SWD

@@ -12,7 +12,7 @@
 //          tiled, and the strongest simple alternatives: the peer's decode
 //          synthesised to the output size by vqtex's own engine (PEER+synth)
 //          and by G'MIC's syntexturize_matchpatch (PEER+gmic). Its summary
-//          ends with issue 17's acceptance test: vqtex against the best
+//          ends with the acceptance test (docs/ATLAS.md): vqtex against the best
 //          PEER+synth row at every rate.
 // Plus the ceilings: vqtex's synthesis from the exemplar itself, and in the
 // large protocol G'MIC's as well.

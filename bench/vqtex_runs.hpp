@@ -1,6 +1,6 @@
 // vqtex's own runs in vqtex-bench beside the codec rows: synthesis from an
 // image with the library's engine (the ceilings, PEER+synth, the synth
-// protocol), and the atlas a format v3 file holds, for the contact sheets.
+// protocol), and the atlas an atlas file holds, for the contact sheets.
 #pragma once
 
 #include <cstdint>
@@ -17,9 +17,9 @@ namespace vqtex_tools {
 // through OMP_NUM_THREADS so that the wall times compare like for like.
 constexpr uint32_t kSynthThreads = 1;
 
-// The atlas a format v3 file stores, as its decoder sees it (for the large
-// protocol's contact sheets: what the engine synthesises from). Empty for a
-// file of another version, or if the file does not read.
+// The atlas an atlas file (versions 3 to 7) stores, as its decoder sees it
+// (for the large protocol's contact sheets: what the engine synthesises
+// from). Empty for a file of another version, or if the file does not read.
 Image decoded_atlas(const std::vector<uint8_t>& file);
 
 // Synthesis from an image with vqtex's engine (full codebooks).

@@ -42,7 +42,7 @@ inline void check_failure(vqtex_status st, const vqtex_error& err) {
     }
 }
 
-// The file format's CRC-32 (IEEE 802.3, reflected; docs/FORMAT.md, 2.3),
+// The file format's CRC-32 (IEEE 802.3, reflected; docs/FORMAT.md §1),
 // bit by bit: the targets see the library through its public API only, and
 // the checksum's speed does not matter here.
 inline uint32_t crc32(const uint8_t* data, size_t size) {

@@ -1,5 +1,5 @@
 // atlas_v3_writer.cpp - the writer of format version 3 (docs/FORMAT.md
-// section 8: the container of sections 2.1-2.4 with an ATLS and a SYNP
+// §A.4: the container of §B.1-§B.4 with an ATLS and a SYNP
 // section), which the encoder no longer writes. The tests and the fuzzers'
 // seeds make version 3 files with it, so that version 3 goes on decoding.
 #include "atlas_v3_writer.hpp"

@@ -1,5 +1,5 @@
 // atlas_v3_writer.hpp - format version 3 files for the tests and the
-// fuzzers' seeds (docs/FORMAT.md section 8); the library reads them and
+// fuzzers' seeds (docs/FORMAT.md §A.4); the library reads them and
 // writes version 7 (writer/atlas_writer.hpp).
 #pragma once
 

@@ -53,6 +53,6 @@ for t in textures:
     assert len(g) == 1 and g[0]["status"] in ("ok", "missing"), g
 print(f"bench quick: {len(rows)} rows OK")
 PY
-# The large protocol's summary ends with issue 17's comparison.
+# The large protocol's summary ends with the acceptance test's comparison.
 grep -q "^large protocol: vqtex against peer + synthesis" "$tmp/summary.txt"
 grep -Eq "^  (compl|SWD|coher) .*(PASS|FAIL|n/a)" "$tmp/summary.txt"

@@ -35,7 +35,7 @@ ENCODE_FILES = {
     "tsvq/search_exhaustive.hpp", "tsvq/search_exhaustive.cpp",
 }
 # api/ is split by file: these are the decoder library's C API; every other
-# api/ file is the encoder library's.
+# api/ file is built only into the full library, vqtex.
 API_DECODE_SIDE = {
     "api/api.cpp", "api/decode_api.cpp", "api/api_support.hpp",
     "api/validate.hpp", "api/validate_decode.cpp",

@@ -1,4 +1,4 @@
-// test_atlas.cpp - formats v3 to v7 (issue 17; docs/FORMAT.md section 8):
+// test_atlas.cpp - formats v3 to v7 (docs/FORMAT.md §2-§4, §A):
 // the atlas coder (AV1 raw OBUs, libaom and dav1d) on its own, then whole
 // files: round trip, rate control, bit-exact decoding across thread counts,
 // the decoder running the same engine as vqtex_synthesize, v5 decoding as
@@ -120,7 +120,7 @@ std::vector<uint8_t> varints(std::initializer_list<uint64_t> values) {
 
 // A compact (v5, or v4) file from its packed byte, the bytes of its fields and what follows
 // them (the bitstream), with a correct checksum: what a hostile writer can
-// make (docs/FORMAT.md 8.7).
+// make (docs/FORMAT.md §2.1-§2.2).
 std::vector<uint8_t> compact_file(uint8_t packed, const std::vector<uint8_t>& fields,
                                   const std::vector<uint8_t>& tail, uint16_t version = 7) {
     vqtex::ByteWriter w;
@@ -236,7 +236,7 @@ TEST(AtlasFile, RoundTripDecodesAtAnySizeAndInspects) {
     EXPECT_EQ(info.atlas_height, 128u);
     EXPECT_EQ(info.blend, 2u) << "format 5's default";
     // Where the bytes go: the AV1 bitstream, no parameters (the defaults),
-    // and 20 bytes of header and checksum (docs/FORMAT.md 8.7).
+    // and 20 bytes of header and checksum (docs/FORMAT.md §2.1).
     ASSERT_EQ(info.section_count, 2u);
     EXPECT_STREQ(info.sections[0].tag, "ATLS");
     EXPECT_EQ(info.sections[0].stored_bytes, file.size() - 20);
@@ -511,7 +511,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
 }
 
 // Every truncation and every bit of every byte flipped: the checksum comes
-// before any field is read (docs/FORMAT.md 8.7), so the status is known
+// before any field is read (docs/FORMAT.md §2.3), so the status is known
 // exactly for each.
 TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
     const vqtex::Image ex = load_corpus("checks_p16_64.png");

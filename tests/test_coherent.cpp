@@ -310,7 +310,7 @@ TEST(Coherent, RelocationMovesWholeCopiesInsideTheExample) {
     EXPECT_GT(moved_copies, 0) << "no copy found a better place among 64";
 }
 
-// Format 7's edge guard (docs/SYNTHESIS.md "Session 12"): where a copy
+// Format 7's edge guard (docs/FORMAT.md §4.7-§4.8): where a copy
 // runs into the example's edge, the pixel beside it must not show the same
 // columns or rows again a few pixels back (a stutter): the finest level's
 // pairs of neighbours where one's copy would go on past the edge and the
@@ -489,7 +489,7 @@ TEST(Coherent, GoldenHash) {
     EXPECT_EQ(hash_of(2, 64, 8), 0xc49dfaedd9457d81ull) << std::hex << hash_of(2, 64, 8);
 }
 
-// docs/FORMAT.md 8.8's blend, as written there, for pixel (x, y) of a map.
+// docs/FORMAT.md §4.11's blend, as written there, for pixel (x, y) of a map.
 std::vector<uint8_t> reference_blend(const Image& ex, bool wraps, int r, const PositionMap& map, int x, int y) {
     static const int weights[4][7] = {{1}, {1, 2, 1}, {1, 4, 6, 4, 1}, {1, 6, 15, 20, 15, 6, 1}};
     uint64_t sum[4] = {0, 0, 0, 0}, total = 0;
@@ -514,7 +514,7 @@ std::vector<uint8_t> reference_blend(const Image& ex, bool wraps, int r, const P
 }
 
 TEST(Coherent, BlendIsTheFormatsWeightedMeanAndChangesOnlySeams) {
-    // Every pixel against FORMAT.md 8.8's procedure, on synthesised maps
+    // Every pixel against FORMAT.md §4.11's procedure, on synthesised maps
     // (copies and seams as the engine makes them) and on maps of random
     // positions (every window a seam): mirrored and tileable examples,
     // 1 to 4 channels, every radius, outputs and examples narrower than a
@@ -611,7 +611,7 @@ TEST(Coherent, PixelIndicesKeepEveryPositionInTwoThreeOrFourBytes) {
 
 TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
     // A large output's finest level runs in bands of rows with margins
-    // (issue 17's memory budget); any band height, odd heights among them
+    // (the decoder's memory budget, docs/PERFORMANCE.md); any band height, odd heights among them
     // (the subsets' parity across the torus's wrap), 1 to 3 channels, jitter,
     // more passes, no polish, no roll, k > 1, a tileable example, the edge
     // guard, and any thread count must give the bytes of the whole level.
@@ -680,7 +680,7 @@ TEST(Coherent, AnalysisLevelByLevelGivesTheBytesOfTheWholeStack) {
         }
     }
     // Left to its size, an example is analysed level by level when its
-    // vectors would exceed 4 MiB (FORMAT.md 8.5's M): 256x256 x 4 levels x
+    // vectors would exceed 4 MiB (FORMAT.md §4.1's M): 256x256 x 4 levels x
     // 16 bytes is 4 MiB exactly.
     EXPECT_FALSE(analysis_by_level(128, 128, 6));
     EXPECT_FALSE(analysis_by_level(256, 256, 4));

@@ -92,7 +92,7 @@ TEST(FormatAbuse, AnyFlippedPayloadByteFailsTheChecksum) {
 
 TEST(FormatAbuse, UnknownVersionIsNamed) {
     std::vector<uint8_t> bad = small_file();
-    bad[8] = 8;  // 2 is the animations' version, 3 to 7 the atlas files' (docs/FORMAT.md sections 7, 8)
+    bad[8] = 8;  // 2 is the animations' version, 3 to 7 the atlas files' (FORMAT.md §D, §2, §A)
     vqtex_status st;
     vqtex_error err{};
     decode(bad, decode_params(16, 16), &st, &err);

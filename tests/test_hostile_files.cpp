@@ -545,7 +545,7 @@ TEST(HostileFiles, DecodingStaysWithinTheMemoryLimit) {
     expect_limit_is_kept(file);
 }
 
-// Formats v3 to v7 (docs/FORMAT.md section 8): the atlas's announced size
+// Formats v3 to v7 (docs/FORMAT.md §4.1, §A): the atlas's announced size
 // is checked against the limit before dav1d or the decoded atlas allocate
 // anything, and a whole decode stays within the limit its check computes.
 // (dav1d allocates with malloc, which the counter does not see: its share

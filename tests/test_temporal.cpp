@@ -431,7 +431,7 @@ TEST(TemporalCodec, RoundTripThroughTheFileIsBitExactForAnyThreadCount) {
     const std::vector<uint8_t> file = encode_corpus("flicker_32_anim");
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
     // Version 2: a reader of version 1 only (which rejects every other
-    // version, docs/FORMAT.md section 6) says UNSUPPORTED_VERSION, not CORRUPT.
+    // version, docs/FORMAT.md §5) says UNSUPPORTED_VERSION, not CORRUPT.
     EXPECT_EQ(info.format_version, 2u);
     EXPECT_EQ(file[8] | (file[9] << 8), 2);
     EXPECT_EQ(info.exemplar_frames, 32u);

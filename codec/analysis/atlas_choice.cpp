@@ -1,5 +1,5 @@
-// atlas_choice.cpp - the atlas of a format 5 file and its AV1 level for a
-// byte budget (issue 17; docs/ATLAS.md "Which atlas" has the measurements
+// atlas_choice.cpp - the atlas of an atlas file and its AV1 level for a
+// byte budget (docs/ATLAS.md "Which atlas" has the measurements
 // behind the rules here).
 #include "analysis/atlas_choice.hpp"
 

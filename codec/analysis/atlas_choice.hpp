@@ -1,4 +1,4 @@
-// atlas_choice.hpp - what a format v3 file stores (issue 17, docs/ATLAS.md
+// atlas_choice.hpp - what an atlas file stores (docs/ATLAS.md
 // "Which atlas"): the part of the example that becomes the atlas and the
 // AV1 quality it is coded at, for a byte budget. The codeword count, the
 // paper's rate knob (section 6), is the atlas's area; the quality preset

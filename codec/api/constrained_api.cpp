@@ -1,6 +1,6 @@
 // constrained_api.cpp - the exported C calls for constrained synthesis, hole
 // filling and extrapolation (paper section 5.1): validation, then
-// constrained.cpp.
+// fill/constrained.cpp.
 #include <cstring>
 #include <string>
 

@@ -1,7 +1,9 @@
 // decode_api.cpp - the exported decoder and inspector, still and animated
 // (paper section 6: "decompression would consist of texture synthesis"):
-// validation, then format/ reads the trees, engine/ builds the matchers and
-// synthesises. Everything here is in the decoder-only library.
+// validation, then format/ reads the file (an atlas, or trees), and
+// engine/ synthesises from it (the coherent engine from an atlas, the
+// paper engine's matchers from trees). Everything here is in the decoder
+// library too.
 #include <cstdlib>
 #include <cstring>
 #include <utility>
@@ -79,7 +81,7 @@ Options tree_options(const vqtex_decode_params* p, const FileHeader& header, Lev
     return opt;
 }
 
-// An atlas file (docs/FORMAT.md section 8): the atlas decoded, then the
+// An atlas file (docs/FORMAT.md §2-§4, §A): the atlas decoded, then the
 // coherent engine synthesises from it exactly as vqtex_synthesize would
 // from that image. Returns the texture alone: the engine has no pyramid of
 // pixels, so a mip chain is downsampled from it.

@@ -5,7 +5,7 @@
 // step). What can only be checked against the example (the pyramid depth it
 // allows, the shapes that fit) is checked by the analysis when it plans.
 // These are the decoder library's (validate_decode.cpp); validate_encode.hpp
-// declares the encoder library's.
+// declares the ones only the full library (vqtex) has.
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,5 @@
-// validate_encode.hpp - the validation of the encoder library's params
-// structs (validate.hpp says how the checks are made and has the
+// validate_encode.hpp - the validation of the params structs only the full
+// library (vqtex) takes (validate.hpp says how the checks are made and has the
 // decoder's).
 #pragma once
 

@@ -1,6 +1,6 @@
 // error.hpp - the codec's internal error type. Everything inside codec/
-// throws vqtex::Error; codec/api.cpp turns it into a status code and a detail
-// message so no exception ever crosses the public C boundary.
+// throws vqtex::Error; api/api_support.hpp turns it into a status code and
+// a detail message so no exception ever crosses the public C boundary.
 #pragma once
 
 #include <stdexcept>

@@ -1,5 +1,5 @@
 // coherent_candidates.hpp - the candidate list that the coherent engine
-// (coherent_correction.hpp) and the constrained fill (fill/constrained.cpp)
+// (coherent_correction.hpp) and the constrained fill (fill/fill_coherence.hpp)
 // share: Ashikhmin 2001's coherent candidates, the example positions that
 // continue the copies the pixel's neighbours were taken from, each offered
 // once, in the order the neighbours propose them, so that the choice among

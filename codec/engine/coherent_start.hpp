@@ -40,7 +40,8 @@ inline constexpr int kFramePurpose = 2;   // the coarsest level's example frame
 // the example's last columns shown twice or three times side by side
 // (caustics' bright blips). With `clamp` true, the child past the edge is
 // clamped to it, so its copy breaks there and the correction passes decide
-// what it shows (docs/SYNTHESIS.md "Session 12").
+// what it shows (docs/FORMAT.md §4.7; measured in
+// docs/studies/2026-11-24-edge-guard.md).
 inline int child_coordinate(int size, bool wraps, int parent, int offset, int spacing, bool clamp) {
     if (wraps) return Image::wrap(parent + offset * spacing, size);
     const int base = clamp || parent + spacing < size ? parent : std::max(0, size - 1 - spacing);

@@ -41,7 +41,7 @@ struct CoherentOptions : CoherentRun {
     int relocate = 0;
     // How copies end at the example's edge, one of two behaviours that
     // stop stutters of its last columns (the other is
-    // CoherentRun::clamp_children; docs/SYNTHESIS.md "Session 12"): above 0,
+    // CoherentRun::clamp_children; docs/FORMAT.md §4.8): above 0,
     // a correction takes no position within this many example pixels, in x
     // and in y, of where a neighbour's copy would go on past the edge, so
     // that a copy cut off by the edge ends in a seam.
@@ -70,7 +70,8 @@ struct CoherentOptions : CoherentRun {
 
 // The finest level the copy relocation runs at: below it, the copies of a
 // large output are many and small, and moving them cost 130 ms of a 512x512
-// synthesis for little (docs/SYNTHESIS.md "Session 11").
+// synthesis for little (measured in
+// docs/studies/2026-11-24-copy-relocation.md).
 inline constexpr int kRelocationMinLevel = 2;
 
 // vqtex_synthesize's edge guard (the atlas format fixes its own default,

@@ -1,5 +1,5 @@
 // copy_relocation.cpp - moving whole copies to where they fit the copies
-// around them (see copy_relocation.hpp; docs/SYNTHESIS.md "Session 11").
+// around them (see copy_relocation.hpp; docs/FORMAT.md §4.9).
 #include "engine/copy_relocation.hpp"
 
 #include <algorithm>
@@ -104,7 +104,8 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
     // Every copy is scored against the map as it is, so copies are
     // independent and go on the threads; all are moved afterwards. (One
     // after another, each seeing the moves before it, gave the same scores
-    // for five times the time: docs/SYNTHESIS.md "Session 11".)
+    // for five times the time, measured in
+    // docs/studies/2026-11-24-copy-relocation.md.)
     std::vector<std::pair<int, int>> move(copies.size(), {0, 0});
     parallel_for(threads, copies.size(), 4, [&](std::size_t c0, std::size_t c1) {
         std::vector<Link> links;

@@ -2,7 +2,8 @@
 // around them: the choice of copy that image quilting (Efros & Freeman
 // 2001) makes by a patch's overlap, made here after the fact on a level of
 // the coordinate map (Lefebvre & Hoppe 2005), with the two-sided seam cost
-// of graph-cut textures (Kwatra et al. 2003). docs/SYNTHESIS.md "Session 11".
+// of graph-cut textures (Kwatra et al. 2003). docs/FORMAT.md §4.9 specifies
+// it; docs/studies/2026-11-24-copy-relocation.md measured it.
 //
 // A copy is a connected region of the map whose adjacent positions continue
 // one another (each the other shifted by the level's spacing). The engine

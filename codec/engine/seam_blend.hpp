@@ -12,7 +12,7 @@
 
 namespace vqtex {
 
-// The largest blend radius a file may ask for (docs/FORMAT.md 8.8).
+// The largest blend radius a file may ask for (docs/FORMAT.md §2.2).
 inline constexpr int kMaxBlendRadius = 3;
 // vqtex_synthesize's radius (docs/SYNTHESIS.md: radius 3 scores within
 // 0.05 of it for twice the taps). Format version 5's default is the

@@ -28,7 +28,7 @@
 //          just before, or predicted by pass 1), so queries are whole vectors
 //          and the TSVQ trees work unchanged: two trees per level, one per
 //          neighbourhood kind, as the paper says.
-// On top of the paper's method (each measured, README.md "Hole filling"):
+// On top of the paper's method (each measured, docs/FILL.md):
 //   - coarse context: a coarser pixel whose filter footprint is mostly
 //     known is computed from its known part (normalised convolution) and
 //     used as context instead of being synthesised, so coarse holes do not
@@ -78,7 +78,7 @@ struct FillOptions {
     uint32_t tolerance = 0;           // near-ties (see MatchContext), in 1/256
     double codeword_fraction = 1.0;   // TSVQ leaves per example neighbourhood
     // Additions to the paper's method (two-pass method only; measured in
-    // README.md, "Hole filling"):
+    // docs/FILL.md):
     // Coherent candidates beside the tree's answer (fill_coherence.hpp,
     // coherent_choice): on/off, how far to look for the neighbours' sources
     // (1 or 2), and by how much (1/256) a coherent candidate may be farther

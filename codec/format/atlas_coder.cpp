@@ -1,5 +1,5 @@
-// atlas_coder.cpp - decoding the atlas bitstream of format v3 with dav1d
-// (issue 17; docs/FORMAT.md section 8.3). Every failure of dav1d, and every
+// atlas_coder.cpp - decoding the atlas bitstream of formats 3 to 7 with
+// dav1d (docs/FORMAT.md §3). Every failure of dav1d, and every
 // frame that is not exactly the one the section announces, is a CORRUPT
 // file; dav1d's frame size limit is set to the announced size so a hostile
 // bitstream cannot make it allocate more than the atlas.

@@ -1,5 +1,5 @@
-// atlas_coder.hpp - the image coder of the atlas section of format v3
-// (issue 17, docs/FORMAT.md section 8, docs/ATLAS.md): the atlas, a small
+// atlas_coder.hpp - the image coder of the atlas of formats 3 to 7
+// (docs/FORMAT.md §3, docs/ATLAS.md): the atlas, a small
 // image whose windows are the synthesis engine's codebook, is stored as an
 // AV1 intra frame, raw OBUs without the AVIF container. Decoding is dav1d's,
 // single-threaded: AV1 specifies the decoded samples exactly, and the colour
@@ -23,7 +23,7 @@ namespace vqtex {
 // what a hostile size field can make dav1d allocate.
 inline constexpr int kMaxAtlasSide = 4096;
 
-// The bitstream of an atlas of `channels` channels (docs/FORMAT.md 8.3):
+// The bitstream of an atlas of `channels` channels (docs/FORMAT.md §3):
 //  1 (grey): one monochrome AV1 frame.
 //  3 (RGB): one AV1 frame in YCbCr (4:4:4 or 4:2:0), converted by
 //     atlas_ycbcr_to_rgb.
@@ -36,7 +36,7 @@ Image decode_atlas(const uint8_t* data, std::size_t size, int width, int height,
                    const std::string& where);
 
 // The colour conversion both sides share (JPEG's full-range BT.601 in 16-bit
-// fixed point). The inverse is normative: docs/FORMAT.md 8.3 spells it out.
+// fixed point). The inverse is normative: docs/FORMAT.md §3 spells it out.
 void atlas_rgb_to_ycbcr(const uint8_t* rgb, uint8_t& y, uint8_t& cb, uint8_t& cr);
 void atlas_ycbcr_to_rgb(int y, int cb, int cr, uint8_t* rgb);
 

@@ -1,5 +1,5 @@
 // atlas_compact.hpp - the compact layout of atlas files, versions 4 to 7
-// (docs/FORMAT.md 8.7 to 8.10): the packed byte after the version and the
+// (docs/FORMAT.md §2 and §A.1-§A.3): the packed byte after the version and the
 // parameters such a file leaves out. Shared by the reader
 // (atlas_file.cpp) and the writer (writer/atlas_writer.cpp).
 #pragma once
@@ -12,7 +12,7 @@
 
 namespace vqtex {
 
-// Version 4 (docs/FORMAT.md 8.7). The packed byte after the version:
+// Version 4 on (docs/FORMAT.md §2.1). The packed byte after the version:
 inline constexpr uint8_t kPackedChannels = 0x03;         // channels - 1
 inline constexpr int kPackedLevelsShift = 2;             // levels - 1, bits 2-4
 inline constexpr uint8_t kPackedExemplarSize = 1u << 5;  // the exemplar size is stored (it is not the atlas's)
@@ -23,7 +23,7 @@ inline constexpr uint8_t kPackedTileable = 1u << 7;      // the atlas wraps
 inline constexpr std::size_t kCompactMinSize = sizeof kMagic + 2 + 1 + 3 + kTrailerSize;
 
 // The parameters a version 4 to 7 file leaves out. These are the values of
-// the format, fixed by docs/FORMAT.md 8.7 to 8.10, not whatever the
+// the format, fixed by docs/FORMAT.md §2.2 and §A.1-§A.3, not whatever the
 // engine's defaults become: a file written with them decodes the same
 // forever.
 // The blend when it is not stored: version 4 has none, version 5's default.

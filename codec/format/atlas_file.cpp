@@ -1,12 +1,12 @@
 // atlas_file.cpp - reading format versions 3 to 7
-// (docs/FORMAT.md section 8). Version 3: the container of sections 2.1-2.4
+// (docs/FORMAT.md §2 and §A). Version 3: the container of §B.1-§B.4
 // holding exactly two sections, ATLS (the coded atlas) and SYNP (the
-// engine's parameters). Version 4 (section 8.7): the same content behind a
+// engine's parameters). Version 4 (§A.3, §2): the same content behind a
 // compact header, signature and version, one packed byte, varints, the
 // parameters only when they are not the defaults, the bitstream, CRC-32.
-// Version 5 (section 8.8): version 4 with the seam blend's radius. Version
-// 6 (section 8.9): version 5 with the copy relocation's positions. Version
-// 7 (section 8.10): version 6 with the edge guard, the one the encoder
+// Version 5 (§A.2): version 4 with the seam blend's radius. Version
+// 6 (§A.1): version 5 with the copy relocation's positions. Version
+// 7 (§2): version 6 with the edge guard, the one the encoder
 // writes (writer/atlas_writer.cpp).
 #include "format/atlas_file.hpp"
 
@@ -25,7 +25,7 @@ namespace vqtex {
 namespace {
 
 // dav1d's fixed allocations (its context, tables and thread data) beside the
-// frame, rounded up from what a 128x128 decode measures (docs/FORMAT.md 8.5).
+// frame, rounded up from what a 128x128 decode measures (docs/FORMAT.md §4.1).
 constexpr uint64_t kDav1dFixedBytes = 8ull << 20;
 
 AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {

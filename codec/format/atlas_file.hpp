@@ -1,12 +1,12 @@
-// atlas_file.hpp - format versions 3 to 7 (issue 17, docs/FORMAT.md
-// section 8): a still texture stored as an atlas, an image whose windows
+// atlas_file.hpp - format versions 3 to 7 (docs/FORMAT.md §2
+// and §A): a still texture stored as an atlas, an image whose windows
 // are the coherent engine's codebook (the exemplar or a crop of it), coded
 // as AV1 (atlas_coder.hpp), plus the engine's parameters. Version 3 holds
 // them in the container's sections (ATLS, SYNP); version 4 behind a
-// compact header (section 8.7); version 5 adds the blend at seams to
-// version 4 (section 8.8), version 6 the copy relocation to version 5
-// (section 8.9), version 7, which the encoder writes, the edge guard to
-// version 6 (section 8.10). The decoder rebuilds the appearance space from
+// compact header (§A.3); version 5 adds the blend at seams to
+// version 4 (§A.2, §4.11), version 6 the copy relocation to version 5
+// (§A.1, §4.9), version 7, which the encoder writes, the edge guard to
+// version 6 (§2, §4.7-§4.8). The decoder rebuilds the appearance space from
 // the decoded atlas and synthesises with the coherent engine
 // (api/coherent_options.hpp gives its options).
 #pragma once
@@ -31,19 +31,19 @@ enum class AtlasCoder : uint8_t { Av1 = 0 };
 // need more than a handful of pixels, and a tiny atlas bounds nothing.
 inline constexpr int kMinAtlasSide = 8;
 
-// The SYNP section: what the coherent engine runs with (docs/FORMAT.md 8.4).
+// The SYNP section: what the coherent engine runs with (docs/FORMAT.md §A.4).
 // Format version 5's blend when its parameters are not stored (docs/FORMAT.md
-// 8.8), and what the encoder writes. Fixed by the format, as the other
+// §2.2), and what the encoder writes. Fixed by the format, as the other
 // defaults are (atlas_file.cpp).
 inline constexpr int kV5DefaultBlend = 2;
 // Format version 6's positions tried per copy by the copy relocation when
-// its parameters are not stored (docs/FORMAT.md 8.9), and what the encoder
+// its parameters are not stored (docs/FORMAT.md §2.2), and what the encoder
 // writes; versions 3 to 5 have no relocation. The stored value is at most
 // kMaxRelocationPositions (copy_relocation.hpp), as the blend's is
 // kMaxBlendRadius.
 inline constexpr int kV6DefaultRelocation = 64;
 // Format version 7's edge guard, in atlas pixels, when its parameters are
-// not stored (docs/FORMAT.md 8.10), and what the encoder writes; versions 3
+// not stored (docs/FORMAT.md §2.2), and what the encoder writes; versions 3
 // to 6 have none (0: their edge handling). The stored value is at most
 // kMaxEdgeGuard (coherent_synthesis.hpp).
 inline constexpr int kV7DefaultEdgeGuard = 8;
@@ -76,7 +76,7 @@ struct AtlasSynthesisParams {
 inline bool clamps_children(const AtlasSynthesisParams& params) { return params.edge_guard > 0; }
 
 struct AtlasFile {
-    // Version 3, 4 or 5; levels = the engine's stack depth. A version 4 or 5 file's
+    // Version 3 to 7; levels = the engine's stack depth. A version 4 to 7 file's
     // fields are put here as version 3 would have them (init 0, backtrack 1,
     // no flags, no sections).
     FileHeader header;
@@ -104,7 +104,7 @@ AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t m
 // What decoding a file needs beside its sections, in bytes: the decoded
 // atlas, dav1d's frame buffers, the engine's appearance space and
 // coherence sets for `levels` levels, and a width x height output with its
-// position maps (docs/FORMAT.md 8.5 gives the formula).
+// position maps (docs/FORMAT.md §4.1 gives the formula).
 uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
                              uint64_t width, uint64_t height);
 

@@ -14,29 +14,30 @@ namespace vqtex {
 
 inline constexpr uint8_t kMagic[8] = {0x89, 'V', 'Q', 'T', '\r', '\n', 0x1A, '\n'};
 inline constexpr uint16_t kFormatVersion = 1;
-// Animated textures (docs/FORMAT.md section 7) are version 2, so that a
+// Animated textures (docs/FORMAT.md §D) are version 2, so that a
 // reader that knows only version 1 says the file needs a newer vqtex
 // (UNSUPPORTED_VERSION) instead of calling it damaged. Still textures stay
 // version 1, byte for byte.
 inline constexpr uint16_t kVolumeFormatVersion = 2;
-// Atlas files (issue 17, docs/FORMAT.md section 8): the example as an AV1
+// Atlas files (docs/FORMAT.md §A.4 for version 3, §2-§4 for version 7): the example as an AV1
 // image plus the coherent engine's parameters, decoded by that engine.
 inline constexpr uint16_t kAtlasFormatVersion = 3;
-// Compact atlas files (docs/FORMAT.md section 8.6): the same content as
+// Compact atlas files (docs/FORMAT.md §A.3, §2; why:
+// docs/studies/2026-11-24-compact-header.md): the same content as
 // version 3 behind a header of about 20 bytes instead of the container's
 // 91. They keep the signature and the version field, so that readers of
 // versions 1-3 answer UNSUPPORTED_VERSION, but nothing else of the
 // container: atlas_file.cpp reads them, read_header refuses them.
 inline constexpr uint16_t kCompactAtlasFormatVersion = 4;
-// Version 5 (docs/FORMAT.md section 8.8): version 4's layout with one more
+// Version 5 (docs/FORMAT.md §A.2, §4.11): version 4's layout with one more
 // parameter, the radius of the blend at the output's seams, which version 4
 // files decode without, as they always have.
 inline constexpr uint16_t kBlendAtlasFormatVersion = 5;
-// Version 6 (docs/FORMAT.md section 8.9): version 5's layout with one more
+// Version 6 (docs/FORMAT.md §A.1, §4.9): version 5's layout with one more
 // parameter, the positions tried per copy by the copy relocation, which
 // versions 4 and 5 decode without.
 inline constexpr uint16_t kRelocationAtlasFormatVersion = 6;
-// Version 7 (docs/FORMAT.md section 8.10): version 6's layout with one more
+// Version 7 (docs/FORMAT.md §2, §4.7-§4.8): version 6's layout with one more
 // parameter, the edge guard (how copies end at the atlas's edge), which
 // versions 3 to 6 decode without. The encoder writes version 7.
 inline constexpr uint16_t kEdgeGuardAtlasFormatVersion = 7;
@@ -86,9 +87,9 @@ struct Container {
     std::size_t file_size = 0;
 };
 
-// Checks 1-4 of docs/FORMAT.md 2.4, which every version shares (the
+// Checks 1-4 of docs/FORMAT.md §B.4, which every version shares (the
 // signature and the version field: TRUNCATED, BAD_MAGIC,
-// UNSUPPORTED_VERSION), and returns the version, 1 to 5.
+// UNSUPPORTED_VERSION), and returns the version, 1 to 7.
 uint16_t read_format_version(const uint8_t* data, std::size_t size);
 
 // The header's fields as read, after the signature, the version and the

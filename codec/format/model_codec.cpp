@@ -1,6 +1,6 @@
 // model_codec.cpp - reading the codebook coding of docs/FORMAT.md:
 // quantisation, prediction, and the section layout (the writing half is
-// writer/model_writer.cpp, in the encoder library). zstd (container.cpp)
+// writer/model_writer.cpp, only in the full library vqtex). zstd (container.cpp)
 // does the rest.
 //
 // What is predicted from what:

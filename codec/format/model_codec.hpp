@@ -33,7 +33,7 @@ struct TreeLayout {
     // Keys quantised like the entry pixels (pixel precision, coded against
     // the dequantised codeword re-quantised so), not like the codewords: a
     // temporal key must decode equal to its pixel when the example pixel did
-    // not change (neighborhood3d.hpp, docs/FORMAT.md section 7).
+    // not change (neighborhood3d.hpp, docs/FORMAT.md §D).
     bool keys_at_pixel_precision = false;
 };
 TreeLayout tree_layout_of(const NeighborhoodLayout& layout);
@@ -53,7 +53,7 @@ inline constexpr char kTagCodewords[4] = {'C', 'O', 'D', 'E'};
 inline constexpr char kTagEntries[4] = {'E', 'N', 'T', 'R'};
 
 // The trees a level may have, as the `kind` byte of their sections
-// (docs/FORMAT.md sections 3.1 and 7); a level's own sections (LEVL, HIST)
+// (docs/FORMAT.md §C.1 and §D); a level's own sections (LEVL, HIST)
 // have kind 0.
 enum class TreeKind : uint8_t {
     Causal = 0,     // the scan's tree

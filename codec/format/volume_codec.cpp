@@ -1,5 +1,5 @@
 // volume_codec.cpp - reading animated-texture files (docs/FORMAT.md
-// section 7; writer/volume_writer.cpp writes them). The trees are coded
+// §D; writer/volume_writer.cpp writes them). The trees are coded
 // exactly as for still textures (model_codec.cpp); only the shapes and the
 // VOLU section differ.
 #include "format/volume_codec.hpp"

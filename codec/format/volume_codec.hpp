@@ -1,5 +1,5 @@
 // volume_codec.hpp - the codec file for temporal textures and reading it
-// (docs/FORMAT.md section 7, paper sections 5.2 and 6;
+// (docs/FORMAT.md §D, paper sections 5.2 and 6;
 // writer/volume_writer.hpp writes it): the same container, sections and
 // tree coding as a still texture, with header flag bit 1 set, a VOLU section
 // (the example's frame count and the temporal pyramid factor) and 3D

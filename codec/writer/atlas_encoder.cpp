@@ -1,5 +1,5 @@
-// atlas_encoder.cpp - libaom all-intra encoding of an atlas (issue 17;
-// docs/ATLAS.md): a still picture (g_limit = 1, so libaom writes the reduced
+// atlas_encoder.cpp - libaom all-intra encoding of an atlas
+// (docs/ATLAS.md): a still picture (g_limit = 1, so libaom writes the reduced
 // still-picture sequence header, a few bytes), full-range YCbCr converted by
 // atlas_rgb_to_ycbcr, one thread, raw OBUs without temporal delimiters.
 #include "writer/atlas_encoder.hpp"

@@ -1,7 +1,7 @@
-// atlas_encoder.hpp - the encoding half of the atlas coder (issue 17;
-// docs/ATLAS.md, docs/FORMAT.md section 8.3): an image to the atlas
+// atlas_encoder.hpp - the encoding half of the atlas coder
+// (docs/ATLAS.md, docs/FORMAT.md §3): an image to the atlas
 // bitstream that atlas_coder.hpp decodes, with libaom in all-intra mode.
-// Only in the encoder library: the decoder-only build needs dav1d alone.
+// Only in the full library (vqtex): the decoder library needs dav1d alone.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // atlas_writer.hpp - the atlas file the encoder writes, format version 7
-// (docs/FORMAT.md section 8.10); format/atlas_file.hpp reads it.
+// (docs/FORMAT.md §2); format/atlas_file.hpp reads it.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // byte_writer.cpp - little-endian integers and LEB128 varints
-// (docs/FORMAT.md section 2), as common/bitstream.cpp reads them.
+// (docs/FORMAT.md §1), as common/bitstream.cpp reads them.
 #include "writer/byte_writer.hpp"
 
 namespace vqtex {

@@ -1,5 +1,5 @@
 // byte_writer.hpp - little-endian byte writing for the file format
-// (docs/FORMAT.md), the encoder library's side of common/bitstream.hpp's
+// (docs/FORMAT.md), the writers' side of common/bitstream.hpp's
 // ByteReader.
 #pragma once
 

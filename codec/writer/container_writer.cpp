@@ -1,5 +1,5 @@
 // container_writer.cpp - assembling a vqtex container (docs/FORMAT.md
-// sections 2.1-2.4) from raw sections.
+// §B.1-§B.4) from raw sections.
 #include "writer/container_writer.hpp"
 
 #include <cstring>

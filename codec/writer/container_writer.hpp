@@ -1,5 +1,5 @@
 // container_writer.hpp - writing the vqtex file container of
-// format/container.hpp (docs/FORMAT.md sections 2.1-2.4): header, section
+// format/container.hpp (docs/FORMAT.md §B.1-§B.4): header, section
 // table, payloads compressed with zstd where that helps, CRC-32 trailer.
 #pragma once
 

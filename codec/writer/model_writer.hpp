@@ -2,7 +2,7 @@
 // file (docs/FORMAT.md; paper section 6, "only the codebook would be
 // transmitted"): per pyramid level the neighbourhood shape and the TSVQ
 // codebooks (tree topology, leaf weights, quantised leaf codewords, leaf
-// entries), plus the histograms that seed the noise. The encoder library's
+// entries), plus the histograms that seed the noise. The writing
 // half of format/model_codec.hpp, which reads them back.
 #pragma once
 

@@ -1,5 +1,5 @@
 // volume_writer.cpp - writing animated-texture files (docs/FORMAT.md
-// section 7). The trees are coded exactly as for still textures
+// §D). The trees are coded exactly as for still textures
 // (model_writer.cpp); only the shapes and the VOLU section differ.
 #include "writer/volume_writer.hpp"
 

@@ -1,5 +1,5 @@
 // volume_writer.hpp - an animated texture's trained model into a vqtex file
-// (docs/FORMAT.md section 7; paper sections 5.2 and 6), what
+// (docs/FORMAT.md §D; paper sections 5.2 and 6), what
 // format/volume_codec.hpp reads back: the still texture's sections and
 // tree coding with header flag bit 1, a VOLU section and 3D shapes.
 #pragma once

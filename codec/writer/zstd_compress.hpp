@@ -1,6 +1,6 @@
 // zstd_compress.hpp - entropy coding of file sections with zstd, what
-// format/entropy.hpp decodes. The encoder library's only file that
-// includes <zstd.h>.
+// format/entropy.hpp decodes. Its .cpp is the only writer that includes
+// <zstd.h>.
 #pragma once
 
 #include <cstdint>
