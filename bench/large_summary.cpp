@@ -70,7 +70,7 @@ void print_large_summary(const std::vector<Row>& rows) {
     }
     if (by_rate.empty()) return;
     std::printf(
-        "\nlarge protocol: vqtex against peer + synthesis (issue 17; means over the textures each row "
+        "\nlarge protocol: vqtex against peer + synthesis (the acceptance test; means over the textures each row "
         "scored, n; lower is better)\n");
     for (const auto& [rate, codecs] : by_rate) {
         std::string vqtex_codec;

@@ -558,7 +558,7 @@ TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
     const std::vector<uint8_t> file = encode(ex, atlas_params(2200));
     const std::vector<uint8_t> bits = bitstream_of(file);
     const uint8_t packed = 2 | 5 << 2;  // 3 channels, 6 levels, nothing else
-    ASSERT_EQ(compact_file(packed, varints({128, 128, 1}), bits), file) << "the layout of docs/FORMAT.md 8.7";
+    ASSERT_EQ(compact_file(packed, varints({128, 128, 1}), bits), file) << "the layout of docs/FORMAT.md 2.1";
     const vqtex_decode_params p = decode_params(24, 20);
     auto status_of = [&](const std::vector<uint8_t>& bad) {
         vqtex_status st = VQTEX_OK;
