@@ -27,7 +27,7 @@ TEST(Api, InitGivesPaperDefaults) {
     vqtex_synth_params p;
     std::memset(&p, 0xAB, sizeof p);
     vqtex_synth_params_init(&p);
-    EXPECT_EQ(p.struct_size, sizeof p);
+    EXPECT_EQ(p.struct_size, sizeof p | VQTEX_LAYOUT_MARK);
     EXPECT_EQ(p.paper.search, VQTEX_SEARCH_TSVQ);
     EXPECT_EQ(p.levels, 0u);
     EXPECT_EQ(p.paper.tsvq.leaf, VQTEX_LEAF_MEDOID);
@@ -78,6 +78,17 @@ TEST(Api, StructFromAnotherHeaderIsRefusedWithADetail) {
     EXPECT_EQ(vqtex_synthesize(&p, &in, &out, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::strstr(err.detail, "vqtex_synth_params_init"), nullptr) << err.detail;
     EXPECT_NE(std::strstr(err.detail, "another vqtex.h"), nullptr) << err.detail;
+    // The earlier header's vqtex_synth_params had this one's size: its stamp,
+    // the bare size, is refused too rather than read with the fields moved.
+    p.struct_size = uint32_t(sizeof p);
+    EXPECT_EQ(vqtex_synthesize(&p, &in, &out, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    vqtex_encode_params e;
+    vqtex_encode_params_init(&e);
+    e.struct_size = uint32_t(sizeof e);
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    EXPECT_EQ(vqtex_encode(&e, &in, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(data, nullptr);
     vqtex_decode_params d;
     vqtex_decode_params_init(&d);
     d.struct_size = 0;

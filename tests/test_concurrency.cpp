@@ -15,6 +15,7 @@
 
 #include "codec_support.hpp"
 #include "common/parallel.hpp"
+#include "engine/wavefront.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex_test;
@@ -246,4 +247,20 @@ TEST(Concurrency, RunTogetherRunsEveryJobAtOnceAndPassesOnAnException) {
                                      }),
                  std::runtime_error);
     EXPECT_TRUE(meet());
+}
+
+TEST(Concurrency, RunRowsReleasesTheWaitingRowsWhenOneThrows) {
+    // Worker 0's row waits, as a wavefront row waits on the row above, until
+    // the scan stops; worker 1's row throws. The failing worker must stop
+    // the scan, or worker 0 would wait for ever; the exception then reaches
+    // the caller.
+    std::atomic<bool> stop{false};
+    EXPECT_THROW(vqtex::run_rows(
+                     2, 4, stop, [] { return 0; },
+                     [&](int index, int, int&) {
+                         if (index == 1) throw std::runtime_error("row failed");
+                         while (!stop.load()) std::this_thread::yield();
+                     }),
+                 std::runtime_error);
+    EXPECT_TRUE(stop.load());
 }

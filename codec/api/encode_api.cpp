@@ -126,7 +126,7 @@ extern "C" {
 void vqtex_encode_params_init(vqtex_encode_params* p) {
     if (!p) return;
     *p = vqtex_encode_params{};
-    p->struct_size = sizeof(vqtex_encode_params);
+    p->struct_size = uint32_t(sizeof(vqtex_encode_params)) | VQTEX_LAYOUT_MARK;
     p->codebook = VQTEX_CODEBOOK_ATLAS;
     p->quality = VQTEX_QUALITY_DEFAULT;
     p->seed = 1;

@@ -130,7 +130,7 @@ void vqtex_tsvq_params_init(vqtex_tsvq_params* p) {
 void vqtex_synth_params_init(vqtex_synth_params* p) {
     if (!p) return;
     *p = vqtex_synth_params{};
-    p->struct_size = sizeof(vqtex_synth_params);
+    p->struct_size = uint32_t(sizeof(vqtex_synth_params)) | VQTEX_LAYOUT_MARK;
     p->engine = VQTEX_ENGINE_COHERENT;
     p->width = 256;
     p->height = 256;

@@ -70,7 +70,7 @@ constexpr uint32_t kNoLimit = ~uint32_t(0);
 
 void validate(const vqtex_synth_params* p) {
     if (!p) fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_synth_params not initialised with vqtex_synth_params_init()");
-    check_struct_size(p->struct_size, sizeof(vqtex_synth_params), "vqtex_synth_params");
+    check_struct_size(p->struct_size, sizeof(vqtex_synth_params) | VQTEX_LAYOUT_MARK, "vqtex_synth_params");
     if (!is_one_of(p->engine, {VQTEX_ENGINE_COHERENT, VQTEX_ENGINE_PAPER}))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown synthesis engine");
     const vqtex_coherent_params& c = p->coherent;
@@ -120,7 +120,7 @@ void validate_volume_synthesis(const vqtex_synth_params* p, uint32_t frames) {
 
 void validate(const vqtex_encode_params* p) {
     if (!p) fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_encode_params not initialised with vqtex_encode_params_init()");
-    check_struct_size(p->struct_size, sizeof(vqtex_encode_params), "vqtex_encode_params");
+    check_struct_size(p->struct_size, sizeof(vqtex_encode_params) | VQTEX_LAYOUT_MARK, "vqtex_encode_params");
     check_levels(p->levels);
     const vqtex_trees_params& t = p->trees;
     check_tsvq(t.tsvq);
@@ -134,7 +134,7 @@ void validate(const vqtex_volume_encode_params* p) {
     if (!p)
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "vqtex_volume_encode_params not initialised with vqtex_volume_encode_params_init()");
-    check_struct_size(p->struct_size, sizeof(vqtex_volume_encode_params), "vqtex_volume_encode_params");
+    check_struct_size(p->struct_size, sizeof(vqtex_volume_encode_params) | VQTEX_LAYOUT_MARK, "vqtex_volume_encode_params");
     check_levels(p->levels);
     check_tsvq(p->tsvq);
     check_tree_coding(p->precision, p->pixel_precision, p->smoothing, p->backtrack, p->init);

@@ -25,7 +25,7 @@ void vqtex_volume_encode_params_init(vqtex_volume_encode_params* p) {
     vqtex_encode_params still;
     vqtex_encode_params_init(&still);
     *p = vqtex_volume_encode_params{};
-    p->struct_size = sizeof(vqtex_volume_encode_params);
+    p->struct_size = uint32_t(sizeof(vqtex_volume_encode_params)) | VQTEX_LAYOUT_MARK;
     p->seed = still.seed;
     p->tsvq = still.trees.tsvq;
     p->precision = still.trees.precision;

@@ -84,14 +84,21 @@ bool scan_row(const WavefrontScan& s, int y, Visit&& visit) {
 // Rows 0..height-1 on `workers` threads running together (run_together,
 // parallel.hpp), row y on worker y % workers (the calling thread is worker
 // 0). Each worker makes its own state once (make_state()) and calls
-// row(worker, y, state) for its rows in order.
+// row(worker, y, state) for its rows in order. A worker that throws sets
+// `stop` first: the rows below wait on its rows, and would otherwise wait
+// for ever; run_together then rethrows.
 template <typename MakeState, typename Row>
-void run_rows(int workers, int height, const std::atomic<bool>& stop, MakeState&& make_state, Row&& row) {
+void run_rows(int workers, int height, std::atomic<bool>& stop, MakeState&& make_state, Row&& row) {
     run_together(workers, [&](int index) {
-        auto state = make_state();
-        for (int y = index; y < height; y += workers) {
-            if (stop.load()) return;
-            row(index, y, state);
+        try {
+            auto state = make_state();
+            for (int y = index; y < height; y += workers) {
+                if (stop.load()) return;
+                row(index, y, state);
+            }
+        } catch (...) {
+            stop.store(true);
+            throw;
         }
     });
 }

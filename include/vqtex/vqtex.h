@@ -7,9 +7,11 @@
  *   pointer is given it receives the status and a one-line detail saying
  *   what went wrong, where, and what to do.
  * - Params structs are filled with defaults by their *_init function, then
- *   tweaked. The init function stamps the struct size, so a library can tell
- *   a caller built against another version of this header: such a struct is
- *   refused with VQTEX_ERROR_INVALID_ARGUMENT and a detail saying so.
+ *   tweaked. The init function stamps the struct size (with
+ *   VQTEX_LAYOUT_MARK on the structs whose fields this version rearranged),
+ *   so a library can tell a caller built against another version of this
+ *   header: such a struct is refused with VQTEX_ERROR_INVALID_ARGUMENT and a
+ *   detail saying so.
  * - Images are 8-bit, 1 to 4 channels interleaved (grey, grey+alpha, RGB,
  *   RGBA), rows packed with no padding, at most VQTEX_MAX_SIDE on a side.
  *   Images the library returns are freed with vqtex_image_free().
@@ -65,6 +67,13 @@ extern "C" {
 #else
 #define VQTEX_API
 #endif
+
+/* Added to the struct_size that vqtex_synth_params_init,
+   vqtex_encode_params_init and vqtex_volume_encode_params_init stamp: their
+   fields were rearranged in this version, and the earlier layouts of the
+   first two had the same size, so the size alone could not refuse a caller
+   built against the earlier header. */
+#define VQTEX_LAYOUT_MARK (2u << 24)
 
 #define VQTEX_VERSION_MAJOR 0
 #define VQTEX_VERSION_MINOR 1
