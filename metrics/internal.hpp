@@ -43,8 +43,9 @@ struct Rgb8 {
 Rgb8 to_rgb8(const Image& img, const char* what);
 
 // The image reduced 2x: 2x2 block means per channel, rounded half up in
-// integers; an odd last row or column is dropped.
-Rgb8 half_resolution(const Rgb8& im);
+// integers, the blocks starting at column phase_x and row phase_y (0 or 1);
+// a last row or column without its pair is dropped.
+Rgb8 half_resolution(const Rgb8& im, int phase_x = 0, int phase_y = 0);
 
 // `count` distinct indices from [0, total), ascending; all of them when
 // total <= count. Seeded (Floyd's algorithm, O(count) memory).
@@ -111,6 +112,9 @@ class PatchIndex {
 
 // Shared by the public functions and score_all (which reuses indexes).
 double mean_nn_rms(const Rgb8& query, const PatchIndex& index, int max_queries, uint64_t seed);
+// The same with each window's nearest over several indexes (same patch).
+double mean_nn_rms(const Rgb8& query, const std::vector<const PatchIndex*>& indexes, int max_queries,
+                   uint64_t seed);
 CopyStats copy_stats_indexed(const Rgb8& output, const PatchIndex& index, int step, int max_queries,
                              uint64_t seed);
 

@@ -269,6 +269,12 @@ PatchIndex::Match PatchIndex::nearest(const Rgb8& query, int qx, int qy, int hin
 }
 
 double mean_nn_rms(const Rgb8& query, const PatchIndex& index, int max_queries, uint64_t seed) {
+  return mean_nn_rms(query, std::vector<const PatchIndex*>{&index}, max_queries, seed);
+}
+
+double mean_nn_rms(const Rgb8& query, const std::vector<const PatchIndex*>& indexes, int max_queries,
+                   uint64_t seed) {
+  const PatchIndex& index = *indexes.front();
   const int p = index.patch();
   require_fits(query, p, "query image");
   if (max_queries < 1) throw std::invalid_argument("vqtex_metrics: max_queries must be >= 1");
@@ -278,8 +284,12 @@ double mean_nn_rms(const Rgb8& query, const PatchIndex& index, int max_queries, 
   const double dims = index.dims();
   double sum = 0.0;
   for (int id : idx) {
-    const PatchIndex::Match m = index.nearest(query, id % nx, id / nx);
-    sum += std::sqrt(static_cast<double>(m.ssd) / dims);
+    long long best = -1;
+    for (const PatchIndex* ix : indexes) {
+      const long long ssd = ix->nearest(query, id % nx, id / nx).ssd;
+      if (best < 0 || ssd < best) best = ssd;
+    }
+    sum += std::sqrt(static_cast<double>(best) / dims);
   }
   return sum / static_cast<double>(idx.size());
 }

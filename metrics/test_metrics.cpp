@@ -680,6 +680,31 @@ TEST(HalfResolution, BoxAverageIsIntegerExact) {
   EXPECT_EQ(half.v, (std::vector<uint8_t>{2, 3, 3}));
 }
 
+TEST(HalfResolution, OddPhaseStartsOneColumnIn) {
+  vm::detail::Rgb8 im;
+  im.w = 3;
+  im.h = 2;
+  im.v = {0, 1, 2, 3, 4, 5, 9, 9, 9,  //
+          1, 3, 1, 2, 2, 2, 9, 9, 9};
+  const vm::detail::Rgb8 half = vm::detail::half_resolution(im, 1, 0);
+  ASSERT_EQ(half.w, 1);
+  ASSERT_EQ(half.h, 1);
+  // (3+9+2+9)/4 = 5.75 -> 6, (4+9+2+9)/4 = 6 -> 6, (5+9+2+9)/4 = 6.25 -> 6.
+  EXPECT_EQ(half.v, (std::vector<uint8_t>{6, 6, 6}));
+}
+
+// A verbatim piece of the exemplar at any translation is the exemplar's
+// structure: it scores 0 whichever phase its pixels fall on.
+TEST(HalfResolution, CopyAtAnyTranslationScoresZero) {
+  const Image a = crop(A(), 0, 0, 128, 128);
+  for (int dy = 0; dy < 2; ++dy)
+    for (int dx = 0; dx < 2; ++dx) {
+      const Image piece = crop(a, dx, dy, 100, 100);
+      EXPECT_EQ(vm::coherence_half_resolution(piece, a), 0.0) << dx << "," << dy;
+    }
+  EXPECT_GT(vm::coherence_half_resolution(crop(B(), 0, 0, 100, 100), a), 1.0);
+}
+
 TEST(HalfResolution, CoherenceZeroForCopyAndWorseWithNoise) {
   EXPECT_EQ(vm::coherence_half_resolution(A(), A()), 0.0);
   const double fresh = vm::coherence_half_resolution(B(), A());
