@@ -96,12 +96,12 @@ std::size_t atlas_payload_offset(const std::vector<uint8_t>& file) {
     return 0;
 }
 
-// The atlas bitstream of a v7 file, and the same content as a v3 file
-// (the encoder writes v7; v3 must go on decoding), which has no blend, no
-// relocation and no edge guard.
+// The atlas bitstream of a v8 file, and the same content as a v3 file
+// (the encoder writes v8; v3 must go on decoding), which has no blend, no
+// relocation, no edge guard and no cuts.
 std::vector<uint8_t> bitstream_of(const std::vector<uint8_t>& file) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(file.data(), file.size(), 1u << 30);
-    EXPECT_EQ(f.header.version, 7);
+    EXPECT_EQ(f.header.version, 8);
     return std::vector<uint8_t>(file.begin() + std::ptrdiff_t(f.bitstream_offset),
                                 file.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
 }
@@ -122,7 +122,7 @@ std::vector<uint8_t> varints(std::initializer_list<uint64_t> values) {
 // them (the bitstream), with a correct checksum: what a hostile writer can
 // make (docs/FORMAT.md §2.1-§2.2).
 std::vector<uint8_t> compact_file(uint8_t packed, const std::vector<uint8_t>& fields,
-                                  const std::vector<uint8_t>& tail, uint16_t version = 7) {
+                                  const std::vector<uint8_t>& tail, uint16_t version = 8) {
     vqtex::ByteWriter w;
     w.bytes(vqtex::kMagic, sizeof vqtex::kMagic);
     w.u16(version);
@@ -229,7 +229,7 @@ TEST(AtlasFile, RoundTripDecodesAtAnySizeAndInspects) {
     EXPECT_EQ(stats.bytes, file.size());
     EXPECT_EQ(stats.levels, 6u);
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
-    EXPECT_EQ(info.format_version, 7u);
+    EXPECT_EQ(info.format_version, 8u);
     EXPECT_EQ(info.exemplar_width, 128u);
     EXPECT_EQ(info.levels, 6u);
     EXPECT_EQ(info.atlas_width, 128u);
@@ -433,13 +433,13 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         uint32_t ew, eh;
         uint64_t seed;
         bool parameters;
-        std::size_t overhead;  // of the v7 file: everything but the bitstream
+        std::size_t overhead;  // of the v8 file: everything but the bitstream
     };
     const Case cases[] = {
         {3, 64, 64, 64, 64, 1, false, 18},  // 10 + packed + 64 + 64 + seed + CRC
         {1, 16, 16, 16, 16, 0, false, 18},
-        {2, 12, 16, 64, 64, 300, true, 32},               // + 64, 64; seed 2 bytes; parameters 11 (bias 300 takes 2)
-        {4, 40, 24, 64, 64, (1ull << 40) + 3, true, 36},  // seed of 41 bits: 6 bytes
+        {2, 12, 16, 64, 64, 300, true, 33},               // + 64, 64; seed 2 bytes; parameters 12 (bias 300 takes 2)
+        {4, 40, 24, 64, 64, (1ull << 40) + 3, true, 37},  // seed of 41 bits: 6 bytes
     };
     const vqtex::Image rgba = load_corpus("leaves_rgba_64.png");
     for (const Case& c : cases) {
@@ -464,6 +464,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
             sp.blend = 0;  // version 3's, so that their decodes compare
             sp.relocate = 0;
             sp.edge_guard = 0;
+            sp.cut = 0;
         }
         const std::vector<uint8_t> v4 = vqtex::encode_atlas_file(h, c.aw, c.ah, bits, sp);
         const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(h, c.aw, c.ah, bits, sp);
@@ -473,7 +474,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         EXPECT_EQ(bitstream_of(v4), bits) << what;
         const vqtex::AtlasFile f4 = vqtex::decode_atlas_file(v4.data(), v4.size(), 1u << 30);
         const vqtex::AtlasFile f3 = vqtex::decode_atlas_file(v3.data(), v3.size(), 1u << 30);
-        EXPECT_EQ(f4.header.version, 7);
+        EXPECT_EQ(f4.header.version, 8);
         EXPECT_EQ(f3.header.version, 3);
         EXPECT_EQ(f4.params.blend, sp.blend) << what;
         EXPECT_EQ(f3.params.blend, 0) << what;
@@ -494,7 +495,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         EXPECT_EQ(f4.params.coherence, sp.coherence) << what;
         EXPECT_EQ(f4.params.roll, sp.roll) << what;
         EXPECT_EQ(f4.params.jitter, sp.jitter) << what;
-        EXPECT_EQ(f4.parameter_bytes, c.parameters ? 11u : 0u) << what;
+        EXPECT_EQ(f4.parameter_bytes, c.parameters ? 12u : 0u) << what;
         EXPECT_EQ(f4.atlas.pixels, f3.atlas.pixels) << what;
         EXPECT_EQ(f4.atlas.pixels,
                   vqtex::decode_atlas(bits.data(), bits.size(), c.aw, c.ah, c.channels, "atlas").pixels);
@@ -516,14 +517,14 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
 TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
     const vqtex::Image ex = load_corpus("checks_p16_64.png");
     const std::vector<uint8_t> file = encode(ex, atlas_params(600));
-    ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 7u);
+    ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 8u);
     const vqtex_decode_params p = decode_params(24, 20);
     for (std::size_t n = 0; n < file.size(); ++n) {
         const std::vector<uint8_t> cut(file.begin(), file.begin() + std::ptrdiff_t(n));
         vqtex_status st = VQTEX_OK;
         decode(cut, p, &st);
         // Under 18 bytes (signature, version, packed byte, three one-byte
-        // varints, CRC) a file cannot be version 4 to 7; beyond, the last four
+        // varints, CRC) a file cannot be version 4 to 8; beyond, the last four
         // bytes are not the checksum of the rest.
         EXPECT_EQ(st, n < 18 ? VQTEX_ERROR_TRUNCATED : VQTEX_ERROR_CHECKSUM) << "prefix of " << n << " bytes";
     }
@@ -533,17 +534,10 @@ TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
             bad[i] ^= uint8_t(1 << bit);
             vqtex_status st = VQTEX_OK;
             decode(bad, p, &st);
-            // The version, 7, flips to 6 or 5 (versions the checksum then
-            // rejects), to 3 (the container's, whose header's checksum is
-            // elsewhere: any error) or to 15, 23, ... (unknown).
-            if (i == 8 && bit == 2) {
-                EXPECT_NE(st, VQTEX_OK) << "version 3";
-                continue;
-            }
-            const vqtex_status expected = i < 8                    ? VQTEX_ERROR_BAD_MAGIC
-                                          : i == 8 && bit < 2     ? VQTEX_ERROR_CHECKSUM
-                                          : i < 10                ? VQTEX_ERROR_UNSUPPORTED_VERSION
-                                                                  : VQTEX_ERROR_CHECKSUM;
+            // The version, 8, flips to 9, 10, 12, 0, 24, ... (unknown).
+            const vqtex_status expected = i < 8    ? VQTEX_ERROR_BAD_MAGIC
+                                          : i < 10 ? VQTEX_ERROR_UNSUPPORTED_VERSION
+                                                   : VQTEX_ERROR_CHECKSUM;
             EXPECT_EQ(st, expected) << "byte " << i << " bit " << bit;
         }
 }
@@ -626,6 +620,20 @@ TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
         << "no edge guard: the bitstream's first byte, an OBU header (10), read as it";
     EXPECT_EQ(status_of(v7_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 0}))), VQTEX_OK) << "guard 0";
     EXPECT_EQ(status_of(v7_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 64}))), VQTEX_OK);
+    // Version 8 ends them with the cuts' reach (default 8, at most 16).
+    const auto v8_file = [&](const std::vector<uint8_t>& fields) {
+        return compact_file(packed | 1 << 6, fields, bits, 8);
+    };
+    EXPECT_EQ(status_of(v8_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 8}))), corrupt) << "v8 defaults";
+    EXPECT_EQ(status_of(v8_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 17}))), corrupt) << "cut 17";
+    EXPECT_EQ(status_of(v8_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8}))), corrupt)
+        << "no cut: the bitstream's first byte, an OBU header (10), read as it";
+    EXPECT_EQ(status_of(v8_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 0}))), VQTEX_OK) << "cut 0";
+    EXPECT_EQ(status_of(v8_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 16}))), VQTEX_OK);
+    // A version 7 file with no parameters decodes without the cuts: the
+    // pixels of a version 8 file that stores cut 0.
+    EXPECT_EQ(decode(compact_file(packed, varints({128, 128, 1}), bits, 7), p).pixels,
+              decode(v8_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 0})), p).pixels);
     // A version 6 file with no parameters decodes without the edge guard:
     // the pixels of a version 7 file that stores edge guard 0.
     EXPECT_EQ(decode(compact_file(packed, varints({128, 128, 1}), bits, 6), p).pixels,
@@ -755,6 +763,20 @@ TEST(AtlasFile, GoldenEdgeGuardFileDecodesToKnownPixels) {
     EXPECT_EQ(f.params.blend, 2);
     EXPECT_EQ(f.params.relocate, 64);
     EXPECT_EQ(f.params.edge_guard, 8);
+}
+
+// Pins format version 8 and its decoder, the cuts included. The file is
+// cellular_v7.vqt with the version 8 (the same atlas), so the two decodes
+// differ by the cuts alone; at 128x128 they are the same (no straight
+// border long enough to cut), so this one is decoded at 256x256.
+TEST(AtlasFile, GoldenSeamCutFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes =
+        check_golden_compact("cellular_v8.vqt", 8, 0x4dca725584cf2811ull, 0x8bddaa9ab8a805b3ull, 256, 256);
+    // (0x8bddaa9ab8a805b3: cellular_v7.vqt's decode at 256x256, seed 5.)
+    if (bytes.empty()) return;
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
+    EXPECT_EQ(f.params.edge_guard, 8);
+    EXPECT_EQ(f.params.cut, 8);
 }
 
 // Whether a params struct can ask for an atlas or a target size.

@@ -469,13 +469,15 @@ TEST(Coherent, GoldenHash) {
     // Without the blend, the relocation and the edge guard, the positions'
     // pixels as before either existed; with the blend alone, as before the
     // relocation; with the blend and the relocation, as before the edge
-    // guard; with the defaults, what the engine gives now.
+    // guard; with those and the edge guard, as before the cuts; with the
+    // defaults, what the engine gives now.
     const Image ex = brick_wall(96, 96, 7);
-    const auto hash_of = [&](uint32_t blend, uint32_t relocate, uint32_t edge_guard = 0) {
+    const auto hash_of = [&](uint32_t blend, uint32_t relocate, uint32_t edge_guard = 0, uint32_t cut = 0) {
         vqtex_synth_params p = coherent_params(150, 110, 9);
         p.coherent.blend = blend;
         p.coherent.relocate = relocate;
         p.coherent.edge_guard = edge_guard;
+        p.coherent.cut = cut;
         uint64_t h = 0xcbf29ce484222325ull;
         for (uint8_t v : vqtex_test::synthesize(ex, p).pixels) h = (h ^ v) * 0x100000001b3ull;
         return h;
@@ -487,6 +489,8 @@ TEST(Coherent, GoldenHash) {
     EXPECT_EQ(hash_of(2, 64), 0x83b06954069c3180ull) << std::hex << hash_of(2, 64);
     EXPECT_EQ(coherent_params(1, 1, 1).coherent.edge_guard, 8u);
     EXPECT_EQ(hash_of(2, 64, 8), 0xc49dfaedd9457d81ull) << std::hex << hash_of(2, 64, 8);
+    EXPECT_EQ(coherent_params(1, 1, 1).coherent.cut, 8u);
+    EXPECT_EQ(hash_of(2, 64, 8, 8), 0xc43e8f3bdf8f3649ull) << std::hex << hash_of(2, 64, 8, 8);
 }
 
 // docs/FORMAT.md §4.11's blend, as written there, for pixel (x, y) of a map.
@@ -614,20 +618,25 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
     // (the decoder's memory budget, docs/PERFORMANCE.md); any band height, odd heights among them
     // (the subsets' parity across the torus's wrap), 1 to 3 channels, jitter,
     // more passes, no polish, no roll, k > 1, a tileable example, the edge
-    // guard, and any thread count must give the bytes of the whole level.
+    // guard, the cuts between copies (whose blocks of rows a band must hold
+    // whole: outputs tall enough to be cut into bands at all), and any
+    // thread count must give the bytes of the whole level.
     struct Case {
         int w, h, channels, passes, polish, jitter, coherence;
         bool roll, tileable;
         int blend;
         int example_w = 40, example_h = 36;
         int edge_guard = 8;
+        int cut = 0;
     };
     // The last example has more than 65536 pixels: the coarser level's
     // positions are kept as 3-byte indices.
     const Case cases[] = {{61, 97, 1, 2, 1, 0, 1, true, false, 0},  {40, 121, 2, 2, 1, 0, 1, true, false, 2},
                           {33, 80, 3, 2, 1, 64, 1, true, false, 3}, {50, 99, 1, 3, 2, 0, 3, false, false, 1},
                           {47, 60, 3, 1, 0, 0, 1, true, true, 2},   {45, 70, 1, 2, 1, 0, 1, true, false, 2, 300, 230},
-                          {52, 90, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 0}};
+                          {52, 90, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 0},
+                          {40, 263, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 8, 8},
+                          {37, 290, 1, 2, 1, 0, 1, true, true, 2, 40, 36, 8, 16}};
     for (const Case& c : cases) {
         const Image ex = textured(c.example_w, c.example_h, 3, c.channels);
         CoherentOptions options;
@@ -640,8 +649,10 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
         options.roll = c.roll;
         options.blend = c.blend;
         options.edge_guard = c.edge_guard;
+        options.cut = c.cut;
         const std::string what = std::to_string(c.w) + "x" + std::to_string(c.h) + "x" + std::to_string(c.channels) +
-                                 " blend " + std::to_string(c.blend) + " edge guard " + std::to_string(c.edge_guard);
+                                 " blend " + std::to_string(c.blend) + " edge guard " + std::to_string(c.edge_guard) +
+                                 " cut " + std::to_string(c.cut);
         const Image whole = synthesize_coherent(ex, 4, c.tileable, c.coherence, options).image;
         for (int band : {1, 2, 7, 16}) {
             options.band_rows = band;

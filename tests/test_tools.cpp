@@ -199,7 +199,7 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     // A still texture is an atlas by default (format 7, whose parts inspect
     // names as format 3's sections); --trees stores the paper's codebooks
     // (format 1).
-    EXPECT_NE(r.output.find("format 7"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("format 8"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("seams blended over 2 pixels, copies relocated (64 positions tried each), edge guard "
                             "8 pixels"),
               std::string::npos)
@@ -207,7 +207,7 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     EXPECT_NE(r.output.find("ATLS"), std::string::npos) << r.output;
     // (Which atlas, the whole example or a crop of it, the encoder chooses
     // by scoring decodes: docs/ATLAS.md.)
-    EXPECT_NE(r.output.find(", coded as AV1; compact header (format 7)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(", coded as AV1; compact header (format 8)"), std::string::npos) << r.output;
     const std::string trees = (dir / "t.vqt").string();
     ASSERT_EQ(encode_tool(corpus + "/cellular_128.png " + trees + " -q 10 --trees --quiet").status, 0);
     const ToolRun ti = info_tool(trees);

@@ -76,10 +76,11 @@ FileReport info_one(const std::string& input) {
     if (atlas) {
         j["atlas_width"] = info.atlas_width;
         j["atlas_height"] = info.atlas_height;
-        j["coder"] = "AV1";  // the only atlas coder of formats 3 to 7
+        j["coder"] = "AV1";  // the only atlas coder of formats 3 to 8
         j["blend"] = info.blend;
         j["relocate"] = info.relocate;
         j["edge_guard"] = info.edge_guard;
+        j["cut"] = info.cut;
     }
     j["codewords"] = nlohmann::ordered_json::array();
     for (uint32_t l = 0; l < info.levels; ++l) j["codewords"].push_back(info.codewords[l]);
@@ -115,8 +116,10 @@ FileReport info_one(const std::string& input) {
                                                  : std::string();
         const std::string edges = info.edge_guard ? ", edge guard " + std::to_string(info.edge_guard) + " pixels"
                                                   : std::string();
-        add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s%s%s\n", info.levels, info.codewords[0],
-            seams.c_str(), copies.c_str(), edges.c_str());
+        const std::string cuts =
+            info.cut ? ", borders cut within " + std::to_string(info.cut) + " pixels" : std::string();
+        add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s%s%s%s\n", info.levels,
+            info.codewords[0], seams.c_str(), copies.c_str(), edges.c_str(), cuts.c_str());
     } else
         add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
             info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",

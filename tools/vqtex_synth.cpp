@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
     double train_fraction = 1.0;
     bool exhaustive = false, tsvq = false, tileable = false, json = false, quiet = false, paper = false;
     std::string engine = "coherent";
-    uint32_t coherence = 0, passes = 0, jitter = 0, blend = 0, relocate = 0, edge_guard = 0;
+    uint32_t coherence = 0, passes = 0, jitter = 0, blend = 0, relocate = 0, edge_guard = 0, cut = 0;
     app.add_option("files", files,
                    "EXAMPLE OUTPUT (any format OpenImageIO reads and writes, from the extension), or with -o: "
                    "examples and folders of them")
@@ -196,6 +196,11 @@ int main(int argc, char** argv) {
                                           "pixels of where it would have gone on; 0 (formats 3 to 6's edges) to 64 "
                                           "(default 8)")
                                ->check(CLI::Range(0, 64));
+    auto* cut_opt = app.add_option("--cut", cut,
+                                   "coherent engine, still textures: a straight border between two copies moves, "
+                                   "row by row, up to this many pixels to where the copies agree (minimum-error "
+                                   "cuts); 0 (formats 3 to 7's borders) to 16 (default 8)")
+                        ->check(CLI::Range(0, 16));
     app.add_option("--levels", levels, "pyramid levels (default: automatic; coherent 6 for 128x128, paper 4)");
     app.add_option("--shapes", shapes,
                    "neighbourhood per level, finest first, RxC:k (default for 4 levels 9x9:2,7x7:2,5x5:2,5x5:1)");
@@ -230,7 +235,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     if (paper) engine = "paper";
     if (engine == "paper") {
-        for (const auto* o : {coherence_opt, passes_opt, jitter_opt, blend_opt, relocate_opt, edge_guard_opt})
+        for (const auto* o : {coherence_opt, passes_opt, jitter_opt, blend_opt, relocate_opt, edge_guard_opt, cut_opt})
             if (o->count()) {
                 std::fprintf(stderr, "vqtex-synth: error: %s applies to the coherent engine, not to --engine paper\n",
                              o->get_name().c_str());
@@ -260,6 +265,7 @@ int main(int argc, char** argv) {
         if (blend_opt->count()) c.blend = blend;
         if (relocate_opt->count()) c.relocate = relocate;
         if (edge_guard_opt->count()) c.edge_guard = edge_guard;
+        if (cut_opt->count()) c.cut = cut;
         if (paper) {
             init = "noise";
             no_seam_closing = true;
@@ -295,6 +301,8 @@ int main(int argc, char** argv) {
                 throw std::invalid_argument("--relocate applies to still textures: animations do not relocate copies");
             if (animated && edge_guard_opt->count())
                 throw std::invalid_argument("--edge-guard applies to still textures: animations keep their edges");
+            if (animated && cut_opt->count())
+                throw std::invalid_argument("--cut applies to still textures: animations' borders are not cut");
             ProgressBar bar(!quiet && !json);
             const FileReport r =
                 animated ? synthesize_animation(params, frames, quiet, files[0], files[1], threads, &bar)

@@ -20,6 +20,7 @@ CoherentOptions coherent_options(const AtlasSynthesisParams& params, int width, 
     opt.relocate = params.relocate;
     opt.edge_guard = params.edge_guard;
     opt.clamp_children = clamps_children(params);
+    opt.cut = params.cut;
     return opt;
 }
 

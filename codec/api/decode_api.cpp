@@ -200,6 +200,7 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
             info->blend = uint32_t(f.params.blend);
             info->relocate = uint32_t(f.params.relocate);
             info->edge_guard = uint32_t(f.params.edge_guard);
+            info->cut = uint32_t(f.params.cut);
             if (is_compact_atlas_version(f.header.version)) {
                 // No sections: the two parts of the file that are not its
                 // header and checksum, under the tags version 3 gives them.

@@ -42,6 +42,7 @@ void synthesize_coherent_api(const vqtex_synth_params& params, const Image& exam
     engine.blend = int(c.blend);
     engine.relocate = int(c.relocate);
     engine.edge_guard = int(c.edge_guard);
+    engine.cut = int(c.cut);
     CoherentOptions opt = coherent_options(engine, int(params.width), int(params.height), params.seed);
     opt.threads = threads;
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
@@ -158,6 +159,9 @@ void vqtex_synth_params_init(vqtex_synth_params* p) {
     // the same on the corpus's photographs (docs/SYNTHESIS.md, edge guard).
     // The atlas files' default too.
     c.edge_guard = kDefaultEdgeGuard;
+    // Straight borders between copies moved, row by row, to where the two
+    // copies agree (docs/SYNTHESIS.md, cuts). The atlas files' default too.
+    c.cut = kDefaultCutReach;
     vqtex_paper_params& paper = p->paper;
     vqtex_tsvq_params_init(&paper.tsvq);
     paper.search = VQTEX_SEARCH_TSVQ;

@@ -91,6 +91,10 @@ void validate(const vqtex_synth_params* p) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "edge_guard must be 0 to " + std::to_string(kMaxEdgeGuard) +
                                                " (example pixels kept free beside a copy cut off by the edge; got " +
                                                std::to_string(c.edge_guard) + ")");
+    if (c.cut > uint32_t(kMaxCutReach))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "cut must be 0 to " + std::to_string(kMaxCutReach) +
+                                               " (output pixels a border between copies may move; got " +
+                                               std::to_string(c.cut) + ")");
     check_levels(p->levels);
     const vqtex_paper_params& paper = p->paper;
     check_tsvq(paper.tsvq);

@@ -10,6 +10,7 @@
 #include "engine/coherent_levels.hpp"
 #include "engine/coherent_torus.hpp"
 #include "engine/seam_blend.hpp"
+#include "engine/seam_cut.hpp"
 
 namespace vqtex {
 namespace coherent {
@@ -75,6 +76,8 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
         start_rows<PixelPositions>(space, parent_at, coarse.width, w, h, 0, space.levels[0].spacing,
                                    start_rules(options), true, rows_of.first, part.height, part.positions.data());
         passes.run(0, part, &rows_of, rows);
+        cut_seams(example, space.wraps, w, part.height, part.positions, cut_rules(options), options.threads,
+                  rows_of.first, h);
         // The band's own rows (blend 0 copies each pixel).
         blend_rows(example, space.wraps, options.blend,
                    [&](int y) { return part.positions.data() + std::size_t(y - y0 + margin) * std::size_t(w); }, y0,
@@ -108,9 +111,11 @@ Image synthesize_pixels(const Image& example, const AppearanceSpace& space, cons
     passes.by_level_sets = by_level_sets;
     const int margin = passes.band_margin();
     const int band = band_rows(options, example.channels, margin, band_bytes(example, space, sets.k));
-    if (band == 0)
-        return read_positions(example, passes.levels_down_to(0), options.roll, options.threads, options.blend,
-                              space.wraps);
+    if (band == 0) {
+        PositionMap map = passes.levels_down_to(0);
+        cut_seams(example, space.wraps, map.width, map.height, map.positions, cut_rules(options), options.threads);
+        return read_positions(example, std::move(map), options.roll, options.threads, options.blend, space.wraps);
+    }
     return synthesize_in_bands(example, passes, band, margin);
 }
 

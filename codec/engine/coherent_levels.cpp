@@ -9,6 +9,7 @@
 #include "engine/copy_relocation.hpp"
 #include "engine/pyramid.hpp"
 #include "engine/seam_blend.hpp"
+#include "engine/seam_cut.hpp"
 
 namespace vqtex::coherent {
 
@@ -33,7 +34,8 @@ void LevelPasses::enter(int l) {
 }
 
 int LevelPasses::band_margin() const {
-    return 4 * (passes_at(0) + std::max(0, options.polish_passes)) + 2 + std::clamp(options.blend, 0, kMaxBlendRadius);
+    return 4 * (passes_at(0) + std::max(0, options.polish_passes)) + 2 + cut_reach_rows(cut_rules(options)) +
+           std::clamp(options.blend, 0, kMaxBlendRadius);
 }
 
 void LevelPasses::run(int l, PositionMap& map, const Band* band, int own_rows) {

@@ -25,6 +25,7 @@
 #include "engine/coherence_sets.hpp"
 #include "engine/coherent_positions.hpp"
 #include "engine/coherent_run.hpp"
+#include "engine/seam_cut.hpp"
 #include "common/image.hpp"
 
 namespace vqtex {
@@ -56,6 +57,9 @@ struct CoherentOptions : CoherentRun {
     // link weigh 5 times its distance, one inside its neighbours' copy 1
     // time.
     int link_bias = 256;
+    // How far, in output pixels, the minimum-error cuts may move a straight
+    // border between two copies at the finest level (seam_cut.hpp); 0: none.
+    int cut = 0;
     // The finest level of an output taller than a band and its margins is
     // synthesised in bands of this many rows (0: sized by the output), with
     // the same bytes as whole and less memory; set by tests.
@@ -67,6 +71,13 @@ struct CoherentOptions : CoherentRun {
     // -1 decides by that size, 0 and 1 force either way (tests).
     int analysis_by_level = -1;
 };
+
+// The minimum-error cuts of a run with these options.
+inline CutRules cut_rules(const CoherentOptions& options) {
+    CutRules rules;
+    rules.reach = options.cut;
+    return rules;
+}
 
 // The finest level the copy relocation runs at: below it, the copies of a
 // large output are many and small, and moving them cost 130 ms of a 512x512

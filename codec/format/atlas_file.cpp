@@ -1,4 +1,4 @@
-// atlas_file.cpp - reading format versions 3 to 7
+// atlas_file.cpp - reading format versions 3 to 8
 // (docs/FORMAT.md §2 and §A). Version 3: the container of §B.1-§B.4
 // holding exactly two sections, ATLS (the coded atlas) and SYNP (the
 // engine's parameters). Version 4 (§A.3, §2): the same content behind a
@@ -6,8 +6,8 @@
 // parameters only when they are not the defaults, the bitstream, CRC-32.
 // Version 5 (§A.2): version 4 with the seam blend's radius. Version
 // 6 (§A.1): version 5 with the copy relocation's positions. Version
-// 7 (§2): version 6 with the edge guard, the one the encoder
-// writes (writer/atlas_writer.cpp).
+// 7 (§A.0): version 6 with the edge guard. Version 8 (§2): version 7 with
+// the cuts' reach, the one the encoder writes (writer/atlas_writer.cpp).
 #include "format/atlas_file.hpp"
 
 #include <string>
@@ -48,6 +48,7 @@ AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {
     p.blend = 0;
     p.relocate = 0;
     p.edge_guard = 0;
+    p.cut = 0;
     r.expect_end();
     return p;
 }
@@ -110,6 +111,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
     p.blend = default_blend(version);
     p.relocate = default_relocation(version);
     p.edge_guard = default_edge_guard(version);
+    p.cut = default_cut(version);
     if (packed & kPackedParameters) {
         const std::size_t at = r.position();
         p.passes = int(r.varint_in("passes", 1, 16));
@@ -123,6 +125,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
         if (version >= kRelocationAtlasFormatVersion)
             p.relocate = int(r.varint_in("relocation", 0, kMaxRelocationPositions));
         if (version >= kEdgeGuardAtlasFormatVersion) p.edge_guard = int(r.varint_in("edge guard", 0, kMaxEdgeGuard));
+        if (version >= kSeamCutAtlasFormatVersion) p.cut = int(r.varint_in("cut reach", 0, kMaxCutReach));
         if (are_compact_defaults(p, version))
             r.corrupt("the parameters are stored but are the defaults (packed bit 6 must then be 0)");
         f.parameter_bytes = r.position() - at;

@@ -47,6 +47,11 @@ inline constexpr int kV6DefaultRelocation = 64;
 // to 6 have none (0: their edge handling). The stored value is at most
 // kMaxEdgeGuard (coherent_synthesis.hpp).
 inline constexpr int kV7DefaultEdgeGuard = 8;
+// Format version 8's reach of the minimum-error cuts between copies, in
+// output pixels, when its parameters are not stored (docs/FORMAT.md §2.2),
+// and what the encoder writes; versions 3 to 7 have none (0). The stored
+// value is at most kMaxCutReach (seam_cut.hpp).
+inline constexpr int kV8DefaultCut = 8;
 
 struct AtlasSynthesisParams {
     bool example_tileable = false;  // the atlas wraps (positions wrap instead of reflecting)
@@ -67,6 +72,9 @@ struct AtlasSynthesisParams {
     // clamps_children),
     // 0..kMaxEdgeGuard (version 7; files of versions 3 to 6: 0).
     int edge_guard = kV7DefaultEdgeGuard;
+    // Reach of the minimum-error cuts between copies, 0..kMaxCutReach
+    // (version 8; files of versions 3 to 7: 0).
+    int cut = kV8DefaultCut;
 };
 
 // Whether the engine clamps children past the atlas's edge

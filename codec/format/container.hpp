@@ -39,10 +39,14 @@ inline constexpr uint16_t kBlendAtlasFormatVersion = 5;
 inline constexpr uint16_t kRelocationAtlasFormatVersion = 6;
 // Version 7 (docs/FORMAT.md §2, §4.7-§4.8): version 6's layout with one more
 // parameter, the edge guard (how copies end at the atlas's edge), which
-// versions 3 to 6 decode without. The encoder writes version 7.
+// versions 3 to 6 decode without.
 inline constexpr uint16_t kEdgeGuardAtlasFormatVersion = 7;
+// Version 8 (docs/FORMAT.md §2, §4.12): version 7's layout with one more
+// parameter, the reach of the minimum-error cuts between copies, which
+// versions 3 to 7 decode without. The encoder writes version 8.
+inline constexpr uint16_t kSeamCutAtlasFormatVersion = 8;
 inline bool is_compact_atlas_version(uint16_t version) {
-    return version >= kCompactAtlasFormatVersion && version <= kEdgeGuardAtlasFormatVersion;
+    return version >= kCompactAtlasFormatVersion && version <= kSeamCutAtlasFormatVersion;
 }
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;

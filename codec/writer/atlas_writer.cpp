@@ -21,14 +21,14 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
         atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide || atlas_width > kMaxAtlasSide ||
         atlas_height > kMaxAtlasSide || atlas_bitstream.empty() || params.blend < 0 || params.blend > kMaxBlendRadius ||
         params.relocate < 0 || params.relocate > kMaxRelocationPositions || params.edge_guard < 0 ||
-        params.edge_guard > kMaxEdgeGuard)
-        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 7 can hold");
+        params.edge_guard > kMaxEdgeGuard || params.cut < 0 || params.cut > kMaxCutReach)
+        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 8 can hold");
     const bool exemplar_size =
         header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
-    const bool parameters = !are_compact_defaults(params, kEdgeGuardAtlasFormatVersion);
+    const bool parameters = !are_compact_defaults(params, kSeamCutAtlasFormatVersion);
     ByteWriter w;
     w.bytes(kMagic, sizeof kMagic);
-    w.u16(kEdgeGuardAtlasFormatVersion);
+    w.u16(kSeamCutAtlasFormatVersion);
     w.u8(uint8_t((header.channels - 1) | (header.levels - 1) << kPackedLevelsShift |
                  (exemplar_size ? kPackedExemplarSize : 0) | (parameters ? kPackedParameters : 0) |
                  (params.example_tileable ? kPackedTileable : 0)));
@@ -50,6 +50,7 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
         w.varint(uint64_t(params.blend));
         w.varint(uint64_t(params.relocate));
         w.varint(uint64_t(params.edge_guard));
+        w.varint(uint64_t(params.cut));
     }
     w.bytes(atlas_bitstream);
     w.u32(crc32(w.data().data(), w.size()));

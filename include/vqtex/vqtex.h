@@ -215,6 +215,9 @@ typedef struct vqtex_coherent_params {
     uint32_t edge_guard;       /* still textures: a copy cut off by the example's edge ends in a seam:
                                   no position within this many example pixels of where it would go
                                   on is taken beside it; 0 (none) to 64, default 8 [--edge-guard] */
+    uint32_t cut;              /* still textures: how far, in output pixels, a straight border
+                                  between two copies may move to where they agree (minimum-error
+                                  cuts); 0 (none) to 16, default 8 [--cut] */
 } vqtex_coherent_params;
 
 /* The paper's engine's own parameters. */
@@ -413,6 +416,8 @@ typedef struct vqtex_file_info {
                                                       relocation the decoder uses (0: none); 0 otherwise */
     uint32_t edge_guard;                           /* atlas texture: the edge guard the decoder uses, in atlas
                                                       pixels (0: none); 0 otherwise */
+    uint32_t cut;                                  /* atlas texture: the reach of the cuts between copies the
+                                                      decoder uses, in output pixels (0: none); 0 otherwise */
 } vqtex_file_info;
 
 /* Verifies and describes a file (everything the decoder checks). */

@@ -1,0 +1,223 @@
+// seam_cut.cpp - minimum-error boundary cuts between the coherent engine's
+// copies (Efros & Freeman 2001; Kwatra et al. 2003). See seam_cut.hpp.
+#include "engine/seam_cut.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "common/parallel.hpp"
+#include "engine/coherent_positions.hpp"
+
+namespace vqtex {
+namespace {
+
+// Lines of the map seen across and along a border: for vertical borders
+// (between columns) `across` is x and `along` is y; for horizontal ones the
+// reverse. `step_*` are the matching unit steps in the example.
+struct Lines {
+    int across_size, along_size, width;
+    bool vertical;
+    // Where blocks start along the lines: entry 0 along them is entry
+    // `origin` of a torus `period` long.
+    int origin, period;
+    bool block_starts(int along, int block) const {
+        const int at = (origin + along) % period;
+        return at % block == 0;
+    }
+    std::size_t index(int across, int along) const {
+        return vertical ? std::size_t(along) * std::size_t(width) + std::size_t(across)
+                        : std::size_t(across) * std::size_t(width) + std::size_t(along);
+    }
+    int dx(int k) const { return vertical ? k : 0; }
+    int dy(int k) const { return vertical ? 0 : k; }
+};
+
+// The position `k` steps across from `p` (dx, dy per step) in the example,
+// or false past its edge when it does not wrap.
+bool extend(const Image& ex, bool wraps, uint32_t p, int dx, int dy, uint32_t& out) {
+    int x = position_x(p) + dx, y = position_y(p) + dy;
+    if (wraps) {
+        x = Image::wrap(x, ex.width);
+        y = Image::wrap(y, ex.height);
+    } else if (x < 0 || y < 0 || x >= ex.width || y >= ex.height) {
+        return false;
+    }
+    out = pack_position(x, y);
+    return true;
+}
+
+bool continues(const Image& ex, bool wraps, uint32_t p, uint32_t q, int dx, int dy) {
+    uint32_t e;
+    return extend(ex, wraps, p, dx, dy, e) && e == q;
+}
+
+uint64_t colour_difference(const Image& ex, uint32_t a, uint32_t b) {
+    const uint8_t* pa = ex.at(position_x(a), position_y(a));
+    const uint8_t* pb = ex.at(position_x(b), position_y(b));
+    uint64_t sum = 0;
+    for (int c = 0; c < ex.channels; ++c) {
+        const int d = int(pa[c]) - int(pb[c]);
+        sum += uint64_t(d * d);
+    }
+    return sum;
+}
+
+// What a border nobody can measure costs: the worst difference, twice.
+uint64_t unmeasured(const Image& ex) { return 2 * uint64_t(ex.channels) * 255 * 255; }
+
+// One run of a border at `a` (between across-indices a - 1 and a), rows
+// [u0, u1) along it: A the copy on the low side, B on the high side.
+void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<uint32_t>& in,
+             std::vector<uint32_t>& out, int a, int u0, int u1, const CutRules& rules) {
+    const int n = u1 - u0, reach = rules.reach, span = 2 * reach + 1;
+    const int A = lines.across_size;
+    const auto at = [&](int across, int u) { return in[lines.index(Image::wrap(across, A), u)]; };
+    // Per row: how many of A's pixels may turn B (low) and of B's turn A
+    // (high). A copy narrower than two reaches is shared with the run on
+    // its other side, half each, so that runs never write the same pixel.
+    std::vector<int> low(static_cast<std::size_t>(n)), high(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        const int u = u0 + i;
+        const uint32_t pa = at(a - 1, u), pb = at(a, u);
+        int la = 1;
+        while (la < 2 * reach && continues(ex, wraps, at(a - 1 - la, u), at(a - la, u), lines.dx(1), lines.dy(1))) ++la;
+        int lb = 1;
+        while (lb < 2 * reach && continues(ex, wraps, at(a + lb - 1, u), at(a + lb, u), lines.dx(1), lines.dy(1))) ++lb;
+        int lo = la >= 2 * reach ? reach : la / 2, hi = lb >= 2 * reach ? reach : lb / 2;
+        // B must extend to every pixel it may take, A likewise.
+        uint32_t e;
+        for (int k = 1; k <= lo; ++k)
+            if (!extend(ex, wraps, pb, lines.dx(-k), lines.dy(-k), e)) {
+                lo = k - 1;
+                break;
+            }
+        for (int k = 1; k <= hi; ++k)
+            if (!extend(ex, wraps, pa, lines.dx(k), lines.dy(k), e)) {
+                hi = k - 1;
+                break;
+            }
+        low[std::size_t(i)] = lo;
+        high[std::size_t(i)] = hi;
+    }
+    // The run's ends stay where they are, so the cut joins the borders
+    // beyond them.
+    low.front() = high.front() = low.back() = high.back() = 0;
+    // cost[i][j]: the least cost of a path down to row i with B starting
+    // at across-index a + j - reach.
+    constexpr uint64_t kNone = std::numeric_limits<uint64_t>::max();
+    std::vector<uint64_t> cost(std::size_t(n) * span, kNone);
+    std::vector<int8_t> from(std::size_t(n) * span, 0);
+    const uint64_t worst = unmeasured(ex);
+    for (int i = 0; i < n; ++i) {
+        const int u = u0 + i;
+        const uint32_t pa = at(a - 1, u), pb = at(a, u);
+        for (int j = reach - low[std::size_t(i)]; j <= reach + high[std::size_t(i)]; ++j) {
+            const int c = j - reach;  // B from a + c, A up to a + c - 1
+            // A's and B's pixels at a + c - 1 and a + c.
+            uint32_t a1, b1, a2, b2;
+            const bool first = extend(ex, wraps, pa, lines.dx(c), lines.dy(c), a1) &&
+                               extend(ex, wraps, pb, lines.dx(c - 1), lines.dy(c - 1), b1);
+            const bool second = extend(ex, wraps, pa, lines.dx(c + 1), lines.dy(c + 1), a2) &&
+                                extend(ex, wraps, pb, lines.dx(c), lines.dy(c), b2);
+            uint64_t here;
+            if (first && second)
+                here = colour_difference(ex, a1, b1) + colour_difference(ex, a2, b2);
+            else if (first)
+                here = 2 * colour_difference(ex, a1, b1);
+            else if (second)
+                here = 2 * colour_difference(ex, a2, b2);
+            else
+                here = worst;
+            uint64_t best = i == 0 ? 0 : kNone;
+            int8_t move = 0;
+            if (i > 0)
+                for (int d : {0, -1, 1}) {
+                    const int jj = j + d;
+                    if (jj < 0 || jj >= span) continue;
+                    const uint64_t v = cost[std::size_t(i - 1) * span + std::size_t(jj)];
+                    if (v < best) {
+                        best = v;
+                        move = int8_t(d);
+                    }
+                }
+            if (best == kNone) continue;
+            cost[std::size_t(i) * span + std::size_t(j)] = best + here;
+            from[std::size_t(i) * span + std::size_t(j)] = move;
+        }
+    }
+    // The last row is pinned at j = reach, reachable from the first.
+    int j = reach;
+    if (cost[std::size_t(n - 1) * span + std::size_t(j)] == kNone) return;
+    for (int i = n - 1; i >= 0; --i) {
+        const int c = j - reach;
+        const int u = u0 + i;
+        const uint32_t pa = at(a - 1, u), pb = at(a, u);
+        uint32_t e;
+        for (int k = c; k < 0; ++k)  // A's pixels that turn B
+            if (extend(ex, wraps, pb, lines.dx(k), lines.dy(k), e)) out[lines.index(Image::wrap(a + k, A), u)] = e;
+        for (int k = 0; k < c; ++k)  // B's pixels that turn A
+            if (extend(ex, wraps, pa, lines.dx(k + 1), lines.dy(k + 1), e))
+                out[lines.index(Image::wrap(a + k, A), u)] = e;
+        j += from[std::size_t(i) * span + std::size_t(j)];
+    }
+}
+
+// Every run of one direction's borders, from `in` into `out` (a copy).
+void cut_direction(const Image& ex, bool wraps, const Lines& lines, const std::vector<uint32_t>& in,
+                   std::vector<uint32_t>& out, const CutRules& rules, int threads) {
+    const int A = lines.across_size, U = lines.along_size;
+    if (A < 4 || U < rules.min_run) return;
+    parallel_for(threads, std::size_t(A), 1, [&](std::size_t b0, std::size_t b1) {
+        for (int a = int(b0); a < int(b1); ++a) {
+            const auto at = [&](int across, int u) { return in[lines.index(Image::wrap(across, A), u)]; };
+            // Runs along the border, each within its block: a run ends where
+            // the border does, where either copy stops going on along it,
+            // and at a block's start.
+            int start = -1;
+            const auto finish = [&](int end) {
+                if (start >= 0 && end - start >= rules.min_run) cut_run(ex, wraps, lines, in, out, a, start, end, rules);
+                start = -1;
+            };
+            for (int u = 0; u < U; ++u) {
+                if (u > 0 && lines.block_starts(u, rules.block)) finish(u);
+                const bool on = !continues(ex, wraps, at(a - 1, u), at(a, u), lines.dx(1), lines.dy(1));
+                if (!on) {
+                    finish(u);
+                    continue;
+                }
+                if (start >= 0 && !(continues(ex, wraps, at(a - 1, u - 1), at(a - 1, u), lines.dy(1), lines.dx(1)) &&
+                                    continues(ex, wraps, at(a, u - 1), at(a, u), lines.dy(1), lines.dx(1))))
+                    finish(u);
+                if (start < 0) start = u;
+            }
+            finish(U);
+        }
+    });
+}
+
+}  // namespace
+
+uint64_t border_cost(const Image& example, bool wraps, uint32_t a_at_first, uint32_t b_at_second, int dx, int dy) {
+    uint32_t a2, b1;
+    const bool first = extend(example, wraps, b_at_second, -dx, -dy, b1);
+    const bool second = extend(example, wraps, a_at_first, dx, dy, a2);
+    if (first && second)
+        return colour_difference(example, a_at_first, b1) + colour_difference(example, a2, b_at_second);
+    if (first) return 2 * colour_difference(example, a_at_first, b1);
+    if (second) return 2 * colour_difference(example, a2, b_at_second);
+    return unmeasured(example);
+}
+
+void cut_seams(const Image& example, bool wraps, int width, int height, std::vector<uint32_t>& positions,
+               const CutRules& rules, int threads, int first_row, int torus_rows) {
+    if (rules.reach <= 0 || width <= 0 || height <= 0) return;
+    if (torus_rows <= 0) torus_rows = height;
+    std::vector<uint32_t> out = positions;
+    cut_direction(example, wraps, Lines{width, height, width, true, first_row, torus_rows}, positions, out, rules,
+                  threads);
+    positions = out;
+    cut_direction(example, wraps, Lines{height, width, width, false, 0, width}, positions, out, rules, threads);
+    positions.swap(out);
+}
+
+}  // namespace vqtex

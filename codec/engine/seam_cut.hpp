@@ -1,0 +1,64 @@
+// seam_cut.hpp - minimum-error boundary cuts between the copies of the
+// coherent engine's finest positions (Efros & Freeman 2001, "Image
+// quilting", section 2.1; the seam cost of Kwatra et al. 2003, "Graphcut
+// textures", section 3): where two copies meet along a straight run of
+// rows or columns, the border moves, row by row, to where the two copies
+// agree, found by dynamic programming through a band around the run.
+//
+// The coherent engine's copies are translated rectangles of the example:
+// where a copy runs into the example's edge, or was laid out by the coarse
+// levels' grid, it ends along a straight line whatever it meets there, and
+// that line is what a viewer finds first. Extending each copy a few pixels
+// into the other's region costs nothing (both are the example), so the
+// border can go anywhere in that band; the cut takes the path along which
+// the two copies differ least. Runs are cut independently (each within
+// aligned blocks of rows or columns, and each taking at most half of a copy
+// that it shares with another run), so the result is the same for any
+// thread count, and a band of output rows gets the rows of the whole.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/image.hpp"
+
+namespace vqtex {
+
+// vqtex_synthesize's reach (the atlas format fixes its own default,
+// atlas_file.hpp), and the most the API and the format accept.
+inline constexpr int kDefaultCutReach = 8;
+inline constexpr int kMaxCutReach = 16;
+
+struct CutRules {
+    // How far, in output pixels, the border may move to either side of a
+    // run (less where a copy is narrower or ends at the example's edge).
+    int reach = 8;
+    // The shortest straight run that is cut: shorter ones are corners.
+    int min_run = 6;
+    // Runs are cut within aligned blocks of this many rows (vertical
+    // borders) or columns (horizontal ones).
+    int block = 64;
+};
+
+// Moves the borders of the copies of `positions` (a width x height torus of
+// packed example positions, coherent_positions.hpp) on the example's
+// pixels: first the vertical runs, then the horizontal ones of the result.
+// `wraps`: the example tiles, so copies continue across its edges. A band
+// of rows of a taller torus gives its first row's place and the torus's
+// height, so that its blocks are the whole's (0: the map is the torus);
+// its rows within cut_reach_rows(rules) of its ends come out wrong.
+void cut_seams(const Image& example, bool wraps, int width, int height, std::vector<uint32_t>& positions,
+               const CutRules& rules, int threads, int first_row = 0, int torus_rows = 0);
+
+// How many rows on either side of a row the cuts read to decide it: its
+// block, and the horizontal runs whose bands and copies reach it.
+inline int cut_reach_rows(const CutRules& rules) { return rules.reach > 0 ? rules.block + 4 * rules.reach + 4 : 0; }
+
+// The cost of the border between two horizontally or vertically adjacent
+// output pixels holding copies A and B, as cut_seams counts it: the
+// squared colour difference of the two copies at both pixels (a copy that
+// cannot be extended to the other pixel counts its other term twice).
+// Exposed for tests.
+uint64_t border_cost(const Image& example, bool wraps, uint32_t a_at_first, uint32_t b_at_second, int dx, int dy);
+
+}  // namespace vqtex
