@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include "common/parallel.hpp"
 #include "engine/coherent_positions.hpp"
@@ -20,10 +21,6 @@ struct Lines {
     // Where blocks start along the lines: entry 0 along them is entry
     // `origin` of a torus `period` long.
     int origin, period;
-    bool block_starts(int along, int block) const {
-        const int at = (origin + along) % period;
-        return at % block == 0;
-    }
     std::size_t index(int across, int along) const {
         return vertical ? std::size_t(along) * std::size_t(width) + std::size_t(across)
                         : std::size_t(across) * std::size_t(width) + std::size_t(along);
@@ -62,13 +59,16 @@ uint64_t colour_difference(const Image& ex, uint32_t a, uint32_t b) {
     return sum;
 }
 
+// Pixels a cut gives another copy: (index in the map, position).
+using Writes = std::vector<std::pair<std::size_t, uint32_t>>;
+
 // What a border nobody can measure costs: the worst difference, twice.
 uint64_t unmeasured(const Image& ex) { return 2 * uint64_t(ex.channels) * 255 * 255; }
 
 // One run of a border at `a` (between across-indices a - 1 and a), rows
 // [u0, u1) along it: A the copy on the low side, B on the high side.
-void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<uint32_t>& in,
-             std::vector<uint32_t>& out, int a, int u0, int u1, const CutRules& rules) {
+void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<uint32_t>& in, Writes& out, int a,
+             int u0, int u1, const CutRules& rules) {
     const int n = u1 - u0, reach = rules.reach, span = 2 * reach + 1;
     const int A = lines.across_size;
     const auto at = [&](int across, int u) { return in[lines.index(Image::wrap(across, A), u)]; };
@@ -154,45 +154,93 @@ void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<
         const uint32_t pa = at(a - 1, u), pb = at(a, u);
         uint32_t e;
         for (int k = c; k < 0; ++k)  // A's pixels that turn B
-            if (extend(ex, wraps, pb, lines.dx(k), lines.dy(k), e)) out[lines.index(Image::wrap(a + k, A), u)] = e;
+            if (extend(ex, wraps, pb, lines.dx(k), lines.dy(k), e))
+                out.emplace_back(lines.index(Image::wrap(a + k, A), u), e);
         for (int k = 0; k < c; ++k)  // B's pixels that turn A
             if (extend(ex, wraps, pa, lines.dx(k + 1), lines.dy(k + 1), e))
-                out[lines.index(Image::wrap(a + k, A), u)] = e;
+                out.emplace_back(lines.index(Image::wrap(a + k, A), u), e);
         j += from[std::size_t(i) * span + std::size_t(j)];
     }
 }
 
-// Every run of one direction's borders, from `in` into `out` (a copy).
-void cut_direction(const Image& ex, bool wraps, const Lines& lines, const std::vector<uint32_t>& in,
-                   std::vector<uint32_t>& out, const CutRules& rules, int threads) {
+// Where each pixel of a w x h torus of positions goes on from its left
+// neighbour (bit 0) and from its upper one (bit 1): a byte per pixel, made
+// row by row, so that the runs' scan down columns reads bytes.
+std::vector<uint8_t> link_map(const Image& ex, bool wraps, int w, int h, const std::vector<uint32_t>& pos,
+                              int threads) {
+    std::vector<uint8_t> links(pos.size());
+    // Packed positions (coherent_positions.hpp) go on by +1 to the right and
+    // by +2^16 down, exactly (a position past the example's last column or
+    // row is no position); a tiling example also from its last column to
+    // its first and from its last row to its first.
+    const uint32_t last_x = uint32_t(ex.width - 1), wrap_x = uint32_t(ex.width - 1);
+    const uint32_t last_y = uint32_t(ex.height - 1), wrap_y = uint32_t(ex.height - 1) << 16;
+    parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
+        for (int y = int(y0); y < int(y1); ++y) {
+            const uint32_t* __restrict row = pos.data() + std::size_t(y) * std::size_t(w);
+            const uint32_t* __restrict up = pos.data() + std::size_t(Image::wrap(y - 1, h)) * std::size_t(w);
+            uint8_t* __restrict out = links.data() + std::size_t(y) * std::size_t(w);
+            for (int x = 0; x < w; ++x) {
+                const uint32_t p = row[x], left = row[x == 0 ? w - 1 : x - 1], above = up[x];
+                bool l = p - left == 1, a = p - above == 0x10000;
+                if (wraps) {
+                    l = l || ((left & 0xFFFF) == last_x && p == left - wrap_x);
+                    a = a || ((above >> 16) == last_y && p == above - wrap_y);
+                }
+                out[x] = uint8_t(int(l) | int(a) << 1);
+            }
+        }
+    });
+    return links;
+}
+
+// Every run of one direction's borders of `pos`, cut in place: the runs
+// are found and cut on the map as it was, their pixels written after.
+void cut_direction(const Image& ex, bool wraps, const Lines& lines, std::vector<uint32_t>& pos,
+                   const CutRules& rules, int threads) {
     const int A = lines.across_size, U = lines.along_size;
     if (A < 4 || U < rules.min_run) return;
+    const std::vector<uint8_t> links = link_map(ex, wraps, lines.width, lines.vertical ? U : A, pos, threads);
+    // Bit `across` of a pixel: it goes on from its neighbour across the
+    // border; bit `along`: from its neighbour before it along the border.
+    const uint8_t across = lines.vertical ? 1 : 2, along = lines.vertical ? 2 : 1;
+    std::vector<Writes> writes(static_cast<std::size_t>(A));
     parallel_for(threads, std::size_t(A), 1, [&](std::size_t b0, std::size_t b1) {
         for (int a = int(b0); a < int(b1); ++a) {
-            const auto at = [&](int across, int u) { return in[lines.index(Image::wrap(across, A), u)]; };
+            const std::size_t low = std::size_t(Image::wrap(a - 1, A));
+            Writes& out = writes[std::size_t(a)];
             // Runs along the border, each within its block: a run ends where
             // the border does, where either copy stops going on along it,
             // and at a block's start.
             int start = -1;
             const auto finish = [&](int end) {
-                if (start >= 0 && end - start >= rules.min_run) cut_run(ex, wraps, lines, in, out, a, start, end, rules);
+                if (start >= 0 && end - start >= rules.min_run) cut_run(ex, wraps, lines, pos, out, a, start, end, rules);
                 start = -1;
             };
+            // Where u lies on the torus and in its block, kept step by step
+            // (a division per pixel cost more than the scan).
+            int at = lines.origin % lines.period, in_block = at % rules.block;
             for (int u = 0; u < U; ++u) {
-                if (u > 0 && lines.block_starts(u, rules.block)) finish(u);
-                const bool on = !continues(ex, wraps, at(a - 1, u), at(a, u), lines.dx(1), lines.dy(1));
-                if (!on) {
+                if (u > 0) {
+                    ++at;
+                    ++in_block;
+                    if (at == lines.period) at = in_block = 0;
+                    if (in_block == rules.block) in_block = 0;
+                    if (in_block == 0) finish(u);
+                }
+                const uint8_t here = links[lines.index(a, u)];
+                if (here & across) {
                     finish(u);
                     continue;
                 }
-                if (start >= 0 && !(continues(ex, wraps, at(a - 1, u - 1), at(a - 1, u), lines.dy(1), lines.dx(1)) &&
-                                    continues(ex, wraps, at(a, u - 1), at(a, u), lines.dy(1), lines.dx(1))))
-                    finish(u);
+                if (start >= 0 && !((here & along) && (links[lines.index(int(low), u)] & along))) finish(u);
                 if (start < 0) start = u;
             }
             finish(U);
         }
     });
+    for (const Writes& w : writes)
+        for (const auto& [i, p] : w) pos[i] = p;
 }
 
 }  // namespace
@@ -212,12 +260,8 @@ void cut_seams(const Image& example, bool wraps, int width, int height, std::vec
                const CutRules& rules, int threads, int first_row, int torus_rows) {
     if (rules.reach <= 0 || width <= 0 || height <= 0) return;
     if (torus_rows <= 0) torus_rows = height;
-    std::vector<uint32_t> out = positions;
-    cut_direction(example, wraps, Lines{width, height, width, true, first_row, torus_rows}, positions, out, rules,
-                  threads);
-    positions = out;
-    cut_direction(example, wraps, Lines{height, width, width, false, 0, width}, positions, out, rules, threads);
-    positions.swap(out);
+    cut_direction(example, wraps, Lines{width, height, width, true, first_row, torus_rows}, positions, rules, threads);
+    cut_direction(example, wraps, Lines{height, width, width, false, 0, width}, positions, rules, threads);
 }
 
 }  // namespace vqtex
