@@ -15,7 +15,7 @@ bool BenchOptions::want(const std::string& protocol) const {
 
 int parse_options(int argc, char** argv, BenchOptions& o) {
     CLI::App app{"vqtex-bench: rate-quality of vqtex and peer codecs against held-out crops (docs/METRICS.md)."};
-    app.add_flag("--atlas", o.atlas, "name the vqtex rows vqtex-atlas (atlas files, format 7, as without it)");
+    app.add_flag("--atlas", o.atlas, "name the vqtex rows vqtex-atlas (atlas files, format 8, as without it)");
     app.add_option("--target-sizes", o.target_sizes,
                    "rate points as byte targets (vqtex-encode --target-size) instead of -q presets; "
                    "the summary's q column then holds the target")

@@ -17,7 +17,7 @@ namespace vqtex_tools {
 // through OMP_NUM_THREADS so that the wall times compare like for like.
 constexpr uint32_t kSynthThreads = 1;
 
-// The atlas an atlas file (versions 3 to 7) stores, as its decoder sees it
+// The atlas an atlas file (versions 3 to 8) stores, as its decoder sees it
 // (for the large protocol's contact sheets: what the engine synthesises
 // from). Empty for a file of another version, or if the file does not read.
 Image decoded_atlas(const std::vector<uint8_t>& file);

@@ -493,7 +493,7 @@ TEST(Coherent, GoldenHash) {
     EXPECT_EQ(hash_of(2, 64, 8, 8), 0xc43e8f3bdf8f3649ull) << std::hex << hash_of(2, 64, 8, 8);
 }
 
-// docs/FORMAT.md §4.11's blend, as written there, for pixel (x, y) of a map.
+// docs/FORMAT.md §4.12's blend, as written there, for pixel (x, y) of a map.
 std::vector<uint8_t> reference_blend(const Image& ex, bool wraps, int r, const PositionMap& map, int x, int y) {
     static const int weights[4][7] = {{1}, {1, 2, 1}, {1, 4, 6, 4, 1}, {1, 6, 15, 20, 15, 6, 1}};
     uint64_t sum[4] = {0, 0, 0, 0}, total = 0;
@@ -518,7 +518,7 @@ std::vector<uint8_t> reference_blend(const Image& ex, bool wraps, int r, const P
 }
 
 TEST(Coherent, BlendIsTheFormatsWeightedMeanAndChangesOnlySeams) {
-    // Every pixel against FORMAT.md §4.11's procedure, on synthesised maps
+    // Every pixel against FORMAT.md §4.12's procedure, on synthesised maps
     // (copies and seams as the engine makes them) and on maps of random
     // positions (every window a seam): mirrored and tileable examples,
     // 1 to 4 channels, every radius, outputs and examples narrower than a

@@ -38,8 +38,8 @@ FileReport info_one(const std::string& input) {
     if (vqtex_inspect(bytes.data(), bytes.size(), 0, &info, &err) != VQTEX_OK)
         throw std::runtime_error(input + ": " + err.detail);
     // Bytes per kind of section, all levels together.
-    // Formats 3 to 7 hold an atlas and the engine's parameters instead;
-    // formats 4 to 7 have no sections, and inspect lists their two parts
+    // Formats 3 to 8 hold an atlas and the engine's parameters instead;
+    // formats 4 to 8 have no sections, and inspect lists their two parts
     // under the same tags (vqtex.h).
     // An atlas file is one whose atlas has a size (vqtex.h), so a new
     // format version needs no change here; only version 3 has sections.

@@ -1,4 +1,4 @@
-// atlas_coder.cpp - decoding the atlas bitstream of formats 3 to 7 with
+// atlas_coder.cpp - decoding the atlas bitstream of formats 3 to 8 with
 // dav1d (docs/FORMAT.md §3). Every failure of dav1d, and every
 // frame that is not exactly the one the section announces, is a CORRUPT
 // file; dav1d's frame size limit is set to the announced size so a hostile

@@ -1,4 +1,4 @@
-// atlas_coder.hpp - the image coder of the atlas of formats 3 to 7
+// atlas_coder.hpp - the image coder of the atlas of formats 3 to 8
 // (docs/FORMAT.md §3, docs/ATLAS.md): the atlas, a small
 // image whose windows are the synthesis engine's codebook, is stored as an
 // AV1 intra frame, raw OBUs without the AVIF container. Decoding is dav1d's,

@@ -1,4 +1,4 @@
-// atlas_compact.hpp - the compact layout of atlas files, versions 4 to 7
+// atlas_compact.hpp - the compact layout of atlas files, versions 4 to 8
 // (docs/FORMAT.md §2 and §A.1-§A.3): the packed byte after the version and the
 // parameters such a file leaves out. Shared by the reader
 // (atlas_file.cpp) and the writer (writer/atlas_writer.cpp).
@@ -19,10 +19,10 @@ inline constexpr uint8_t kPackedExemplarSize = 1u << 5;  // the exemplar size is
 inline constexpr uint8_t kPackedParameters = 1u << 6;    // the parameters are stored (they are not the defaults)
 inline constexpr uint8_t kPackedTileable = 1u << 7;      // the atlas wraps
 // Signature, version, packed byte, one-byte atlas width, height and seed,
-// CRC-32: no version 4 to 7 file is shorter.
+// CRC-32: no version 4 to 8 file is shorter.
 inline constexpr std::size_t kCompactMinSize = sizeof kMagic + 2 + 1 + 3 + kTrailerSize;
 
-// The parameters a version 4 to 7 file leaves out. These are the values of
+// The parameters a version 4 to 8 file leaves out. These are the values of
 // the format, fixed by docs/FORMAT.md §2.2 and §A.1-§A.3, not whatever the
 // engine's defaults become: a file written with them decodes the same
 // forever.

@@ -69,7 +69,7 @@ void check_atlas(int aw, int ah, int levels, int channels, std::size_t input_byt
                  std::to_string(memory_limit >> 20) + " MiB: raise memory_limit (--memory-limit)");
 }
 
-// Versions 4 to 7: the CRC first (the file has no sizes to walk), then the fields
+// Versions 4 to 8: the CRC first (the file has no sizes to walk), then the fields
 // in their order, each checked as it is read.
 AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     const uint16_t version = read_format_version(data, size);

@@ -1,12 +1,13 @@
-// atlas_file.hpp - format versions 3 to 7 (docs/FORMAT.md §2
+// atlas_file.hpp - format versions 3 to 8 (docs/FORMAT.md §2
 // and §A): a still texture stored as an atlas, an image whose windows
 // are the coherent engine's codebook (the exemplar or a crop of it), coded
 // as AV1 (atlas_coder.hpp), plus the engine's parameters. Version 3 holds
 // them in the container's sections (ATLS, SYNP); version 4 behind a
 // compact header (§A.3); version 5 adds the blend at seams to
-// version 4 (§A.2, §4.11), version 6 the copy relocation to version 5
-// (§A.1, §4.9), version 7, which the encoder writes, the edge guard to
-// version 6 (§2, §4.7-§4.8). The decoder rebuilds the appearance space from
+// version 4 (§A.2, §4.12), version 6 the copy relocation to version 5
+// (§A.1, §4.9), version 7 the edge guard to version 6 (§A.0, §4.7-§4.8),
+// version 8, which the encoder writes, the cuts between copies to version 7
+// (§2, §4.11). The decoder rebuilds the appearance space from
 // the decoded atlas and synthesises with the coherent engine
 // (api/coherent_options.hpp gives its options).
 #pragma once
@@ -84,7 +85,7 @@ struct AtlasSynthesisParams {
 inline bool clamps_children(const AtlasSynthesisParams& params) { return params.edge_guard > 0; }
 
 struct AtlasFile {
-    // Version 3 to 7; levels = the engine's stack depth. A version 4 to 7 file's
+    // Version 3 to 8; levels = the engine's stack depth. A version 4 to 8 file's
     // fields are put here as version 3 would have them (init 0, backtrack 1,
     // no flags, no sections).
     FileHeader header;
@@ -92,18 +93,18 @@ struct AtlasFile {
     AtlasSynthesisParams params;
     Image atlas;                       // decoded
     std::size_t atlas_bytes = 0;       // the coded atlas bitstream
-    std::size_t bitstream_offset = 0;  // versions 4-7: where that bitstream starts in the file
-    std::size_t parameter_bytes = 0;   // versions 4-7: the parameter varints (0 for the defaults)
+    std::size_t bitstream_offset = 0;  // versions 4-8: where that bitstream starts in the file
+    std::size_t parameter_bytes = 0;   // versions 4-8: the parameter varints (0 for the defaults)
     // What the memory limit counts for the input beside the atlas and the
-    // engine: the sections' raw sizes (version 3) or the file (versions 4-7).
+    // engine: the sections' raw sizes (version 3) or the file (versions 4-8).
     std::size_t input_bytes = 0;
 };
 
-// True when the file's signature reads and its version is 3 to 7 (any
+// True when the file's signature reads and its version is 3 to 8 (any
 // damage is left to decode_atlas_file to report).
 bool is_atlas_file(const uint8_t* data, std::size_t size);
 
-// Reads and checks a version 3 to 7 file and decodes its atlas. The memory
+// Reads and checks a version 3 to 8 file and decodes its atlas. The memory
 // limit covers the input (AtlasFile::input_bytes), dav1d's frame and the
 // decoded atlas; the engine's own memory is checked by the caller with
 // atlas_decode_memory.

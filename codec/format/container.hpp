@@ -29,7 +29,7 @@ inline constexpr uint16_t kAtlasFormatVersion = 3;
 // versions 1-3 answer UNSUPPORTED_VERSION, but nothing else of the
 // container: atlas_file.cpp reads them, read_header refuses them.
 inline constexpr uint16_t kCompactAtlasFormatVersion = 4;
-// Version 5 (docs/FORMAT.md §A.2, §4.11): version 4's layout with one more
+// Version 5 (docs/FORMAT.md §A.2, §4.12): version 4's layout with one more
 // parameter, the radius of the blend at the output's seams, which version 4
 // files decode without, as they always have.
 inline constexpr uint16_t kBlendAtlasFormatVersion = 5;
