@@ -472,12 +472,14 @@ TEST(Coherent, GoldenHash) {
     // guard; with those and the edge guard, as before the cuts; with the
     // defaults, what the engine gives now.
     const Image ex = brick_wall(96, 96, 7);
-    const auto hash_of = [&](uint32_t blend, uint32_t relocate, uint32_t edge_guard = 0, uint32_t cut = 0) {
+    const auto hash_of = [&](uint32_t blend, uint32_t relocate, uint32_t edge_guard = 0, uint32_t cut = 0,
+                             uint32_t margin = 0) {
         vqtex_synth_params p = coherent_params(150, 110, 9);
         p.coherent.blend = blend;
         p.coherent.relocate = relocate;
         p.coherent.edge_guard = edge_guard;
         p.coherent.cut = cut;
+        p.coherent.margin = margin;
         uint64_t h = 0xcbf29ce484222325ull;
         for (uint8_t v : vqtex_test::synthesize(ex, p).pixels) h = (h ^ v) * 0x100000001b3ull;
         return h;
@@ -491,6 +493,8 @@ TEST(Coherent, GoldenHash) {
     EXPECT_EQ(hash_of(2, 64, 8), 0xc49dfaedd9457d81ull) << std::hex << hash_of(2, 64, 8);
     EXPECT_EQ(coherent_params(1, 1, 1).coherent.cut, 8u);
     EXPECT_EQ(hash_of(2, 64, 8, 8), 0xc43e8f3bdf8f3649ull) << std::hex << hash_of(2, 64, 8, 8);
+    EXPECT_EQ(coherent_params(1, 1, 1).coherent.margin, 0u);
+    EXPECT_EQ(hash_of(2, 64, 8, 8, 2), 0x5039d1d8e6aa8c0bull) << std::hex << hash_of(2, 64, 8, 8, 2);
 }
 
 // docs/FORMAT.md §4.12's blend, as written there, for pixel (x, y) of a map.
@@ -628,6 +632,7 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
         int example_w = 40, example_h = 36;
         int edge_guard = 8;
         int cut = 0;
+        int margin = 0;
     };
     // The last example has more than 65536 pixels: the coarser level's
     // positions are kept as 3-byte indices.
@@ -635,8 +640,9 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
                           {33, 80, 3, 2, 1, 64, 1, true, false, 3}, {50, 99, 1, 3, 2, 0, 3, false, false, 1},
                           {47, 60, 3, 1, 0, 0, 1, true, true, 2},   {45, 70, 1, 2, 1, 0, 1, true, false, 2, 300, 230},
                           {52, 90, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 0},
-                          {40, 263, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 8, 8},
-                          {37, 290, 1, 2, 1, 0, 1, true, true, 2, 40, 36, 8, 16}};
+                          {40, 263, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 8, 8, 2},
+                          {37, 290, 1, 2, 1, 0, 1, true, true, 2, 40, 36, 8, 16},
+                          {44, 270, 2, 2, 1, 0, 2, true, false, 1, 48, 40, 8, 6, 3}};
     for (const Case& c : cases) {
         const Image ex = textured(c.example_w, c.example_h, 3, c.channels);
         CoherentOptions options;
@@ -650,9 +656,10 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
         options.blend = c.blend;
         options.edge_guard = c.edge_guard;
         options.cut = c.cut;
+        options.margin = c.margin;
         const std::string what = std::to_string(c.w) + "x" + std::to_string(c.h) + "x" + std::to_string(c.channels) +
                                  " blend " + std::to_string(c.blend) + " edge guard " + std::to_string(c.edge_guard) +
-                                 " cut " + std::to_string(c.cut);
+                                 " cut " + std::to_string(c.cut) + " margin " + std::to_string(c.margin);
         const Image whole = synthesize_coherent(ex, 4, c.tileable, c.coherence, options).image;
         for (int band : {1, 2, 7, 16}) {
             options.band_rows = band;

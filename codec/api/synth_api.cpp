@@ -44,6 +44,7 @@ void synthesize_coherent_api(const vqtex_synth_params& params, const Image& exam
     engine.edge_guard = int(c.edge_guard);
     engine.cut = int(c.cut);
     CoherentOptions opt = coherent_options(engine, int(params.width), int(params.height), params.seed);
+    opt.margin = int(c.margin);
     opt.threads = threads;
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
     CoherentResult r = synthesize_coherent(example, levels, params.example_tileable != 0, int(c.coherence), opt,
@@ -162,6 +163,10 @@ void vqtex_synth_params_init(vqtex_synth_params* p) {
     // Straight borders between copies moved, row by row, to where the two
     // copies agree (docs/SYNTHESIS.md, cuts). The atlas files' default too.
     c.cut = kDefaultCutReach;
+    // No frame around the copies: one of 2 pixels cuts the straight-seam
+    // measure by a sixth more but loses the example's outermost values
+    // (an alpha ramp's ends) and costs 3% in SWD (docs/SYNTHESIS.md, cuts).
+    c.margin = kDefaultCopyMargin;
     vqtex_paper_params& paper = p->paper;
     vqtex_tsvq_params_init(&paper.tsvq);
     paper.search = VQTEX_SEARCH_TSVQ;

@@ -95,6 +95,10 @@ void validate(const vqtex_synth_params* p) {
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "cut must be 0 to " + std::to_string(kMaxCutReach) +
                                                " (output pixels a border between copies may move; got " +
                                                std::to_string(c.cut) + ")");
+    if (c.margin > uint32_t(kMaxCopyMargin))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "margin must be 0 to " + std::to_string(kMaxCopyMargin) +
+                                               " (example pixels kept around the copies for the cuts; got " +
+                                               std::to_string(c.margin) + ")");
     check_levels(p->levels);
     const vqtex_paper_params& paper = p->paper;
     check_tsvq(paper.tsvq);

@@ -49,6 +49,14 @@ int band_rows(const CoherentOptions& options, int channels, int margin, uint64_t
     return uint64_t(rows) + 2 * uint64_t(margin) < uint64_t(options.height) ? rows : 0;
 }
 
+// Positions laid out in the example less a frame of `frame` pixels, moved
+// into the whole example.
+void move_into_frame(std::vector<uint32_t>& positions, int frame) {
+    if (frame == 0) return;
+    const uint32_t by = pack_position(frame, frame);
+    for (uint32_t& p : positions) p += by;
+}
+
 // The output of a large texture: the finest level synthesised in bands of
 // `band` rows, each with `margin` rows more on either side (the rows the
 // band's passes leave wrong), from the coarser level's positions; each
@@ -56,14 +64,15 @@ int band_rows(const CoherentOptions& options, int channels, int margin, uint64_t
 // level's positions nor a second image are ever whole. The same bytes as
 // read_positions on the whole level: a band's rows are exact, and the torus
 // cut is found on the pixels, the same sums as through the positions.
-Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, int margin) {
+Image synthesize_in_bands(const Image& example, int frame, LevelPasses& passes, int band, int margin) {
     const CoherentOptions& options = passes.options;
     const AppearanceSpace& space = passes.space;
     const int w = options.width, h = options.height;
     PositionMap coarse = passes.levels_down_to(1);
     // The coarser level as pixel indices (2 or 3 bytes each for an atlas,
     // PixelIndices), as read_positions narrows the finest.
-    PixelIndices parents = narrow_positions(example.width, example.pixel_count(), coarse.positions, options.threads);
+    PixelIndices parents =
+        narrow_positions(space.width, uint64_t(space.width) * uint64_t(space.height), coarse.positions, options.threads);
     const auto parent_at = [&](std::size_t i) { return parents.position(i); };
     Image out(w, h, example.channels);
     PositionMap part{w, 0, {}};
@@ -76,6 +85,7 @@ Image synthesize_in_bands(const Image& example, LevelPasses& passes, int band, i
         start_rows<PixelPositions>(space, parent_at, coarse.width, w, h, 0, space.levels[0].spacing,
                                    start_rules(options), true, rows_of.first, part.height, part.positions.data());
         passes.run(0, part, &rows_of, rows);
+        move_into_frame(part.positions, frame);
         cut_seams(example, space.wraps, w, part.height, part.positions, cut_rules(options), options.threads,
                   rows_of.first, h);
         // The band's own rows (blend 0 copies each pixel).
@@ -103,7 +113,7 @@ uint64_t band_bytes(const Image& example, const AppearanceSpace& space, int cohe
 }  // namespace
 
 // The finest level whole, or for a large output in bands.
-Image synthesize_pixels(const Image& example, const AppearanceSpace& space, const CoherenceSets& sets,
+Image synthesize_pixels(const Image& example, int frame, const AppearanceSpace& space, const CoherenceSets& sets,
                         const CoherentOptions& options, AppearanceSpace* by_level_space,
                         CoherenceSets* by_level_sets) {
     LevelPasses passes(space, sets, options);
@@ -113,10 +123,11 @@ Image synthesize_pixels(const Image& example, const AppearanceSpace& space, cons
     const int band = band_rows(options, example.channels, margin, band_bytes(example, space, sets.k));
     if (band == 0) {
         PositionMap map = passes.levels_down_to(0);
+        move_into_frame(map.positions, frame);
         cut_seams(example, space.wraps, map.width, map.height, map.positions, cut_rules(options), options.threads);
         return read_positions(example, std::move(map), options.roll, options.threads, options.blend, space.wraps);
     }
-    return synthesize_in_bands(example, passes, band, margin);
+    return synthesize_in_bands(example, frame, passes, band, margin);
 }
 
 }  // namespace coherent

@@ -13,10 +13,13 @@
 
 namespace vqtex::coherent {
 
-// The output of `options`' size from the example's analysis. When the
-// analysis is made level by level, `by_level_space` and `by_level_sets`
-// are `space` and `sets`, whose levels the synthesis fills and empties.
-Image synthesize_pixels(const Image& example, const AppearanceSpace& space, const CoherenceSets& sets,
+// The output of `options`' size from the analysis of the example less a
+// frame of `margin` pixels on every side (copy_margin): the copies are laid
+// out inside it, then moved into the whole example, whose frame the cuts
+// and the read-out use. When the analysis is made level by level,
+// `by_level_space` and `by_level_sets` are `space` and `sets`, whose
+// levels the synthesis fills and empties.
+Image synthesize_pixels(const Image& example, int margin, const AppearanceSpace& space, const CoherenceSets& sets,
                         const CoherentOptions& options, AppearanceSpace* by_level_space = nullptr,
                         CoherenceSets* by_level_sets = nullptr);
 

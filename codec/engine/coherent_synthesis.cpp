@@ -53,6 +53,11 @@ uint64_t coherent_analysis_memory(int width, int height, int channels, int level
            (analysis_by_level(width, height, levels) ? level : l * level);
 }
 
+int copy_margin(int width, int height, bool tileable, int margin) {
+    if (tileable || margin <= 0) return 0;
+    return std::min(width, height) >= 8 * margin + 16 ? margin : 0;
+}
+
 int coherent_levels(int width, int height) {
     int levels = 1;
     while (levels < VQTEX_MAX_LEVELS && (4 << levels) <= std::min(width, height)) ++levels;
@@ -69,9 +74,20 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
     const auto t0 = Clock::now();
     if (analyse_progress && !analyse_progress(0, 1))
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
-    const bool by_level = options.analysis_by_level < 0 ? analysis_by_level(example.width, example.height, levels)
-                                                        : options.analysis_by_level > 0;
-    AppearanceSpace space = build_appearance_space(example, levels, example_tileable, options.threads, !by_level);
+    // The copies are laid out in the example less its frame (copy_margin).
+    const int margin = copy_margin(example.width, example.height, example_tileable, options.margin);
+    Image inner;
+    if (margin > 0) {
+        inner = Image(example.width - 2 * margin, example.height - 2 * margin, example.channels);
+        for (int y = 0; y < inner.height; ++y)
+            std::copy_n(example.at(margin, y + margin), std::size_t(inner.width) * std::size_t(example.channels),
+                        inner.at(0, y));
+    }
+    const Image& laid_out = margin > 0 ? inner : example;
+    const bool by_level = options.analysis_by_level < 0
+                              ? analysis_by_level(laid_out.width, laid_out.height, levels)
+                              : options.analysis_by_level > 0;
+    AppearanceSpace space = build_appearance_space(laid_out, levels, example_tileable, options.threads, !by_level);
     CoherenceSets sets;
     if (by_level) {
         sets.k = std::max(coherence, 1);
@@ -83,7 +99,8 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     const auto t1 = Clock::now();
     CoherentResult r;
-    r.image = coherent::synthesize_pixels(example, space, sets, options, by_level ? &space : nullptr, by_level ? &sets : nullptr);
+    r.image = coherent::synthesize_pixels(example, margin, space, sets, options, by_level ? &space : nullptr,
+                                          by_level ? &sets : nullptr);
     // What the analysis makes, whether it is held at once or level by level.
     const uint64_t n = example.pixel_count();
     r.model_bytes = space.levels.size() * (example.byte_count() + n * kAppearanceDims * sizeof(int16_t));

@@ -60,6 +60,10 @@ struct CoherentOptions : CoherentRun {
     // How far, in output pixels, the minimum-error cuts may move a straight
     // border between two copies at the finest level (seam_cut.hpp); 0: none.
     int cut = 0;
+    // The frame, in example pixels, that the copies are laid out inside of
+    // (copy_margin), so that a cut always has that much of each copy to
+    // move into; 0: none.
+    int margin = 0;
     // The finest level of an output taller than a band and its margins is
     // synthesised in bands of this many rows (0: sized by the output), with
     // the same bytes as whole and less memory; set by tests.
@@ -139,6 +143,20 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
 // as soon as it can (peak memory).
 Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads = 1, int blend = 0,
                      bool wraps = false);
+
+// The frame of a width x height example that synthesize_coherent lays its
+// copies out inside of, from the options' `margin`: none for an example
+// that tiles (its copies run on across its edges) or smaller than
+// 8 margin + 16 on a side, else `margin`. Where a copy meets the example's
+// edge, the copy beside it meets it too as often as not (both grew as far
+// as they could), and no cut can then move their border: a frame leaves
+// every copy `margin` pixels to give.
+int copy_margin(int width, int height, bool tileable, int margin);
+
+// vqtex_synthesize's margin (atlas files have none), and the most the API
+// accepts.
+inline constexpr int kDefaultCopyMargin = 0;
+inline constexpr int kMaxCopyMargin = 16;
 
 // Stack depth for an example: the coarsest level's spacing is a quarter of
 // the example's smaller side, so its 5x5 neighbourhoods of 5x5 appearance

@@ -218,6 +218,10 @@ typedef struct vqtex_coherent_params {
     uint32_t cut;              /* still textures: how far, in output pixels, a straight border
                                   between two copies may move to where they agree (minimum-error
                                   cuts); 0 (none) to 16, default 8 [--cut] */
+    uint32_t margin;           /* still textures: copies are laid out inside the example less a frame
+                                  of this many pixels, which the cuts then use (fewer straight seams;
+                                  the frame's own values are rarer); 0 (none) to 16, default 0
+                                  [--margin]. Not stored in files. */
 } vqtex_coherent_params;
 
 /* The paper's engine's own parameters. */
