@@ -617,6 +617,37 @@ TEST(Coherent, PixelIndicesKeepEveryPositionInTwoThreeOrFourBytes) {
     }
 }
 
+// With straight alpha (format version 8's blend), a seam between an opaque
+// red copy and a transparent black one keeps every visible pixel red: the
+// transparent copy's colour has no weight. Blending every channel alike
+// (versions 5 to 7) darkens the partly transparent pixels toward black.
+TEST(Coherent, BlendWeightsColourByStraightAlpha) {
+    const uint8_t red[4] = {230, 40, 20, 255};
+    Image ex(32, 16, 4);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) std::copy(red, red + 4, ex.at(x, y));  // the right half stays 0, 0, 0, 0
+    PositionMap map{24, 8, std::vector<uint32_t>(24 * 8)};
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 24; ++x)
+            map.positions[std::size_t(y) * 24 + x] = x < 12 ? pack_position(2 + x, 4 + y) : pack_position(6 + x, 4 + y);
+    for (int r = 1; r <= vqtex::kMaxBlendRadius; ++r) {
+        const Image straight = read_positions(ex, PositionMap(map), false, 1, r, false, true);
+        const Image alike = read_positions(ex, PositionMap(map), false, 1, r, false, false);
+        int partial = 0, darkest = 255;
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 24; ++x) {
+                const uint8_t* s = straight.at(x, y);
+                EXPECT_EQ(s[3], alike.at(x, y)[3]) << "alpha at " << x << "," << y;
+                if (s[3] == 0) continue;
+                partial += s[3] < 255;
+                for (int c = 0; c < 3; ++c) EXPECT_EQ(s[c], red[c]) << "radius " << r << " at " << x << "," << y;
+                darkest = std::min(darkest, int(alike.at(x, y)[0]));
+            }
+        EXPECT_GT(partial, 0) << "radius " << r;
+        EXPECT_LT(darkest, 200) << "radius " << r;
+    }
+}
+
 TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
     // A large output's finest level runs in bands of rows with margins
     // (the decoder's memory budget, docs/PERFORMANCE.md); any band height, odd heights among them

@@ -91,7 +91,7 @@ Image synthesize_in_bands(const Image& example, int frame, LevelPasses& passes, 
         // The band's own rows (blend 0 copies each pixel).
         blend_rows(example, space.wraps, options.blend,
                    [&](int y) { return part.positions.data() + std::size_t(y - y0 + margin) * std::size_t(w); }, y0,
-                   rows, out, options.threads);
+                   rows, out, options.threads, options.blend_straight_alpha);
     }
     std::vector<uint32_t>().swap(part.positions);
     std::vector<uint8_t>().swap(parents.data);
@@ -125,7 +125,8 @@ Image synthesize_pixels(const Image& example, int frame, const AppearanceSpace& 
         PositionMap map = passes.levels_down_to(0);
         move_into_frame(map.positions, frame);
         cut_seams(example, space.wraps, map.width, map.height, map.positions, cut_rules(options), options.threads);
-        return read_positions(example, std::move(map), options.roll, options.threads, options.blend, space.wraps);
+        return read_positions(example, std::move(map), options.roll, options.threads, options.blend, space.wraps,
+                              options.blend_straight_alpha);
     }
     return synthesize_in_bands(example, frame, passes, band, margin);
 }

@@ -31,7 +31,8 @@ PixelIndices narrow_positions(int example_width, uint64_t example_pixels, std::v
     return out;
 }
 
-Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads, int blend, bool wraps) {
+Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads, int blend, bool wraps,
+                     bool straight_alpha) {
     const int w = map.width, h = map.height;
     if (blend > 0 || PixelIndices::bytes_for(example.pixel_count()) > 2) {
         // Read through the packed positions, which the blend's window
@@ -40,7 +41,7 @@ Image read_positions(const Image& example, PositionMap&& map, bool roll, int thr
         Image out(w, h, example.channels);
         blend_rows(example, wraps, blend,
                    [&](int y) { return map.positions.data() + std::size_t(Image::wrap(y, h)) * std::size_t(w); }, 0, h,
-                   out, threads);
+                   out, threads, straight_alpha);
         std::vector<uint32_t>().swap(map.positions);
         if (roll) coherent::cut_torus(out, threads);
         return out;

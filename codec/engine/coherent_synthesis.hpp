@@ -60,6 +60,9 @@ struct CoherentOptions : CoherentRun {
     // How far, in output pixels, the minimum-error cuts may move a straight
     // border between two copies at the finest level (seam_cut.hpp); 0: none.
     int cut = 0;
+    // Whether the blend weights colour by straight alpha (blend_rows; the
+    // last channel of a 2- or 4-channel example).
+    bool blend_straight_alpha = false;
     // The frame, in example pixels, that the copies are laid out inside of
     // (copy_margin), so that a cut always has that much of each copy to
     // move into; 0: none.
@@ -142,7 +145,7 @@ PositionMap synthesize_positions(const AppearanceSpace& space, const CoherenceSe
 // pixels change least when `roll` is set. Takes the map so as to let it go
 // as soon as it can (peak memory).
 Image read_positions(const Image& example, PositionMap&& map, bool roll, int threads = 1, int blend = 0,
-                     bool wraps = false);
+                     bool wraps = false, bool straight_alpha = false);
 
 // The frame of a width x height example that synthesize_coherent lays its
 // copies out inside of, from the options' `margin`: none for an example

@@ -45,10 +45,44 @@ void blend_pixel(const Image& example, bool wraps, int r, const uint32_t* const*
     for (int c = 0; c < C; ++c) dst[c] = uint8_t((sum[c] + total / 2) / total);
 }
 
+// The same for straight (unassociated) alpha, the last of C channels:
+// colour is weighted by each tap's alpha as well, so that a transparent
+// copy's colour (often black) does not darken an opaque one where they
+// meet; alpha as above. Where every tap is transparent, colour as above.
+template <int C>
+void blend_pixel_straight_alpha(const Image& example, bool wraps, int r, const uint32_t* const* rows, const int* xs,
+                                uint8_t* dst) {
+    const int ew = example.width, eh = example.height;
+    const int* weight = kWeights[r];
+    uint64_t sum[C] = {}, weighted[C - 1] = {}, total = 0, alpha = 0;
+    for (int dy = -r; dy <= r; ++dy) {
+        const uint32_t* taps = rows[dy + r];
+        for (int dx = -r; dx <= r; ++dx) {
+            const uint32_t p = taps[xs[dx + r]];
+            int sx = position_x(p) - dx, sy = position_y(p) - dy;
+            if (wraps) {
+                sx = Image::wrap(sx, ew);
+                sy = Image::wrap(sy, eh);
+            } else if (unsigned(sx) >= unsigned(ew) || unsigned(sy) >= unsigned(eh)) {
+                continue;
+            }
+            const uint64_t wt = uint64_t(weight[dx + r] * weight[dy + r]);
+            const uint8_t* src = example.pixels.data() + (std::size_t(sy) * std::size_t(ew) + std::size_t(sx)) * C;
+            for (int c = 0; c < C; ++c) sum[c] += wt * src[c];
+            for (int c = 0; c < C - 1; ++c) weighted[c] += wt * src[C - 1] * src[c];
+            alpha += wt * src[C - 1];
+            total += wt;
+        }
+    }
+    for (int c = 0; c < C - 1; ++c)
+        dst[c] = uint8_t(alpha > 0 ? (weighted[c] + alpha / 2) / alpha : (sum[c] + total / 2) / total);
+    dst[C - 1] = uint8_t((sum[C - 1] + total / 2) / total);
+}
+
 }  // namespace
 
 void blend_rows(const Image& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
-                int first, int count, Image& out, int threads) {
+                int first, int count, Image& out, int threads, bool straight_alpha) {
     const int r = std::clamp(radius, 0, kMaxBlendRadius);
     const int w = out.width;
     const std::size_t channels = std::size_t(example.channels);
@@ -104,9 +138,19 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
                 const uint32_t* const* window = row.data() + (local - r);
                 switch (channels) {
                     case 1: blend_pixel<1>(example, wraps, r, window, xs, dst); break;
-                    case 2: blend_pixel<2>(example, wraps, r, window, xs, dst); break;
+                    case 2:
+                        if (straight_alpha)
+                            blend_pixel_straight_alpha<2>(example, wraps, r, window, xs, dst);
+                        else
+                            blend_pixel<2>(example, wraps, r, window, xs, dst);
+                        break;
                     case 3: blend_pixel<3>(example, wraps, r, window, xs, dst); break;
-                    default: blend_pixel<4>(example, wraps, r, window, xs, dst); break;
+                    default:
+                        if (straight_alpha)
+                            blend_pixel_straight_alpha<4>(example, wraps, r, window, xs, dst);
+                        else
+                            blend_pixel<4>(example, wraps, r, window, xs, dst);
+                        break;
                 }
             }
         }

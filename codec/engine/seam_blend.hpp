@@ -32,8 +32,11 @@ inline constexpr int kDefaultBlendRadius = 2;
 // gives map row y's packed positions (coherent_synthesis.hpp), for y from
 // first - radius to first + count + radius - 1 (the caller wraps or offsets
 // y). Integer arithmetic, rows split among `threads`: the same bytes for any
-// thread count.
+// thread count. With `straight_alpha`, a 2- or 4-channel example's last
+// channel is straight alpha and colour is weighted by it too
+// (docs/FORMAT.md §4.12), so that a transparent copy's colour does not
+// bleed into an opaque one's at a seam.
 void blend_rows(const Image& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
-                int first, int count, Image& out, int threads);
+                int first, int count, Image& out, int threads, bool straight_alpha = false);
 
 }  // namespace vqtex

@@ -49,6 +49,7 @@ AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {
     p.relocate = 0;
     p.edge_guard = 0;
     p.cut = 0;
+    p.blend_straight_alpha = false;
     r.expect_end();
     return p;
 }
@@ -112,6 +113,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
     p.relocate = default_relocation(version);
     p.edge_guard = default_edge_guard(version);
     p.cut = default_cut(version);
+    p.blend_straight_alpha = version >= kSeamCutAtlasFormatVersion;
     if (packed & kPackedParameters) {
         const std::size_t at = r.position();
         p.passes = int(r.varint_in("passes", 1, 16));

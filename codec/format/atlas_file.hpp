@@ -76,6 +76,9 @@ struct AtlasSynthesisParams {
     // Reach of the minimum-error cuts between copies, 0..kMaxCutReach
     // (version 8; files of versions 3 to 7: 0).
     int cut = kV8DefaultCut;
+    // Whether the blend weights colour by straight alpha (version 8; files
+    // of versions 3 to 7 blend every channel alike).
+    bool blend_straight_alpha = true;
 };
 
 // Whether the engine clamps children past the atlas's edge
