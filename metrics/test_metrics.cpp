@@ -666,13 +666,18 @@ TEST(Seams, StraightSeamDetector) {
 // ---------------------------------------------------------------------------
 // Half-resolution coherence and straight-seam visibility
 
-TEST(HalfResolution, BoxAverageIsIntegerExact) {
+// A 3x2 image whose 2x2 blocks average to known values.
+vm::detail::Rgb8 three_by_two() {
   vm::detail::Rgb8 im;
   im.w = 3;
   im.h = 2;
   im.v = {0, 1, 2, 3, 4, 5, 9, 9, 9,  //
           1, 3, 1, 2, 2, 2, 9, 9, 9};
-  const vm::detail::Rgb8 half = vm::detail::half_resolution(im);
+  return im;
+}
+
+TEST(HalfResolution, BoxAverageIsIntegerExact) {
+  const vm::detail::Rgb8 half = vm::detail::half_resolution(three_by_two());
   ASSERT_EQ(half.w, 1);
   ASSERT_EQ(half.h, 1);
   // (0+3+1+2)/4 = 1.5 -> 2, (1+4+3+2)/4 = 2.5 -> 3 (half up), (2+5+1+2)/4 = 2.5 -> 3;
@@ -681,12 +686,7 @@ TEST(HalfResolution, BoxAverageIsIntegerExact) {
 }
 
 TEST(HalfResolution, OddPhaseStartsOneColumnIn) {
-  vm::detail::Rgb8 im;
-  im.w = 3;
-  im.h = 2;
-  im.v = {0, 1, 2, 3, 4, 5, 9, 9, 9,  //
-          1, 3, 1, 2, 2, 2, 9, 9, 9};
-  const vm::detail::Rgb8 half = vm::detail::half_resolution(im, 1, 0);
+  const vm::detail::Rgb8 half = vm::detail::half_resolution(three_by_two(), 1, 0);
   ASSERT_EQ(half.w, 1);
   ASSERT_EQ(half.h, 1);
   // (3+9+2+9)/4 = 5.75 -> 6, (4+9+2+9)/4 = 6 -> 6, (5+9+2+9)/4 = 6.25 -> 6.

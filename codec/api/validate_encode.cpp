@@ -68,6 +68,13 @@ constexpr uint32_t kNoLimit = ~uint32_t(0);
 
 }  // namespace
 
+// A coherent parameter from 0 to `most`, named with what it counts.
+void check_at_most(uint32_t value, int most, const char* name, const char* what) {
+    if (value > uint32_t(most))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(name) + " must be 0 to " + std::to_string(most) + " (" + what +
+                                               "; got " + std::to_string(value) + ")");
+}
+
 void validate(const vqtex_synth_params* p) {
     if (!p) fail(VQTEX_ERROR_INVALID_ARGUMENT, "vqtex_synth_params not initialised with vqtex_synth_params_init()");
     check_struct_size(p->struct_size, sizeof(vqtex_synth_params) | VQTEX_LAYOUT_MARK, "vqtex_synth_params");
@@ -79,26 +86,12 @@ void validate(const vqtex_synth_params* p) {
     if (c.passes < 1 || c.passes > 8)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "passes must be 1 to 8 correction passes per level");
     if (c.jitter > 1024) fail(VQTEX_ERROR_INVALID_ARGUMENT, "jitter must be 0 to 1024 (1/256 of a level's spacing)");
-    if (c.blend > uint32_t(kMaxBlendRadius))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "blend must be 0 to " + std::to_string(kMaxBlendRadius) +
-                                               " (the radius of the blend at seams, in pixels; got " +
-                                               std::to_string(c.blend) + ")");
-    if (c.relocate > uint32_t(kMaxRelocationPositions))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "relocate must be 0 to " + std::to_string(kMaxRelocationPositions) +
-                                               " (positions tried per copy by the copy relocation; got " +
-                                               std::to_string(c.relocate) + ")");
-    if (c.edge_guard > uint32_t(kMaxEdgeGuard))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "edge_guard must be 0 to " + std::to_string(kMaxEdgeGuard) +
-                                               " (example pixels kept free beside a copy cut off by the edge; got " +
-                                               std::to_string(c.edge_guard) + ")");
-    if (c.cut > uint32_t(kMaxCutReach))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "cut must be 0 to " + std::to_string(kMaxCutReach) +
-                                               " (output pixels a border between copies may move; got " +
-                                               std::to_string(c.cut) + ")");
-    if (c.margin > uint32_t(kMaxCopyMargin))
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "margin must be 0 to " + std::to_string(kMaxCopyMargin) +
-                                               " (example pixels kept around the copies for the cuts; got " +
-                                               std::to_string(c.margin) + ")");
+    check_at_most(c.blend, kMaxBlendRadius, "blend", "the radius of the blend at seams, in pixels");
+    check_at_most(c.relocate, kMaxRelocationPositions, "relocate", "positions tried per copy by the copy relocation");
+    check_at_most(c.edge_guard, kMaxEdgeGuard, "edge_guard",
+                  "example pixels kept free beside a copy cut off by the edge");
+    check_at_most(c.cut, kMaxCutReach, "cut", "output pixels a border between copies may move");
+    check_at_most(c.margin, kMaxCopyMargin, "margin", "example pixels kept around the copies for the cuts");
     check_levels(p->levels);
     const vqtex_paper_params& paper = p->paper;
     check_tsvq(paper.tsvq);

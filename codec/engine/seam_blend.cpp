@@ -19,12 +19,18 @@ constexpr int kWeights[kMaxBlendRadius + 1][2 * kMaxBlendRadius + 1] = {
     {1}, {1, 2, 1}, {1, 4, 6, 4, 1}, {1, 6, 15, 20, 15, 6, 1}};
 
 // Pixel (x, y)'s blend at a seam (blend_rows), for C channels: `rows`
-// are the map's rows from y - r, `xs` the window's wrapped columns.
-template <int C>
+// are the map's rows from y - r, `xs` the window's wrapped columns. With
+// kStraightAlpha, the last of C channels is straight (unassociated) alpha
+// and colour is weighted by each tap's alpha as well, so that a
+// transparent copy's colour (often black) does not darken an opaque one
+// where they meet; where every tap is transparent, colour is weighted as
+// alpha is.
+template <int C, bool kStraightAlpha>
 void blend_pixel(const Image& example, bool wraps, int r, const uint32_t* const* rows, const int* xs, uint8_t* dst) {
     const int ew = example.width, eh = example.height;
     const int* weight = kWeights[r];
-    uint32_t sum[C] = {}, total = 0;
+    // 64-bit: a tap's weight (at most 64 x 64) times alpha times colour.
+    uint64_t sum[C] = {}, weighted[C] = {}, total = 0, alpha = 0;
     for (int dy = -r; dy <= r; ++dy) {
         const uint32_t* taps = rows[dy + r];
         for (int dx = -r; dx <= r; ++dx) {
@@ -36,47 +42,20 @@ void blend_pixel(const Image& example, bool wraps, int r, const uint32_t* const*
             } else if (unsigned(sx) >= unsigned(ew) || unsigned(sy) >= unsigned(eh)) {
                 continue;  // this neighbour's copy does not reach (x, y)
             }
-            const uint32_t wt = uint32_t(weight[dx + r] * weight[dy + r]);
-            const uint8_t* src = example.pixels.data() + (std::size_t(sy) * std::size_t(ew) + std::size_t(sx)) * C;
-            for (int c = 0; c < C; ++c) sum[c] += wt * src[c];
-            total += wt;
-        }
-    }
-    for (int c = 0; c < C; ++c) dst[c] = uint8_t((sum[c] + total / 2) / total);
-}
-
-// The same for straight (unassociated) alpha, the last of C channels:
-// colour is weighted by each tap's alpha as well, so that a transparent
-// copy's colour (often black) does not darken an opaque one where they
-// meet; alpha as above. Where every tap is transparent, colour as above.
-template <int C>
-void blend_pixel_straight_alpha(const Image& example, bool wraps, int r, const uint32_t* const* rows, const int* xs,
-                                uint8_t* dst) {
-    const int ew = example.width, eh = example.height;
-    const int* weight = kWeights[r];
-    uint64_t sum[C] = {}, weighted[C - 1] = {}, total = 0, alpha = 0;
-    for (int dy = -r; dy <= r; ++dy) {
-        const uint32_t* taps = rows[dy + r];
-        for (int dx = -r; dx <= r; ++dx) {
-            const uint32_t p = taps[xs[dx + r]];
-            int sx = position_x(p) - dx, sy = position_y(p) - dy;
-            if (wraps) {
-                sx = Image::wrap(sx, ew);
-                sy = Image::wrap(sy, eh);
-            } else if (unsigned(sx) >= unsigned(ew) || unsigned(sy) >= unsigned(eh)) {
-                continue;
-            }
             const uint64_t wt = uint64_t(weight[dx + r] * weight[dy + r]);
             const uint8_t* src = example.pixels.data() + (std::size_t(sy) * std::size_t(ew) + std::size_t(sx)) * C;
             for (int c = 0; c < C; ++c) sum[c] += wt * src[c];
-            for (int c = 0; c < C - 1; ++c) weighted[c] += wt * src[C - 1] * src[c];
-            alpha += wt * src[C - 1];
+            if constexpr (kStraightAlpha) {
+                for (int c = 0; c < C - 1; ++c) weighted[c] += wt * src[C - 1] * src[c];
+                alpha += wt * src[C - 1];
+            }
             total += wt;
         }
     }
-    for (int c = 0; c < C - 1; ++c)
-        dst[c] = uint8_t(alpha > 0 ? (weighted[c] + alpha / 2) / alpha : (sum[c] + total / 2) / total);
-    dst[C - 1] = uint8_t((sum[C - 1] + total / 2) / total);
+    for (int c = 0; c < C; ++c) {
+        const bool by_alpha = kStraightAlpha && c < C - 1 && alpha > 0;
+        dst[c] = uint8_t(by_alpha ? (weighted[c] + alpha / 2) / alpha : (sum[c] + total / 2) / total);
+    }
 }
 
 }  // namespace
@@ -136,21 +115,13 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
                 }
                 for (int dx = -r; dx <= r; ++dx) xs[dx + r] = Image::wrap(x + dx, w);
                 const uint32_t* const* window = row.data() + (local - r);
-                switch (channels) {
-                    case 1: blend_pixel<1>(example, wraps, r, window, xs, dst); break;
-                    case 2:
-                        if (straight_alpha)
-                            blend_pixel_straight_alpha<2>(example, wraps, r, window, xs, dst);
-                        else
-                            blend_pixel<2>(example, wraps, r, window, xs, dst);
-                        break;
-                    case 3: blend_pixel<3>(example, wraps, r, window, xs, dst); break;
-                    default:
-                        if (straight_alpha)
-                            blend_pixel_straight_alpha<4>(example, wraps, r, window, xs, dst);
-                        else
-                            blend_pixel<4>(example, wraps, r, window, xs, dst);
-                        break;
+                switch (channels + (straight_alpha ? 4 : 0)) {
+                    case 1: case 5: blend_pixel<1, false>(example, wraps, r, window, xs, dst); break;
+                    case 2: blend_pixel<2, false>(example, wraps, r, window, xs, dst); break;
+                    case 3: case 7: blend_pixel<3, false>(example, wraps, r, window, xs, dst); break;
+                    case 4: blend_pixel<4, false>(example, wraps, r, window, xs, dst); break;
+                    case 6: blend_pixel<2, true>(example, wraps, r, window, xs, dst); break;
+                    default: blend_pixel<4, true>(example, wraps, r, window, xs, dst); break;
                 }
             }
         }
