@@ -227,3 +227,37 @@ TEST(SeamCut, SameBytesOnAnyThreadCountAndNarrowCopiesShared) {
             EXPECT_TRUE(found) << x << "," << y;
         }
 }
+
+TEST(SeamCut, BorderCostIsItsDefinition) {
+    // The cost of a border between pixel P (copy A at a) and its neighbour
+    // Q one step (dx, dy) on (copy B at b): the squared colour difference
+    // of A and B at P and at Q, each copy extended to the other's pixel,
+    // the one pair twice when the other runs past the example's edge, the
+    // worst difference twice when neither exists; written here from that
+    // definition, pixel by pixel, against border_cost on random cases.
+    const Image ex = noise_example(9, 7, 21);
+    const auto diff = [&](int ax, int ay, int bx, int by) {
+        uint64_t s = 0;
+        for (int c = 0; c < 3; ++c) {
+            const int d = int(ex.at(ax, ay)[c]) - int(ex.at(bx, by)[c]);
+            s += uint64_t(d * d);
+        }
+        return s;
+    };
+    const auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < ex.width && y < ex.height; };
+    Rng rng(3);
+    for (int i = 0; i < 2000; ++i) {
+        const int ax = int(rng.next() % 9), ay = int(rng.next() % 7), bx = int(rng.next() % 9), by = int(rng.next() % 7);
+        const bool across = rng.next() & 1;
+        const int dx = across ? 1 : 0, dy = across ? 0 : 1;
+        const bool at_p = inside(bx - dx, by - dy), at_q = inside(ax + dx, ay + dy);
+        const uint64_t p = at_p ? diff(ax, ay, bx - dx, by - dy) : 0, q = at_q ? diff(ax + dx, ay + dy, bx, by) : 0;
+        const uint64_t want = at_p && at_q ? p + q : at_p ? 2 * p : at_q ? 2 * q : 2 * 3 * 255 * 255;
+        EXPECT_EQ(border_cost(ex, false, pack_position(ax, ay), pack_position(bx, by), dx, dy), want)
+            << ax << "," << ay << " " << bx << "," << by << " " << dx << "," << dy;
+        // Tiling, every extension exists.
+        const uint64_t wrapped = diff(ax, ay, Image::wrap(bx - dx, 9), Image::wrap(by - dy, 7)) +
+                                 diff(Image::wrap(ax + dx, 9), Image::wrap(ay + dy, 7), bx, by);
+        EXPECT_EQ(border_cost(ex, true, pack_position(ax, ay), pack_position(bx, by), dx, dy), wrapped);
+    }
+}

@@ -107,27 +107,18 @@ void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<
     constexpr uint64_t kNone = std::numeric_limits<uint64_t>::max();
     std::vector<uint64_t> cost(std::size_t(n) * span, kNone);
     std::vector<int8_t> from(std::size_t(n) * span, 0);
-    const uint64_t worst = unmeasured(ex);
     for (int i = 0; i < n; ++i) {
         const int u = u0 + i;
         const uint32_t pa = at(a - 1, u), pb = at(a, u);
         for (int j = reach - low[std::size_t(i)]; j <= reach + high[std::size_t(i)]; ++j) {
             const int c = j - reach;  // B from a + c, A up to a + c - 1
-            // A's and B's pixels at a + c - 1 and a + c.
-            uint32_t a1, b1, a2, b2;
-            const bool first = extend(ex, wraps, pa, lines.dx(c), lines.dy(c), a1) &&
-                               extend(ex, wraps, pb, lines.dx(c - 1), lines.dy(c - 1), b1);
-            const bool second = extend(ex, wraps, pa, lines.dx(c + 1), lines.dy(c + 1), a2) &&
-                                extend(ex, wraps, pb, lines.dx(c), lines.dy(c), b2);
-            uint64_t here;
-            if (first && second)
-                here = colour_difference(ex, a1, b1) + colour_difference(ex, a2, b2);
-            else if (first)
-                here = 2 * colour_difference(ex, a1, b1);
-            else if (second)
-                here = 2 * colour_difference(ex, a2, b2);
-            else
-                here = worst;
+            // A's pixel at a + c - 1 and B's at a + c exist (within the
+            // row's low and high); the border between them costs what
+            // border_cost says.
+            uint32_t last_a = 0, first_b = 0;
+            extend(ex, wraps, pa, lines.dx(c), lines.dy(c), last_a);
+            extend(ex, wraps, pb, lines.dx(c), lines.dy(c), first_b);
+            const uint64_t here = border_cost(ex, wraps, last_a, first_b, lines.dx(1), lines.dy(1));
             uint64_t best = i == 0 ? 0 : kNone;
             int8_t move = 0;
             if (i > 0)
