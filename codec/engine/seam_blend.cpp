@@ -4,6 +4,7 @@
 #include "engine/seam_blend.hpp"
 
 #include <algorithm>
+#include <type_traits>
 #include <vector>
 
 #include "common/parallel.hpp"
@@ -29,8 +30,10 @@ template <int C, bool kStraightAlpha>
 void blend_pixel(const Image& example, bool wraps, int r, const uint32_t* const* rows, const int* xs, uint8_t* dst) {
     const int ew = example.width, eh = example.height;
     const int* weight = kWeights[r];
-    // 64-bit: a tap's weight (at most 64 x 64) times alpha times colour.
-    uint64_t sum[C] = {}, weighted[C] = {}, total = 0, alpha = 0;
+    // Sums of a tap's weight (at most 64 x 64) times a value fit 32 bits;
+    // times alpha and colour they need 64.
+    using Sum = std::conditional_t<kStraightAlpha, uint64_t, uint32_t>;
+    Sum sum[C] = {}, weighted[C] = {}, total = 0, alpha = 0;
     for (int dy = -r; dy <= r; ++dy) {
         const uint32_t* taps = rows[dy + r];
         for (int dx = -r; dx <= r; ++dx) {
@@ -42,7 +45,7 @@ void blend_pixel(const Image& example, bool wraps, int r, const uint32_t* const*
             } else if (unsigned(sx) >= unsigned(ew) || unsigned(sy) >= unsigned(eh)) {
                 continue;  // this neighbour's copy does not reach (x, y)
             }
-            const uint64_t wt = uint64_t(weight[dx + r] * weight[dy + r]);
+            const Sum wt = Sum(weight[dx + r] * weight[dy + r]);
             const uint8_t* src = example.pixels.data() + (std::size_t(sy) * std::size_t(ew) + std::size_t(sx)) * C;
             for (int c = 0; c < C; ++c) sum[c] += wt * src[c];
             if constexpr (kStraightAlpha) {

@@ -43,11 +43,6 @@ bool extend(const Image& ex, bool wraps, uint32_t p, int dx, int dy, uint32_t& o
     return true;
 }
 
-bool continues(const Image& ex, bool wraps, uint32_t p, uint32_t q, int dx, int dy) {
-    uint32_t e;
-    return extend(ex, wraps, p, dx, dy, e) && e == q;
-}
-
 uint64_t colour_difference(const Image& ex, uint32_t a, uint32_t b) {
     const uint8_t* pa = ex.at(position_x(a), position_y(a));
     const uint8_t* pb = ex.at(position_x(b), position_y(b));
@@ -67,8 +62,9 @@ uint64_t unmeasured(const Image& ex) { return 2 * uint64_t(ex.channels) * 255 * 
 
 // One run of a border at `a` (between across-indices a - 1 and a), rows
 // [u0, u1) along it: A the copy on the low side, B on the high side.
-void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<uint32_t>& in, Writes& out, int a,
-             int u0, int u1, const CutRules& rules) {
+void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<uint32_t>& in,
+             const std::vector<uint8_t>& links, uint8_t across_bit, Writes& out, int a, int u0, int u1,
+             const CutRules& rules) {
     const int n = u1 - u0, reach = rules.reach, span = 2 * reach + 1;
     const int A = lines.across_size;
     const auto at = [&](int across, int u) { return in[lines.index(Image::wrap(across, A), u)]; };
@@ -80,9 +76,14 @@ void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<
         const int u = u0 + i;
         const uint32_t pa = at(a - 1, u), pb = at(a, u);
         int la = 1;
-        while (la < 2 * reach && continues(ex, wraps, at(a - 1 - la, u), at(a - la, u), lines.dx(1), lines.dy(1))) ++la;
+        // (link_map's bit across the border: the pixel goes on from the one
+        // before it.)
+        const auto goes_on = [&](int across_index) {
+            return (links[lines.index(Image::wrap(across_index, A), u)] & across_bit) != 0;
+        };
+        while (la < 2 * reach && goes_on(a - la)) ++la;
         int lb = 1;
-        while (lb < 2 * reach && continues(ex, wraps, at(a + lb - 1, u), at(a + lb, u), lines.dx(1), lines.dy(1))) ++lb;
+        while (lb < 2 * reach && goes_on(a + lb)) ++lb;
         int lo = la >= 2 * reach ? reach : la / 2, hi = lb >= 2 * reach ? reach : lb / 2;
         // B must extend to every pixel it may take, A likewise.
         uint32_t e;
@@ -205,7 +206,7 @@ void cut_direction(const Image& ex, bool wraps, const Lines& lines, std::vector<
             // and at a block's start.
             int start = -1;
             const auto finish = [&](int end) {
-                if (start >= 0 && end - start >= rules.min_run) cut_run(ex, wraps, lines, pos, out, a, start, end, rules);
+                if (start >= 0 && end - start >= rules.min_run) cut_run(ex, wraps, lines, pos, links, across, out, a, start, end, rules);
                 start = -1;
             };
             // Where u lies on the torus and in its block, kept step by step
