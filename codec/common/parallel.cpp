@@ -3,12 +3,37 @@
 // and wake for each loop, instead of threads started and joined per loop.
 #include "common/parallel.hpp"
 
+#include <chrono>
 #include <condition_variable>
 #include <exception>
 #include <mutex>
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
 
 namespace vqtex::detail {
 namespace {
+
+// A loop of the synthesis often follows the last within tens of
+// microseconds, less than a sleeping thread takes to wake (a futex round
+// trip, longer on a virtual machine). So a thread that is about to sleep,
+// or to wait for the others, first polls for a short while.
+constexpr auto kSpin = std::chrono::microseconds(100);
+
+template <typename Ready>
+bool spin_until(Ready&& ready) {
+    // On one core a polling thread only delays the one it waits for.
+    static const bool worth_it = std::thread::hardware_concurrency() > 1;
+    if (!worth_it) return ready();
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 1;; ++i) {
+        if (ready()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+        _mm_pause();
+#endif
+        if (i % 64 == 0 && std::chrono::steady_clock::now() - start > kSpin) return false;
+    }
+}
 
 class KeptThreads {
 public:
@@ -25,9 +50,9 @@ public:
             }
             job_ = &job;
             wanted_ = workers - 1;
-            pending_ = workers - 1;
+            pending_.store(workers - 1, std::memory_order_relaxed);
             error_ = nullptr;
-            ++generation_;
+            generation_.fetch_add(1, std::memory_order_release);
         }
         wake_.notify_all();
         std::exception_ptr error;
@@ -36,8 +61,9 @@ public:
         } catch (...) {
             error = std::current_exception();
         }
+        spin_until([this] { return pending_.load(std::memory_order_acquire) == 0; });
         std::unique_lock<std::mutex> lock(state_);
-        finished_.wait(lock, [this] { return pending_ == 0; });
+        finished_.wait(lock, [this] { return pending_.load(std::memory_order_relaxed) == 0; });
         job_ = nullptr;
         if (!error) error = error_;
         lock.unlock();
@@ -52,8 +78,13 @@ private:
         uint64_t seen = 0;
         std::unique_lock<std::mutex> lock(state_);
         for (;;) {
-            wake_.wait(lock, [&] { return generation_ != seen; });
-            seen = generation_;
+            if (generation_.load(std::memory_order_relaxed) == seen) {
+                lock.unlock();
+                spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; });
+                lock.lock();
+            }
+            wake_.wait(lock, [&] { return generation_.load(std::memory_order_relaxed) != seen; });
+            seen = generation_.load(std::memory_order_relaxed);
             if (index > wanted_) continue;
             const std::function<void(int)>* job = job_;
             lock.unlock();
@@ -65,7 +96,7 @@ private:
             }
             lock.lock();
             if (error && !error_) error_ = error;
-            if (--pending_ == 0) finished_.notify_one();
+            if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) finished_.notify_one();
         }
     }
 
@@ -74,8 +105,11 @@ private:
     std::condition_variable wake_, finished_;
     std::vector<std::thread> threads_;
     const std::function<void(int)>* job_ = nullptr;
-    int wanted_ = 0, pending_ = 0;
-    uint64_t generation_ = 0;
+    int wanted_ = 0;
+    // Written under state_; atomic so that a polling thread may read them
+    // without it.
+    std::atomic<int> pending_{0};
+    std::atomic<uint64_t> generation_{0};
     std::exception_ptr error_;
 };
 
