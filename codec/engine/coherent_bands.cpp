@@ -57,6 +57,13 @@ void move_into_frame(std::vector<uint32_t>& positions, int frame) {
     for (uint32_t& p : positions) p += by;
 }
 
+// Cuts the tori of images of one size open at one place, found on all.
+void roll_all(std::vector<Image>& images, int threads) {
+    std::vector<TorusPlane> planes;
+    for (Image& im : images) planes.push_back({im.pixels.data(), im.channels});
+    cut_torus(planes, images[0].width, images[0].height, threads);
+}
+
 // The output of a large texture: the finest level synthesised in bands of
 // `band` rows, each with `margin` rows more on either side (the rows the
 // band's passes leave wrong), from the coarser level's positions; each
@@ -64,7 +71,8 @@ void move_into_frame(std::vector<uint32_t>& positions, int frame) {
 // level's positions nor a second image are ever whole. The same bytes as
 // read_positions on the whole level: a band's rows are exact, and the torus
 // cut is found on the pixels, the same sums as through the positions.
-Image synthesize_in_bands(const Image& example, int frame, LevelPasses& passes, int band, int margin) {
+std::vector<Image> synthesize_in_bands(const Image& example, const std::vector<Readout>& readouts, int frame,
+                                       LevelPasses& passes, int band, int margin) {
     const CoherentOptions& options = passes.options;
     const AppearanceSpace& space = passes.space;
     const int w = options.width, h = options.height;
@@ -74,7 +82,8 @@ Image synthesize_in_bands(const Image& example, int frame, LevelPasses& passes, 
     PixelIndices parents =
         narrow_positions(space.width, uint64_t(space.width) * uint64_t(space.height), coarse.positions, options.threads);
     const auto parent_at = [&](std::size_t i) { return parents.position(i); };
-    Image out(w, h, example.channels);
+    std::vector<Image> out;
+    for (const Readout& r : readouts) out.emplace_back(w, h, r.image->channels);
     PositionMap part{w, 0, {}};
     passes.enter(0);
     for (int y0 = 0; y0 < h; y0 += band) {
@@ -89,13 +98,14 @@ Image synthesize_in_bands(const Image& example, int frame, LevelPasses& passes, 
         cut_seams(example, space.wraps, w, part.height, part.positions, cut_rules(options), options.threads,
                   rows_of.first, h);
         // The band's own rows (blend 0 copies each pixel).
-        blend_rows(example, space.wraps, options.blend,
-                   [&](int y) { return part.positions.data() + std::size_t(y - y0 + margin) * std::size_t(w); }, y0,
-                   rows, out, options.threads, options.blend_straight_alpha);
+        for (std::size_t m = 0; m < readouts.size(); ++m)
+            blend_rows(*readouts[m].image, space.wraps, options.blend,
+                       [&](int y) { return part.positions.data() + std::size_t(y - y0 + margin) * std::size_t(w); },
+                       y0, rows, out[m], options.threads, readouts[m].straight_alpha);
     }
     std::vector<uint32_t>().swap(part.positions);
     std::vector<uint8_t>().swap(parents.data);
-    if (options.roll) cut_torus(out, options.threads);
+    if (options.roll) roll_all(out, options.threads);
     return out;
 }
 
@@ -113,22 +123,42 @@ uint64_t band_bytes(const Image& example, const AppearanceSpace& space, int cohe
 }  // namespace
 
 // The finest level whole, or for a large output in bands.
-Image synthesize_pixels(const Image& example, int frame, const AppearanceSpace& space, const CoherenceSets& sets,
-                        const CoherentOptions& options, AppearanceSpace* by_level_space,
-                        CoherenceSets* by_level_sets) {
+std::vector<Image> synthesize_pixels(const Image& example, int frame, const AppearanceSpace& space,
+                                     const CoherenceSets& sets, const CoherentOptions& options,
+                                     const std::vector<Readout>& readouts, AppearanceSpace* by_level_space,
+                                     CoherenceSets* by_level_sets) {
     LevelPasses passes(space, sets, options);
     passes.by_level_space = by_level_space;
     passes.by_level_sets = by_level_sets;
     const int margin = passes.band_margin();
-    const int band = band_rows(options, example.channels, margin, band_bytes(example, space, sets.k));
+    // What is read: the example itself, or the readouts (their channels
+    // together count as one image's for the memory plan).
+    std::vector<Readout> read = readouts;
+    if (read.empty()) read.push_back({&example, options.blend_straight_alpha});
+    int channels = 0;
+    for (const Readout& r : read) channels += r.image->channels;
+    const int band = band_rows(options, channels, margin, band_bytes(example, space, sets.k));
+    std::vector<Image> out;
     if (band == 0) {
         PositionMap map = passes.levels_down_to(0);
         move_into_frame(map.positions, frame);
         cut_seams(example, space.wraps, map.width, map.height, map.positions, cut_rules(options), options.threads);
-        return read_positions(example, std::move(map), options.roll, options.threads, options.blend, space.wraps,
-                              options.blend_straight_alpha);
+        if (readouts.empty()) {
+            out.push_back(read_positions(example, std::move(map), options.roll, options.threads, options.blend,
+                                         space.wraps, options.blend_straight_alpha));
+            return out;
+        }
+        for (const Readout& r : read) {
+            out.emplace_back(map.width, map.height, r.image->channels);
+            blend_rows(*r.image, space.wraps, options.blend,
+                       [&](int y) { return map.positions.data() + std::size_t(y) * std::size_t(map.width); }, 0,
+                       map.height, out.back(), options.threads, r.straight_alpha);
+        }
+        std::vector<uint32_t>().swap(map.positions);
+        if (options.roll) roll_all(out, options.threads);
+        return out;
     }
-    return synthesize_in_bands(example, frame, passes, band, margin);
+    return synthesize_in_bands(example, read, frame, passes, band, margin);
 }
 
 }  // namespace coherent

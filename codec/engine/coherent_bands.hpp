@@ -18,9 +18,11 @@ namespace vqtex::coherent {
 // out inside it, then moved into the whole example, whose frame the cuts
 // and the read-out use. When the analysis is made level by level,
 // `by_level_space` and `by_level_sets` are `space` and `sets`, whose
-// levels the synthesis fills and empties.
-Image synthesize_pixels(const Image& example, int margin, const AppearanceSpace& space, const CoherenceSets& sets,
-                        const CoherentOptions& options, AppearanceSpace* by_level_space = nullptr,
-                        CoherenceSets* by_level_sets = nullptr);
+// levels the synthesis fills and empties. Returns the example's pixels
+// through the positions, or with `readouts` each readout's.
+std::vector<Image> synthesize_pixels(const Image& example, int margin, const AppearanceSpace& space,
+                                     const CoherenceSets& sets, const CoherentOptions& options,
+                                     const std::vector<Readout>& readouts = {},
+                                     AppearanceSpace* by_level_space = nullptr, CoherenceSets* by_level_sets = nullptr);
 
 }  // namespace vqtex::coherent

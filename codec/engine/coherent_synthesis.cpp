@@ -66,7 +66,8 @@ int coherent_levels(int width, int height) {
 
 CoherentResult synthesize_coherent(const Image& example, int levels, bool example_tileable, int coherence,
                                    const CoherentOptions& options,
-                                   const std::function<bool(uint64_t, uint64_t)>& analyse_progress) {
+                                   const std::function<bool(uint64_t, uint64_t)>& analyse_progress,
+                                   const std::vector<Readout>& readouts) {
     using Clock = std::chrono::steady_clock;
     if (example.width > VQTEX_MAX_SIDE || example.height > VQTEX_MAX_SIDE)
         fail(VQTEX_ERROR_LIMIT_EXCEEDED,
@@ -99,8 +100,12 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     const auto t1 = Clock::now();
     CoherentResult r;
-    r.image = coherent::synthesize_pixels(example, margin, space, sets, options, by_level ? &space : nullptr,
-                                          by_level ? &sets : nullptr);
+    std::vector<Image> images = coherent::synthesize_pixels(example, margin, space, sets, options, readouts,
+                                                            by_level ? &space : nullptr, by_level ? &sets : nullptr);
+    if (readouts.empty())
+        r.image = std::move(images[0]);
+    else
+        r.maps = std::move(images);
     // What the analysis makes, whether it is held at once or level by level.
     const uint64_t n = example.pixel_count();
     r.model_bytes = space.levels.size() * (example.byte_count() + n * kAppearanceDims * sizeof(int16_t));

@@ -168,6 +168,15 @@ inline constexpr int kMaxCopyMargin = 16;
 // structure that 6 keep; 7 levels scored about the same). At most 8.
 int coherent_levels(int width, int height);
 
+// An image read through the positions that a synthesis from another
+// image (the guide of a material's maps, docs/FORMAT.md §4.15) gives:
+// the same size as that image, any channel count. `straight_alpha` is
+// CoherentOptions::blend_straight_alpha for this image alone.
+struct Readout {
+    const Image* image = nullptr;
+    bool straight_alpha = false;
+};
+
 // The whole engine, example to texture: the appearance space of `levels`
 // levels (mirrored edges, or wrapped when the example tiles), the
 // coherence sets of `coherence` nearest, then the positions and their
@@ -175,14 +184,19 @@ int coherent_levels(int width, int height);
 // options made in one place (api/coherent_options.hpp), so an atlas file
 // decodes to what synthesis from its atlas gives. `analysed`, when set,
 // is called between analysis and synthesis and returns false to cancel.
+// With `readouts`, the example only guides the synthesis: `maps` holds
+// each readout's pixels through the one set of positions (blended, cut
+// and rolled alike, the roll found on all of them), and `image` is empty.
 struct CoherentResult {
     Image image;
+    std::vector<Image> maps;
     std::size_t model_bytes = 0;  // appearance space and coherence sets
     double analyse_seconds = 0, synthesise_seconds = 0;
 };
 CoherentResult synthesize_coherent(const Image& example, int levels, bool example_tileable, int coherence,
                                    const CoherentOptions& options,
-                                   const std::function<bool(uint64_t, uint64_t)>& analyse_progress = {});
+                                   const std::function<bool(uint64_t, uint64_t)>& analyse_progress = {},
+                                   const std::vector<Readout>& readouts = {});
 
 // The most synthesize_coherent allocates for a width x height output with
 // `channels` channels beside its analysis, the caller's copy of the output

@@ -67,23 +67,25 @@ void roll_in_place(uint8_t* pixels, int w, int h, int channels, int ox, int oy) 
 // the bytes as they lie (a row against the one above; a row against itself
 // a pixel on, in strips of columns), which vectorise: through the
 // positions, a pixel at a time, they were 5% of a 512x512 decode.
-void cut_torus(const std::vector<uint8_t*>& planes, int w, int h, int channels, int threads) {
-    const std::size_t ch = std::size_t(channels), row_bytes = std::size_t(w) * ch;
+void cut_torus(const std::vector<TorusPlane>& planes, int w, int h, int threads) {
     std::vector<int64_t> across_x(std::size_t(w), 0), across_y(std::size_t(h), 0);
     parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
         for (std::size_t y = y0; y < y1; ++y)
-            for (const uint8_t* plane : planes)
-                across_y[y] += byte_distance(plane + (y == 0 ? std::size_t(h - 1) : y - 1) * row_bytes,
-                                             plane + y * row_bytes, row_bytes);
+            for (const TorusPlane& plane : planes) {
+                const std::size_t row_bytes = std::size_t(w) * std::size_t(plane.channels);
+                across_y[y] += byte_distance(plane.pixels + (y == 0 ? std::size_t(h - 1) : y - 1) * row_bytes,
+                                             plane.pixels + y * row_bytes, row_bytes);
+            }
     });
     constexpr int kStrip = 256;
     parallel_for(threads, std::size_t((w + kStrip - 1) / kStrip), 1, [&](std::size_t s0, std::size_t s1) {
         const int x0 = int(s0) * kStrip, x1 = std::min(w, int(s1) * kStrip);
-        std::vector<uint32_t> acc(std::size_t(x1 - x0) * ch);  // per byte of the strip, a plane at a time
-        for (const uint8_t* plane : planes) {
-            std::fill(acc.begin(), acc.end(), 0u);
+        std::vector<uint32_t> acc;  // per byte of the strip, a plane at a time
+        for (const TorusPlane& plane : planes) {
+            const std::size_t ch = std::size_t(plane.channels), row_bytes = std::size_t(w) * ch;
+            acc.assign(std::size_t(x1 - x0) * ch, 0u);
             for (int y = 0; y < h; ++y) {
-                const uint8_t* row = plane + std::size_t(y) * row_bytes;
+                const uint8_t* row = plane.pixels + std::size_t(y) * row_bytes;
                 // Column 0 steps from the last column (the wrap).
                 if (x0 == 0)
                     for (std::size_t c = 0; c < ch; ++c)
@@ -99,7 +101,7 @@ void cut_torus(const std::vector<uint8_t*>& planes, int w, int h, int channels, 
         }
     });
     const int ox = first_least(across_x), oy = first_least(across_y);
-    for (uint8_t* plane : planes) roll_in_place(plane, w, h, channels, ox, oy);
+    for (const TorusPlane& plane : planes) roll_in_place(plane.pixels, w, h, plane.channels, ox, oy);
 }
 
 }  // namespace vqtex::coherent

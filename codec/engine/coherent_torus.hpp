@@ -15,16 +15,29 @@
 
 namespace vqtex::coherent {
 
-// Cuts the torus of `planes` (frames of w x h pixels of `channels` bytes,
-// rows packed) open in place: pixel (x, y) of each becomes the one at
-// (x + ox, y + oy), where column ox and row oy are the first across which
-// the pixels change least (the sum of their channels' differences, wrapped,
-// over all the planes).
-void cut_torus(const std::vector<uint8_t*>& planes, int w, int h, int channels, int threads);
+// One w x h plane of a torus to cut: `channels` bytes a pixel, rows packed.
+struct TorusPlane {
+    uint8_t* pixels;
+    int channels;
+};
+
+// Cuts the torus of `planes` (frames of an animation, or the maps of a
+// material, all w x h) open in place: pixel (x, y) of each becomes the one
+// at (x + ox, y + oy), where column ox and row oy are the first across
+// which the pixels change least (the sum of their channels' differences,
+// wrapped, over all the planes).
+void cut_torus(const std::vector<TorusPlane>& planes, int w, int h, int threads);
+
+// The same for planes of one channel count.
+inline void cut_torus(const std::vector<uint8_t*>& planes, int w, int h, int channels, int threads) {
+    std::vector<TorusPlane> all;
+    for (uint8_t* p : planes) all.push_back({p, channels});
+    cut_torus(all, w, h, threads);
+}
 
 // The same for one image.
 inline void cut_torus(Image& image, int threads) {
-    cut_torus({image.pixels.data()}, image.width, image.height, image.channels, threads);
+    cut_torus({TorusPlane{image.pixels.data(), image.channels}}, image.width, image.height, threads);
 }
 
 }  // namespace vqtex::coherent

@@ -1,4 +1,4 @@
-// atlas_file.cpp - reading format versions 3 to 8
+// atlas_file.cpp - reading format versions 3 to 9
 // (docs/FORMAT.md §2 and §A). Version 3: the container of §B.1-§B.4
 // holding exactly two sections, ATLS (the coded atlas) and SYNP (the
 // engine's parameters). Version 4 (§A.3, §2): the same content behind a
@@ -7,14 +7,18 @@
 // Version 5 (§A.2): version 4 with the seam blend's radius. Version
 // 6 (§A.1): version 5 with the copy relocation's positions. Version
 // 7 (§A.0): version 6 with the edge guard. Version 8 (§2): version 7 with
-// the cuts' reach, the one the encoder writes (writer/atlas_writer.cpp).
+// the cuts' reach, the one the encoder writes for one colour image
+// (writer/atlas_writer.cpp). Version 9 (§2): version 8 with a set of maps.
 #include "format/atlas_file.hpp"
 
+#include <algorithm>
+#include <set>
 #include <string>
 
 #include "common/bitstream.hpp"
 #include "common/checksum.hpp"
 #include "common/error.hpp"
+#include "common/parallel.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/seam_blend.hpp"
 #include "format/atlas_coder.hpp"
@@ -70,7 +74,77 @@ void check_atlas(int aw, int ah, int levels, int channels, std::size_t input_byt
                  std::to_string(memory_limit >> 20) + " MiB: raise memory_limit (--memory-limit)");
 }
 
-// Versions 4 to 8: the CRC first (the file has no sizes to walk), then the fields
+int64_t zigzag(uint64_t v) { return int64_t(v >> 1) ^ -int64_t(v & 1); }
+
+// Version 9 after the parameters (docs/FORMAT.md §2.1): the maps'
+// descriptions, the guide's matrix, then their bitstreams, which run to the
+// CRC. Every map is checked before any is decoded, and the memory of all
+// their atlases and the guide before dav1d runs.
+void read_maps(ByteReader& r, uint8_t packed, int aw, int ah, std::size_t size, std::size_t memory_limit,
+               AtlasFile& f) {
+    if (packed & kPackedChannels) r.corrupt("packed bits 0-1 must be 0 in format version 9 (each map has its channels)");
+    const int count = int(r.varint_in("map count", 1, kMaxMaps));
+    std::set<std::string> names;
+    int channels = 0;
+    std::vector<int> map_channels;
+    for (int m = 0; m < count; ++m) {
+        AtlasMap map;
+        const std::size_t length = std::size_t(r.varint_in("map name length", 1, kMaxMapName));
+        const uint8_t* name = r.bytes(length, "map name");
+        map.name.assign(reinterpret_cast<const char*>(name), length);
+        if (!is_map_name(map.name))
+            r.corrupt("map " + std::to_string(m) + "'s name holds a character outside [A-Za-z0-9_.-]");
+        if (!names.insert(map.name).second) r.corrupt("two maps are named '" + map.name + "'");
+        const uint8_t kind = r.u8("map kind");
+        if (kind > uint8_t(MapKind::Data)) r.corrupt("map '" + map.name + "' has kind " + std::to_string(kind) + ", outside 0..2");
+        map.kind = MapKind(kind);
+        const int ch = int(r.varint_in("map channels", 1, 4));
+        if (map.kind == MapKind::Normal && ch != 3)
+            r.corrupt("normal map '" + map.name + "' has " + std::to_string(ch) + " channels; a normal map has 3");
+        map.bytes = std::size_t(r.varint_in("map bitstream length", 1, size));
+        map_channels.push_back(ch);
+        channels += ch;
+        f.maps.push_back(std::move(map));
+    }
+    GuideMatrix& g = f.guide;
+    if (count > 1) {
+        g.channels = int(r.varint_in("guide channels", 1, kMaxGuideChannels));
+        for (int k = 0; k < g.channels; ++k) {
+            for (int c = 0; c < channels; ++c) {
+                const int64_t v = zigzag(r.varint("guide coefficient"));
+                if (v < -kMaxGuideCoefficient || v > kMaxGuideCoefficient)
+                    r.corrupt("a guide coefficient is " + std::to_string(v) + ", outside -" +
+                              std::to_string(kMaxGuideCoefficient) + ".." + std::to_string(kMaxGuideCoefficient));
+                g.coefficients.push_back(int32_t(v));
+            }
+            const int64_t o = zigzag(r.varint("guide offset"));
+            if (o < -kMaxGuideOffset || o > kMaxGuideOffset)
+                r.corrupt("a guide offset is " + std::to_string(o) + ", outside -" + std::to_string(kMaxGuideOffset) +
+                          ".." + std::to_string(kMaxGuideOffset));
+            g.offsets.push_back(int32_t(o));
+        }
+    }
+    uint64_t total = 0;
+    for (const AtlasMap& m : f.maps) total += m.bytes;
+    if (total != r.remaining())
+        r.corrupt("the maps' bitstreams take " + std::to_string(total) + " bytes, but " +
+                  std::to_string(r.remaining()) + " are left before the checksum");
+    FileHeader& h = f.header;
+    h.channels = uint8_t(count > 1 ? g.channels : map_channels[0]);
+    f.input_bytes = size;
+    // All the maps' atlases, the guide, and dav1d's frame for one of them.
+    check_atlas(aw, ah, h.levels, channels + (count > 1 ? g.channels : 0), f.input_bytes, memory_limit);
+    f.bitstream_offset = r.position();
+    for (int m = 0; m < count; ++m) {
+        AtlasMap& map = f.maps[std::size_t(m)];
+        const uint8_t* bits = r.bytes(map.bytes, "map bitstream");
+        map.atlas = decode_atlas(bits, map.bytes, aw, ah, map_channels[std::size_t(m)], "map '" + map.name + "'");
+        f.atlas_bytes += map.bytes;
+    }
+    f.atlas = guide_of(f.maps, f.guide);
+}
+
+// Versions 4 to 9: the CRC first (the file has no sizes to walk), then the fields
 // in their order, each checked as it is read.
 AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
     const uint16_t version = read_format_version(data, size);
@@ -132,6 +206,10 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
             r.corrupt("the parameters are stored but are the defaults (packed bit 6 must then be 0)");
         f.parameter_bytes = r.position() - at;
     }
+    if (version >= kMaterialAtlasFormatVersion) {
+        read_maps(r, packed, aw, ah, size, memory_limit, f);
+        return f;
+    }
     if (r.remaining() == 0) r.corrupt("the file has no atlas bitstream");
     f.input_bytes = size;
     check_atlas(aw, ah, h.levels, h.channels, f.input_bytes, memory_limit);
@@ -143,6 +221,45 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
 }
 
 }  // namespace
+
+bool is_map_name(const std::string& name) {
+    if (name.empty() || name.size() > std::size_t(kMaxMapName)) return false;
+    for (const char c : name)
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '.' ||
+              c == '-'))
+            return false;
+    return true;
+}
+
+Image guide_of(const std::vector<AtlasMap>& maps, const GuideMatrix& matrix, int threads) {
+    if (matrix.channels == 0) return maps.at(0).atlas;
+    const Image& first = maps.at(0).atlas;
+    const int w = first.width, h = first.height, g = matrix.channels;
+    int channels = 0;
+    for (const AtlasMap& m : maps) channels += m.atlas.channels;
+    Image out(w, h, g);
+    parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
+        std::vector<int32_t> v(static_cast<std::size_t>(channels), 0);
+        for (std::size_t y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) {
+                std::size_t at = 0;
+                for (const AtlasMap& m : maps) {
+                    const uint8_t* p = m.atlas.at(x, int(y));
+                    for (int c = 0; c < m.atlas.channels; ++c) v[at++] = p[c];
+                }
+                uint8_t* o = out.at(x, int(y));
+                for (int k = 0; k < g; ++k) {
+                    // At most 64 channels of 255 x 4096 and an offset of
+                    // 2^20: within 32 bits.
+                    int64_t sum = matrix.offsets[std::size_t(k)] + 128;
+                    const int32_t* row = matrix.coefficients.data() + std::size_t(k) * std::size_t(channels);
+                    for (std::size_t c = 0; c < v.size(); ++c) sum += int64_t(row[c]) * v[c];
+                    o[k] = uint8_t(std::clamp<int64_t>(sum >> 8, 0, 255));
+                }
+            }
+    });
+    return out;
+}
 
 bool is_atlas_file(const uint8_t* data, std::size_t size) {
     try {

@@ -1,4 +1,4 @@
-// atlas_file.hpp - format versions 3 to 8 (docs/FORMAT.md §2
+// atlas_file.hpp - format versions 3 to 9 (docs/FORMAT.md §2
 // and §A): a still texture stored as an atlas, an image whose windows
 // are the coherent engine's codebook (the exemplar or a crop of it), coded
 // as AV1 (atlas_coder.hpp), plus the engine's parameters. Version 3 holds
@@ -6,14 +6,16 @@
 // compact header (§A.3); version 5 adds the blend at seams to
 // version 4 (§A.2, §4.12), version 6 the copy relocation to version 5
 // (§A.1, §4.9), version 7 the edge guard to version 6 (§A.0, §4.7-§4.8),
-// version 8, which the encoder writes, the cuts between copies to version 7
-// (§2, §4.11). The decoder rebuilds the appearance space from
+// version 8, which the encoder writes for one colour image, the cuts
+// between copies to version 7 (§2, §4.11), and version 9 a set of maps read
+// through one synthesis (§2, §4.15). The decoder rebuilds the appearance space from
 // the decoded atlas and synthesises with the coherent engine
 // (api/coherent_options.hpp gives its options).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/image.hpp"
@@ -87,27 +89,68 @@ struct AtlasSynthesisParams {
 // has its blocks of children moved inside.
 inline bool clamps_children(const AtlasSynthesisParams& params) { return params.edge_guard > 0; }
 
+// The kinds of map a version 9 file holds (docs/FORMAT.md §2.2): colour
+// (alpha in a 2- or 4-channel map), tangent-space normals (3 channels,
+// each component mapped from [-1, 1] to 0..255, unit length on output) and
+// data (values as they are: gloss, roughness, height, masks).
+enum class MapKind : uint8_t { Colour = 0, Normal = 1, Data = 2 };
+inline constexpr int kMaxMaps = 16;
+inline constexpr int kMaxMapName = 32;
+// The guide's coefficients (Q8) and offsets (in 1/256) in a version 9 file.
+inline constexpr int kMaxGuideCoefficient = 4096;
+inline constexpr int kMaxGuideOffset = 1 << 20;
+inline constexpr int kMaxGuideChannels = 4;
+
+// Whether a map name is one a file can hold: 1 to kMaxMapName characters
+// of [A-Za-z0-9_.-].
+bool is_map_name(const std::string& name);
+
+// One map of a set: its atlas at the set's atlas positions.
+struct AtlasMap {
+    std::string name;
+    MapKind kind = MapKind::Colour;
+    Image atlas;            // decoded (reader) or to code (writer)
+    std::size_t bytes = 0;  // its coded bitstream
+};
+
+// The image a set's synthesis matches (docs/FORMAT.md §4.15): channel g of
+// a pixel is clamp((sum over c of coefficients[g * C + c] * v_c +
+// offsets[g] + 128) >> 8, 0, 255), v the C channel values of all the maps
+// in order. A set of one map has no matrix: the map is its own guide.
+struct GuideMatrix {
+    int channels = 0;  // 0: the only map is the guide
+    std::vector<int32_t> coefficients;
+    std::vector<int32_t> offsets;
+};
+
+// The guide of `maps` (all of one size) by `matrix`.
+Image guide_of(const std::vector<AtlasMap>& maps, const GuideMatrix& matrix, int threads = 1);
+
 struct AtlasFile {
-    // Version 3 to 8; levels = the engine's stack depth. A version 4 to 8 file's
+    // Version 3 to 9; levels = the engine's stack depth. A version 4 to 9 file's
     // fields are put here as version 3 would have them (init 0, backtrack 1,
     // no flags, no sections).
     FileHeader header;
     std::vector<Section> sections;  // version 3 only
     AtlasSynthesisParams params;
-    Image atlas;                       // decoded
+    Image atlas;                       // decoded; for a set of maps, their guide
+    // Version 9: the maps (decoded), whose guide `atlas` is, and the guide's
+    // matrix; empty before version 9 (the atlas is then the only map).
+    std::vector<AtlasMap> maps;
+    GuideMatrix guide;
     std::size_t atlas_bytes = 0;       // the coded atlas bitstream
-    std::size_t bitstream_offset = 0;  // versions 4-8: where that bitstream starts in the file
-    std::size_t parameter_bytes = 0;   // versions 4-8: the parameter varints (0 for the defaults)
+    std::size_t bitstream_offset = 0;  // versions 4-8: where that bitstream starts in the file (9: the first map's)
+    std::size_t parameter_bytes = 0;   // versions 4-9: the parameter varints (0 for the defaults)
     // What the memory limit counts for the input beside the atlas and the
-    // engine: the sections' raw sizes (version 3) or the file (versions 4-8).
+    // engine: the sections' raw sizes (version 3) or the file (versions 4-9).
     std::size_t input_bytes = 0;
 };
 
-// True when the file's signature reads and its version is 3 to 8 (any
+// True when the file's signature reads and its version is 3 to 9 (any
 // damage is left to decode_atlas_file to report).
 bool is_atlas_file(const uint8_t* data, std::size_t size);
 
-// Reads and checks a version 3 to 8 file and decodes its atlas. The memory
+// Reads and checks a version 3 to 9 file and decodes its atlas (or maps). The memory
 // limit covers the input (AtlasFile::input_bytes), dav1d's frame and the
 // decoded atlas; the engine's own memory is checked by the caller with
 // atlas_decode_memory.

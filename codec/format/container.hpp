@@ -45,8 +45,15 @@ inline constexpr uint16_t kEdgeGuardAtlasFormatVersion = 7;
 // parameter, the reach of the minimum-error cuts between copies, which
 // versions 3 to 7 decode without. The encoder writes version 8.
 inline constexpr uint16_t kSeamCutAtlasFormatVersion = 8;
+// Version 9 (docs/FORMAT.md §2, §4.15): version 8's header and engine with
+// a set of maps (a material's albedo, normals, gloss...) in place of the
+// one atlas, each coded alone at the same atlas positions and all read
+// through one synthesis, which matches a guide made from them. The encoder
+// writes it for map sets and for maps that are not colour; a single colour
+// image stays version 8.
+inline constexpr uint16_t kMaterialAtlasFormatVersion = 9;
 inline bool is_compact_atlas_version(uint16_t version) {
-    return version >= kCompactAtlasFormatVersion && version <= kSeamCutAtlasFormatVersion;
+    return version >= kCompactAtlasFormatVersion && version <= kMaterialAtlasFormatVersion;
 }
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;

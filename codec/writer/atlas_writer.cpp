@@ -1,7 +1,8 @@
-// atlas_writer.cpp - writing format version 7 (docs/FORMAT.md section
-// 8.10), the atlas file the encoder makes: the compact header of section
-// 8.7, the parameters only when they are not the defaults, the atlas
-// bitstream, CRC-32. format/atlas_file.cpp reads it.
+// atlas_writer.cpp - writing format versions 8 and 9 (docs/FORMAT.md §2),
+// the atlas files the encoder makes: the compact header, the parameters
+// only when they are not the defaults, the atlas bitstream (version 9: the
+// maps, the guide's matrix and their bitstreams), CRC-32.
+// format/atlas_file.cpp reads them.
 #include "writer/atlas_writer.hpp"
 
 #include "common/checksum.hpp"
@@ -15,23 +16,28 @@
 
 namespace vqtex {
 
-std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
-                                       const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params) {
-    if (header.channels < 1 || header.channels > 4 || header.levels < 1 || header.levels > 8 ||
-        atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide || atlas_width > kMaxAtlasSide ||
-        atlas_height > kMaxAtlasSide || atlas_bitstream.empty() || params.blend < 0 || params.blend > kMaxBlendRadius ||
-        params.relocate < 0 || params.relocate > kMaxRelocationPositions || params.edge_guard < 0 ||
-        params.edge_guard > kMaxEdgeGuard || params.cut < 0 || params.cut > kMaxCutReach)
-        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: fields outside what format version 8 can hold");
+namespace {
+
+void check_fields(const FileHeader& header, int atlas_width, int atlas_height, const AtlasSynthesisParams& params,
+                  uint16_t version) {
+    if (header.levels < 1 || header.levels > 8 || atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide ||
+        atlas_width > kMaxAtlasSide || atlas_height > kMaxAtlasSide || params.blend < 0 ||
+        params.blend > kMaxBlendRadius || params.relocate < 0 || params.relocate > kMaxRelocationPositions ||
+        params.edge_guard < 0 || params.edge_guard > kMaxEdgeGuard || params.cut < 0 || params.cut > kMaxCutReach)
+        fail(VQTEX_ERROR_INTERNAL,
+             "encode_atlas_file: fields outside what format version " + std::to_string(version) + " can hold");
+}
+
+// Everything before the bitstreams that versions 8 and 9 share.
+void write_header(ByteWriter& w, uint16_t version, uint8_t channel_bits, const FileHeader& header, int atlas_width,
+                  int atlas_height, const AtlasSynthesisParams& params) {
     const bool exemplar_size =
         header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
-    const bool parameters = !are_compact_defaults(params, kSeamCutAtlasFormatVersion);
-    ByteWriter w;
+    const bool parameters = !are_compact_defaults(params, version);
     w.bytes(kMagic, sizeof kMagic);
-    w.u16(kSeamCutAtlasFormatVersion);
-    w.u8(uint8_t((header.channels - 1) | (header.levels - 1) << kPackedLevelsShift |
-                 (exemplar_size ? kPackedExemplarSize : 0) | (parameters ? kPackedParameters : 0) |
-                 (params.example_tileable ? kPackedTileable : 0)));
+    w.u16(version);
+    w.u8(uint8_t(channel_bits | (header.levels - 1) << kPackedLevelsShift | (exemplar_size ? kPackedExemplarSize : 0) |
+                 (parameters ? kPackedParameters : 0) | (params.example_tileable ? kPackedTileable : 0)));
     w.varint(uint64_t(atlas_width));
     w.varint(uint64_t(atlas_height));
     if (exemplar_size) {
@@ -52,7 +58,68 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
         w.varint(uint64_t(params.edge_guard));
         w.varint(uint64_t(params.cut));
     }
+}
+
+uint64_t zigzag(int64_t v) { return (uint64_t(v) << 1) ^ uint64_t(v >> 63); }
+
+}  // namespace
+
+std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
+                                       const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params) {
+    check_fields(header, atlas_width, atlas_height, params, kSeamCutAtlasFormatVersion);
+    if (header.channels < 1 || header.channels > 4 || atlas_bitstream.empty())
+        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: no bitstream, or channels outside 1..4");
+    ByteWriter w;
+    write_header(w, kSeamCutAtlasFormatVersion, uint8_t(header.channels - 1), header, atlas_width, atlas_height,
+                 params);
     w.bytes(atlas_bitstream);
+    w.u32(crc32(w.data().data(), w.size()));
+    return std::move(w.data());
+}
+
+std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_width, int atlas_height,
+                                          const std::vector<CodedMap>& maps, const GuideMatrix& guide,
+                                          const AtlasSynthesisParams& params) {
+    check_fields(header, atlas_width, atlas_height, params, kMaterialAtlasFormatVersion);
+    int channels = 0;
+    for (const CodedMap& m : maps) {
+        if (!is_map_name(m.name) || m.channels < 1 || m.channels > 4 || m.bitstream.empty() ||
+            (m.kind == MapKind::Normal && m.channels != 3))
+            fail(VQTEX_ERROR_INTERNAL, "encode_material_file: map '" + m.name + "' cannot be stored");
+        channels += m.channels;
+    }
+    const bool one = maps.size() == 1;
+    if (maps.empty() || maps.size() > std::size_t(kMaxMaps) || (one ? guide.channels != 0 : guide.channels < 1) ||
+        guide.channels > kMaxGuideChannels ||
+        guide.coefficients.size() != std::size_t(guide.channels) * std::size_t(channels) ||
+        guide.offsets.size() != std::size_t(guide.channels))
+        fail(VQTEX_ERROR_INTERNAL, "encode_material_file: the maps or their guide cannot be stored");
+    ByteWriter w;
+    write_header(w, kMaterialAtlasFormatVersion, 0, header, atlas_width, atlas_height, params);
+    w.varint(maps.size());
+    for (const CodedMap& m : maps) {
+        w.varint(m.name.size());
+        w.bytes(reinterpret_cast<const uint8_t*>(m.name.data()), m.name.size());
+        w.u8(uint8_t(m.kind));
+        w.varint(uint64_t(m.channels));
+        w.varint(m.bitstream.size());
+    }
+    if (!one) {
+        w.varint(uint64_t(guide.channels));
+        for (int k = 0; k < guide.channels; ++k) {
+            for (int c = 0; c < channels; ++c) {
+                const int32_t v = guide.coefficients[std::size_t(k) * std::size_t(channels) + std::size_t(c)];
+                if (v < -kMaxGuideCoefficient || v > kMaxGuideCoefficient)
+                    fail(VQTEX_ERROR_INTERNAL, "encode_material_file: a guide coefficient out of range");
+                w.varint(zigzag(v));
+            }
+            const int32_t o = guide.offsets[std::size_t(k)];
+            if (o < -kMaxGuideOffset || o > kMaxGuideOffset)
+                fail(VQTEX_ERROR_INTERNAL, "encode_material_file: a guide offset out of range");
+            w.varint(zigzag(o));
+        }
+    }
+    for (const CodedMap& m : maps) w.bytes(m.bitstream);
     w.u32(crc32(w.data().data(), w.size()));
     return std::move(w.data());
 }

@@ -355,6 +355,45 @@ VQTEX_API vqtex_status vqtex_encode(const vqtex_encode_params* params, const vqt
 
 VQTEX_API void vqtex_free(void* data);
 
+/* ---- Material sets ---------------------------------------------------------
+ * Several maps of one surface (albedo, normals, gloss, height...) in one
+ * file, synthesised once: every map is read through the same coordinates,
+ * so the decoded maps are aligned pixel for pixel. The synthesis matches a
+ * guide made from all the maps (docs/FORMAT.md §4.15). A set of one normal
+ * or data map is how such a map is stored alone. Atlas files only. */
+
+typedef enum vqtex_map_kind {
+    VQTEX_MAP_COLOUR = 0, /* colour; a 2- or 4-channel map's last channel is straight alpha */
+    VQTEX_MAP_NORMAL = 1, /* tangent-space normals, 3 channels, each component mapped from [-1, 1]
+                             to 0..255; decoded normals have unit length */
+    VQTEX_MAP_DATA = 2    /* values as they are: gloss, roughness, height, masks */
+} vqtex_map_kind;
+
+#define VQTEX_MAX_MAPS 16
+#define VQTEX_MAX_MAP_NAME 32 /* characters of [A-Za-z0-9_.-] */
+
+typedef struct vqtex_map {
+    const char* name;     /* 1 to VQTEX_MAX_MAP_NAME characters of [A-Za-z0-9_.-], distinct in a set */
+    vqtex_map_kind kind;
+    uint32_t weight;      /* 0..8: how much the map counts in the guide; 0 = the kind's default
+                             (colour 2, height-like data named height/disp/bump 2, others 1) */
+    vqtex_image image;    /* every map of a set has the same size; 1 to 4 channels (normal: 3) */
+} vqtex_map;
+
+/* Encodes a set of 1 to VQTEX_MAX_MAPS maps into one file (an atlas: the
+ * `codebook` field must be VQTEX_CODEBOOK_ATLAS). `quality` gives each map
+ * a single image's budget, `target_size` is shared: all maps are coded at
+ * one AV1 quantiser, so each takes the bytes its content needs. */
+VQTEX_API vqtex_status vqtex_encode_maps(const vqtex_encode_params* params, const vqtex_map* maps, uint32_t count,
+                                         uint8_t** data, size_t* size, vqtex_encode_stats* stats,
+                                         vqtex_error* error);
+
+typedef struct vqtex_map_image {
+    char name[VQTEX_MAX_MAP_NAME + 1];
+    vqtex_map_kind kind;
+    vqtex_image image;    /* free with vqtex_image_free */
+} vqtex_map_image;
+
 #define VQTEX_SEED_FROM_FILE UINT64_MAX
 
 typedef struct vqtex_decode_params {
@@ -372,6 +411,15 @@ VQTEX_API void vqtex_decode_params_init(vqtex_decode_params* params);
 /* Decodes a file into a new image (free with vqtex_image_free). */
 VQTEX_API vqtex_status vqtex_decode(const vqtex_decode_params* params, const uint8_t* data, size_t size,
                                     vqtex_image* out, vqtex_error* error);
+
+/* Decodes every map of a file, in the file's order, through one synthesis.
+ * A file that is not a set (a single colour image, any format) gives one
+ * colour map named "texture". `maps` must hold `capacity` entries
+ * (VQTEX_MAX_MAPS is always enough); *count receives how many were
+ * written. vqtex_decode on a set gives its first map. */
+VQTEX_API vqtex_status vqtex_decode_maps(const vqtex_decode_params* params, const uint8_t* data, size_t size,
+                                         vqtex_map_image* maps, uint32_t capacity, uint32_t* count,
+                                         vqtex_error* error);
 
 /* Decodes the whole synthesised pyramid as a mip chain: levels[0] is the
  * texture, each next level half the size (rounded up) down to 1x1. For a
@@ -422,6 +470,13 @@ typedef struct vqtex_file_info {
                                                       pixels (0: none); 0 otherwise */
     uint32_t cut;                                  /* atlas texture: the reach of the cuts between copies the
                                                       decoder uses, in output pixels (0: none); 0 otherwise */
+    uint32_t map_count;                            /* maps in the file: 1 but for a material set */
+    struct {
+        char name[VQTEX_MAX_MAP_NAME + 1];         /* "texture" for a file that is not a set */
+        vqtex_map_kind kind;
+        uint32_t channels;
+        uint64_t bytes;                            /* its coded atlas */
+    } maps[VQTEX_MAX_MAPS];
 } vqtex_file_info;
 
 /* Verifies and describes a file (everything the decoder checks). */

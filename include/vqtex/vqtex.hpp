@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "vqtex.h"
 
@@ -107,6 +108,37 @@ inline Image decode(const vqtex_decode_params& params, const uint8_t* data, size
     Image out;
     vqtex_error err{};
     check(vqtex_decode(&params, data, size, out.out(), &err), err);
+    return out;
+}
+
+// A decoded map of a set: its name, kind and pixels (owned).
+struct Map {
+    std::string name;
+    vqtex_map_kind kind = VQTEX_MAP_COLOUR;
+    Image image;
+};
+
+inline Buffer encode_maps(const vqtex_encode_params& params, const std::vector<vqtex_map>& maps,
+                          vqtex_encode_stats* stats = nullptr) {
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    check(vqtex_encode_maps(&params, maps.data(), uint32_t(maps.size()), &data, &size, stats, &err), err);
+    return Buffer(data, size);
+}
+
+inline std::vector<Map> decode_maps(const vqtex_decode_params& params, const uint8_t* data, size_t size) {
+    std::vector<vqtex_map_image> raw(VQTEX_MAX_MAPS);
+    uint32_t count = 0;
+    vqtex_error err{};
+    const vqtex_status st = vqtex_decode_maps(&params, data, size, raw.data(), uint32_t(raw.size()), &count, &err);
+    std::vector<Map> out(count);
+    for (uint32_t i = 0; i < count; ++i) {  // owned before any throw
+        out[i].name = raw[i].name;
+        out[i].kind = raw[i].kind;
+        *out[i].image.out() = raw[i].image;
+    }
+    check(st, err);
     return out;
 }
 
