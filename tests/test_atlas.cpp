@@ -534,10 +534,12 @@ TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
             bad[i] ^= uint8_t(1 << bit);
             vqtex_status st = VQTEX_OK;
             decode(bad, p, &st);
-            // The version, 8, flips to 9, 10, 12, 0, 24, ... (unknown).
-            const vqtex_status expected = i < 8    ? VQTEX_ERROR_BAD_MAGIC
-                                          : i < 10 ? VQTEX_ERROR_UNSUPPORTED_VERSION
-                                                   : VQTEX_ERROR_CHECKSUM;
+            // The version, 8, flips to 10, 12, 0, 24, ... (unknown) or
+            // to 9, another compact version, whose checksum then fails.
+            const bool to_nine = i == 8 && bit == 0;
+            const vqtex_status expected = i < 8                ? VQTEX_ERROR_BAD_MAGIC
+                                          : i < 10 && !to_nine ? VQTEX_ERROR_UNSUPPORTED_VERSION
+                                                               : VQTEX_ERROR_CHECKSUM;
             EXPECT_EQ(st, expected) << "byte " << i << " bit " << bit;
         }
 }

@@ -148,6 +148,11 @@ inline void describe_container(const FileHeader& h, const std::vector<Section>& 
     info->precision = uint32_t(precision);
     info->pixel_precision = uint32_t(pixel_precision);
     info->seed = h.seed;
+    // One map, the texture (an atlas file's own description replaces it).
+    info->map_count = 1;
+    std::memcpy(info->maps[0].name, "texture", 8);
+    info->maps[0].kind = VQTEX_MAP_COLOUR;
+    info->maps[0].channels = h.channels;
     info->section_count = uint32_t(std::min<std::size_t>(sections.size(), VQTEX_MAX_SECTIONS));
     for (uint32_t i = 0; i < info->section_count; ++i) {
         const Section& s = sections[i];

@@ -4,8 +4,10 @@
 // engine/ synthesises from it (the coherent engine from an atlas, the
 // paper engine's matchers from trees). Everything here is in the decoder
 // library too.
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <utility>
 #include <new>
 
@@ -14,6 +16,7 @@
 #include "api/validate.hpp"
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"
+#include "engine/normal_map.hpp"
 #include "engine/pyramid.hpp"
 #include "engine/synthesis.hpp"
 #include "engine/temporal_synthesis.hpp"
@@ -81,24 +84,64 @@ Options tree_options(const vqtex_decode_params* p, const FileHeader& header, Lev
     return opt;
 }
 
+// A decoded map with its name and kind.
+struct NamedMap {
+    std::string name;
+    MapKind kind = MapKind::Colour;
+    Image image;
+};
+
 // An atlas file (docs/FORMAT.md §2-§4, §A): the atlas decoded, then the
 // coherent engine synthesises from it exactly as vqtex_synthesize would
-// from that image. Returns the texture alone: the engine has no pyramid of
-// pixels, so a mip chain is downsampled from it.
-std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
+// from that image. A set of maps (version 9, §4.15) is synthesised once on
+// its guide and every map read through the one set of positions; normal
+// maps are then brought back to unit length. Returns the maps (one,
+// "texture", for a single image): the engine has no pyramid of pixels, so
+// a mip chain is downsampled from the texture.
+std::vector<NamedMap> decode_atlas_maps(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
     const std::size_t limit = memory_limit_of(p);
     const AtlasFile f = decode_atlas_file(data, size, limit);
     const OutputSize out_size = output_size(p, f.header);
     const uint32_t w = out_size.width, h = out_size.height;
-    check_output_memory(f.input_bytes + atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels,
-                                                            f.header.levels, f.params.coherence, w, h),
+    // A set's maps are read beside the guide: their channels count as the
+    // output's, their atlases as the input's.
+    int channels = f.atlas.channels;
+    uint64_t atlases = 0;
+    for (const AtlasMap& m : f.maps) {
+        channels += m.atlas.channels;
+        atlases += m.atlas.byte_count();
+    }
+    check_output_memory(f.input_bytes + atlases +
+                            atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels, f.header.levels,
+                                                f.params.coherence, w, h) +
+                            (f.maps.empty() ? 0 : coherent_output_memory(w, h, channels)),
                         limit, out_size.name());
     CoherentOptions opt = coherent_options(f.params, int(w), int(h), seed_of(p, f.header));
     opt.threads = resolve_threads(p->threads);
     opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
+    std::vector<NamedMap> out;
+    if (f.maps.empty()) {
+        out.push_back({"texture", MapKind::Colour,
+                       synthesize_coherent(f.atlas, f.header.levels, f.params.example_tileable, f.params.coherence, opt)
+                           .image});
+        return out;
+    }
+    std::vector<Readout> readouts;
+    for (const AtlasMap& m : f.maps)
+        readouts.push_back({&m.atlas, m.kind == MapKind::Colour && f.params.blend_straight_alpha});
+    CoherentResult r =
+        synthesize_coherent(f.atlas, f.header.levels, f.params.example_tileable, f.params.coherence, opt, {}, readouts);
+    for (std::size_t i = 0; i < f.maps.size(); ++i) {
+        if (f.maps[i].kind == MapKind::Normal) renormalise_normals(r.maps[i], opt.threads);
+        out.push_back({f.maps[i].name, f.maps[i].kind, std::move(r.maps[i])});
+    }
+    return out;
+}
+
+std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
+    std::vector<NamedMap> maps = decode_atlas_maps(p, data, size);
     std::vector<Image> out;
-    out.push_back(
-        synthesize_coherent(f.atlas, f.header.levels, f.params.example_tileable, f.params.coherence, opt).image);
+    out.push_back(std::move(maps[0].image));
     return out;
 }
 
@@ -157,6 +200,38 @@ vqtex_status vqtex_decode(const vqtex_decode_params* params, const uint8_t* data
     });
 }
 
+vqtex_status vqtex_decode_maps(const vqtex_decode_params* params, const uint8_t* data, size_t size,
+                               vqtex_map_image* maps, uint32_t capacity, uint32_t* count, vqtex_error* error) {
+    return guarded(error, [&] {
+        if (!maps || !count) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output pointers are NULL");
+        *count = 0;
+        validate(params);
+        std::vector<NamedMap> decoded;
+        if (is_atlas_file(data, size)) {
+            decoded = decode_atlas_maps(params, data, size);
+        } else {
+            std::vector<Image> pyramid = decode_pyramid(params, data, size);
+            pyramid.resize(1);
+            decoded.push_back({"texture", MapKind::Colour, std::move(pyramid[0])});
+        }
+        if (capacity < decoded.size())
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "the file holds " + std::to_string(decoded.size()) +
+                                                   " maps; capacity is " + std::to_string(capacity));
+        for (std::size_t i = 0; i < decoded.size(); ++i) {
+            maps[i] = vqtex_map_image{};
+            std::snprintf(maps[i].name, sizeof maps[i].name, "%s", decoded[i].name.c_str());
+            maps[i].kind = vqtex_map_kind(decoded[i].kind);
+            try {
+                image_to_c(std::move(decoded[i].image), &maps[i].image);
+            } catch (...) {
+                for (std::size_t j = 0; j < i; ++j) vqtex_image_free(&maps[j].image);
+                throw;
+            }
+        }
+        *count = uint32_t(decoded.size());
+    });
+}
+
 vqtex_status vqtex_decode_mips(const vqtex_decode_params* params, const uint8_t* data, size_t size,
                                vqtex_image* levels, uint32_t capacity, uint32_t* count, vqtex_error* error) {
     return guarded(error, [&] {
@@ -201,6 +276,22 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
             info->relocate = uint32_t(f.params.relocate);
             info->edge_guard = uint32_t(f.params.edge_guard);
             info->cut = uint32_t(f.params.cut);
+            if (f.maps.empty()) {
+                info->map_count = 1;
+                std::snprintf(info->maps[0].name, sizeof info->maps[0].name, "texture");
+                info->maps[0].kind = VQTEX_MAP_COLOUR;
+                info->maps[0].channels = uint32_t(f.atlas.channels);
+                info->maps[0].bytes = f.atlas_bytes;
+            } else {
+                info->map_count = uint32_t(f.maps.size());
+                for (std::size_t i = 0; i < f.maps.size(); ++i) {
+                    std::snprintf(info->maps[i].name, sizeof info->maps[i].name, "%s", f.maps[i].name.c_str());
+                    info->maps[i].kind = vqtex_map_kind(f.maps[i].kind);
+                    info->maps[i].channels = uint32_t(f.maps[i].atlas.channels);
+                    info->maps[i].bytes = f.maps[i].bytes;
+                }
+                info->channels = uint32_t(f.maps[0].atlas.channels);
+            }
             if (is_compact_atlas_version(f.header.version)) {
                 // No sections: the two parts of the file that are not its
                 // header and checksum, under the tags version 3 gives them.

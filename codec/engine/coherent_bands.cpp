@@ -151,8 +151,10 @@ std::vector<Image> synthesize_pixels(const Image& example, int frame, const Appe
         for (const Readout& r : read) {
             out.emplace_back(map.width, map.height, r.image->channels);
             blend_rows(*r.image, space.wraps, options.blend,
-                       [&](int y) { return map.positions.data() + std::size_t(y) * std::size_t(map.width); }, 0,
-                       map.height, out.back(), options.threads, r.straight_alpha);
+                       [&](int y) {
+                           return map.positions.data() + std::size_t(Image::wrap(y, map.height)) * std::size_t(map.width);
+                       },
+                       0, map.height, out.back(), options.threads, r.straight_alpha);
         }
         std::vector<uint32_t>().swap(map.positions);
         if (options.roll) roll_all(out, options.threads);

@@ -1,0 +1,191 @@
+// material_choice.cpp - the guide and the atlas of a set of maps (see
+// material_choice.hpp).
+#include "analysis/material_choice.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "common/error.hpp"
+#include "engine/coherent_synthesis.hpp"
+#include "format/atlas_coder.hpp"
+#include "writer/atlas_encoder.hpp"
+#include "writer/atlas_writer.hpp"
+
+namespace vqtex {
+namespace {
+
+// Eigenvectors of a symmetric n x n matrix by cyclic Jacobi rotations, as
+// columns of `vectors`, eigenvalues on the diagonal of `a` afterwards. The
+// matrices here are at most 64 x 64 and this runs once per encode.
+void jacobi_eigen(std::vector<double>& a, std::vector<double>& vectors, int n) {
+    vectors.assign(std::size_t(n) * std::size_t(n), 0.0);
+    for (int i = 0; i < n; ++i) vectors[std::size_t(i) * std::size_t(n) + std::size_t(i)] = 1.0;
+    const auto at = [n](std::vector<double>& m, int r, int c) -> double& {
+        return m[std::size_t(r) * std::size_t(n) + std::size_t(c)];
+    };
+    for (int sweep = 0; sweep < 64; ++sweep) {
+        double off = 0;
+        for (int p = 0; p < n; ++p)
+            for (int q = p + 1; q < n; ++q) off += at(a, p, q) * at(a, p, q);
+        if (off < 1e-18) break;
+        for (int p = 0; p < n; ++p)
+            for (int q = p + 1; q < n; ++q) {
+                const double apq = at(a, p, q);
+                if (std::abs(apq) < 1e-300) continue;
+                const double theta = (at(a, q, q) - at(a, p, p)) / (2 * apq);
+                const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+                const double c = 1 / std::sqrt(t * t + 1), s = t * c;
+                for (int k = 0; k < n; ++k) {
+                    const double akp = at(a, k, p), akq = at(a, k, q);
+                    at(a, k, p) = c * akp - s * akq;
+                    at(a, k, q) = s * akp + c * akq;
+                }
+                for (int k = 0; k < n; ++k) {
+                    const double apk = at(a, p, k), aqk = at(a, q, k);
+                    at(a, p, k) = c * apk - s * aqk;
+                    at(a, q, k) = s * apk + c * aqk;
+                }
+                for (int k = 0; k < n; ++k) {
+                    const double vkp = at(vectors, k, p), vkq = at(vectors, k, q);
+                    at(vectors, k, p) = c * vkp - s * vkq;
+                    at(vectors, k, q) = s * vkp + c * vkq;
+                }
+            }
+    }
+}
+
+Image crop_top_left(const Image& image, int w, int h) {
+    if (w == image.width && h == image.height) return image;
+    Image out(w, h, image.channels);
+    for (int y = 0; y < h; ++y)
+        std::memcpy(out.at(0, y), image.at(0, y), std::size_t(w) * std::size_t(image.channels));
+    return out;
+}
+
+}  // namespace
+
+GuideMatrix guide_matrix(const std::vector<MaterialMap>& maps) {
+    GuideMatrix g;
+    if (maps.size() < 2) return g;
+    std::vector<double> weight;  // per channel
+    for (const MaterialMap& m : maps)
+        for (int c = 0; c < m.image.channels; ++c) weight.push_back(double(m.weight));
+    const int n = int(weight.size());
+    const Image& first = maps[0].image;
+    // Up to 65536 pixels on a regular grid.
+    const std::size_t pixels = first.pixel_count();
+    const std::size_t step = std::max<std::size_t>(1, pixels / 65536);
+    std::vector<double> mean(static_cast<std::size_t>(n), 0.0);
+    std::vector<double> cov(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0.0);
+    std::vector<double> v(static_cast<std::size_t>(n), 0.0);
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < pixels; i += step, ++count) {
+        std::size_t at = 0;
+        for (const MaterialMap& m : maps)
+            for (int c = 0; c < m.image.channels; ++c, ++at)
+                v[at] = weight[at] * m.image.pixels[i * std::size_t(m.image.channels) + std::size_t(c)];
+        for (int a = 0; a < n; ++a) {
+            mean[std::size_t(a)] += v[std::size_t(a)];
+            for (int b = a; b < n; ++b) cov[std::size_t(a) * std::size_t(n) + std::size_t(b)] += v[std::size_t(a)] * v[std::size_t(b)];
+        }
+    }
+    for (double& m : mean) m /= double(count);
+    for (int a = 0; a < n; ++a)
+        for (int b = a; b < n; ++b) {
+            double& c = cov[std::size_t(a) * std::size_t(n) + std::size_t(b)];
+            c = c / double(count) - mean[std::size_t(a)] * mean[std::size_t(b)];
+            cov[std::size_t(b) * std::size_t(n) + std::size_t(a)] = c;
+        }
+    std::vector<double> vectors;
+    jacobi_eigen(cov, vectors, n);
+    std::vector<int> order(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) order[std::size_t(i)] = i;
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        return cov[std::size_t(a) * std::size_t(n) + std::size_t(a)] > cov[std::size_t(b) * std::size_t(n) + std::size_t(b)];
+    });
+    g.channels = std::min(n, kMaxGuideChannels);
+    // One scale for every component, so that their variances keep their
+    // ratio: the strongest's ±3 standard deviations span 0..255 (a flat set
+    // is not stretched past a standard deviation of 8 levels).
+    const double strongest = std::max(cov[std::size_t(order[0]) * std::size_t(n) + std::size_t(order[0])], 0.0);
+    const double scale = 255.0 / (6.0 * std::max(std::sqrt(strongest), 8.0));
+    for (int k = 0; k < g.channels; ++k) {
+        const int e = order[std::size_t(k)];
+        double centre = 0;
+        for (int c = 0; c < n; ++c) {
+            const double axis = vectors[std::size_t(c) * std::size_t(n) + std::size_t(e)];
+            const double coefficient = std::clamp(std::round(256.0 * scale * axis * weight[std::size_t(c)]),
+                                                  double(-kMaxGuideCoefficient), double(kMaxGuideCoefficient));
+            g.coefficients.push_back(int32_t(coefficient));
+            centre += coefficient * mean[std::size_t(c)] / weight[std::size_t(c)];
+        }
+        g.offsets.push_back(int32_t(std::clamp(std::round(256.0 * 128.0 - centre), double(-kMaxGuideOffset),
+                                               double(kMaxGuideOffset))));
+    }
+    return g;
+}
+
+MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const AtlasChoiceOptions& options) {
+    const Image& first = maps.at(0).image;
+    if (first.width < kMinAtlasSide || first.height < kMinAtlasSide)
+        fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "an atlas needs maps of at least " + std::to_string(kMinAtlasSide) + "x" +
+                                              std::to_string(kMinAtlasSide) + " pixels");
+    const GuideMatrix guide = guide_matrix(maps);
+    uint32_t attempts = 0;
+    for (int scale = 16; scale >= 1; scale = scale == 16 ? 12 : scale * 3 / 4) {
+        const int w = std::min({kMaxAtlasSide, first.width, std::max(kMinAtlasSide, first.width * scale / 16)});
+        const int h = std::min({kMaxAtlasSide, first.height, std::max(kMinAtlasSide, first.height * scale / 16)});
+        std::vector<Image> atlases;
+        for (const MaterialMap& m : maps) atlases.push_back(crop_top_left(m.image, w, h));
+        const int deepest = coherent_levels(w, h);
+        const int levels = options.levels ? std::min(options.levels, deepest) : deepest;
+        std::map<int, std::vector<uint8_t>> files;
+        const auto file_at = [&](int cq) -> const std::vector<uint8_t>& {
+            auto it = files.find(cq);
+            if (it != files.end()) return it->second;
+            std::vector<CodedMap> coded;
+            AtlasEncodeOptions ao;
+            ao.cq_level = cq;
+            for (std::size_t i = 0; i < maps.size(); ++i)
+                coded.push_back({maps[i].name, maps[i].kind, atlases[i].channels, encode_atlas(atlases[i], ao)});
+            ++attempts;
+            FileHeader hd;
+            hd.exemplar_width = uint32_t(first.width);
+            hd.exemplar_height = uint32_t(first.height);
+            hd.levels = uint8_t(levels);
+            hd.seed = options.seed;
+            AtlasSynthesisParams sp;
+            sp.example_tileable = options.example_tileable;
+            return files.emplace(cq, encode_material_file(hd, w, h, coded, guide, sp)).first->second;
+        };
+        // Size falls as the level rises, so the search bisects.
+        if (file_at(63).size() <= options.budget) {
+            int lo = 0, hi = 62, best = 63;
+            while (lo <= hi) {
+                const int mid = (lo + hi) / 2;
+                if (file_at(mid).size() <= options.budget) {
+                    best = mid;
+                    hi = mid - 1;
+                } else {
+                    lo = mid + 1;
+                }
+            }
+            MaterialChoice c;
+            c.file = file_at(best);
+            c.cq = best;
+            c.levels = levels;
+            c.atlas_width = w;
+            c.atlas_height = h;
+            c.attempts = attempts;
+            return c;
+        }
+        if ((w == kMinAtlasSide && h == kMinAtlasSide) || scale == 1) break;
+    }
+    fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no atlas of the " + std::to_string(maps.size()) + " maps fits in " +
+                                         std::to_string(options.budget) +
+                                         " bytes (the smallest needs more): raise --target-size or --quality");
+}
+
+}  // namespace vqtex

@@ -1,0 +1,48 @@
+// material_choice.hpp - what a version 9 file stores for a set of maps of
+// one surface (docs/FORMAT.md §2, §4.15): the guide that the synthesis
+// matches, made from all the maps by a principal component analysis of
+// their weighted channels, and the part of the example that becomes every
+// map's atlas, with the one AV1 quantiser all the maps are coded at for a
+// byte budget. One quantiser for all spends each map's bytes on what its
+// content needs: a flat gloss map takes few, a detailed albedo many.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "analysis/atlas_choice.hpp"
+#include "common/image.hpp"
+#include "format/atlas_file.hpp"
+
+namespace vqtex {
+
+struct MaterialMap {
+    std::string name;
+    MapKind kind = MapKind::Colour;
+    int weight = 1;  // 1..8: how much the map counts in the guide
+    Image image;
+};
+
+// The guide of a set of more than one map (a set of one is its own guide):
+// the first min(4, channels) principal components of the maps' channels,
+// each map's weighted by its weight, projected with one scale chosen so
+// that the strongest spans about 0..255 (±3 standard deviations), in the
+// file's integer form.
+GuideMatrix guide_matrix(const std::vector<MaterialMap>& maps);
+
+struct MaterialChoice {
+    std::vector<uint8_t> file;  // a whole version 9 file
+    int cq = 0;                 // libaom's level, 0..63, of every map
+    int levels = 0;
+    int atlas_width = 0, atlas_height = 0;
+    uint32_t attempts = 0;      // AV1 encodes of the set tried
+};
+
+// The finest quantiser at which the whole example's maps fit the budget,
+// or failing that the largest top-left crop (12/16, 9/16... of each side)
+// that fits. Throws LIMIT_EXCEEDED when nothing fits. The bytes do not
+// depend on the thread count.
+MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const AtlasChoiceOptions& options);
+
+}  // namespace vqtex

@@ -1,0 +1,334 @@
+// Material sets (format version 9, docs/FORMAT.md §2 and §4.15): several
+// maps of one surface synthesised once and read through the same
+// coordinates, so that the decoded maps line up; normal maps of unit
+// length; one set of positions read out for several images; and a file
+// whose fields are wrong refused with the check that catches it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "codec_support.hpp"
+#include "common/checksum.hpp"
+#include "common/image.hpp"
+#include "engine/coherent_synthesis.hpp"
+#include "engine/normal_map.hpp"
+#include "format/atlas_compact.hpp"
+#include "format/atlas_file.hpp"
+#include "format/container.hpp"
+#include "test_support.hpp"
+#include "vqtex/vqtex.hpp"
+#include "writer/byte_writer.hpp"
+
+using namespace vqtex;
+using vqtex_test::decode_params;
+
+namespace {
+
+// A surface of bumps: a height field from a few seeded blobs, an albedo
+// darker in the hollows (with colour noise), a gloss high on the tops and
+// the normal map of the height field. So albedo and gloss correlate
+// strongly, and the normals follow the same features.
+struct Surface {
+    Image albedo, normal, gloss;
+};
+
+Surface make_surface(int size, uint64_t seed) {
+    std::vector<double> height(std::size_t(size) * std::size_t(size), 0.0);
+    uint64_t s = seed;
+    const auto next = [&s] {
+        s = s * 6364136223846793005ull + 1442695040888963407ull;
+        return double(s >> 11) / double(uint64_t(1) << 53);
+    };
+    for (int b = 0; b < 24; ++b) {
+        const double cx = next() * size, cy = next() * size, r = 4 + next() * 8;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                // Wrapped distance: the surface tiles.
+                double dx = std::fabs(x - cx), dy = std::fabs(y - cy);
+                dx = std::min(dx, size - dx);
+                dy = std::min(dy, size - dy);
+                height[std::size_t(y) * std::size_t(size) + std::size_t(x)] +=
+                    std::exp(-(dx * dx + dy * dy) / (2 * r * r));
+            }
+    }
+    Surface out{Image(size, size, 3), Image(size, size, 3), Image(size, size, 1)};
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const auto h = [&](int xx, int yy) {
+                return height[std::size_t((yy + size) % size) * std::size_t(size) + std::size_t((xx + size) % size)];
+            };
+            const double v = std::min(1.0, h(x, y));
+            uint8_t* a = out.albedo.at(x, y);
+            const double noise = next() * 8;
+            a[0] = uint8_t(60 + 150 * v + noise);
+            a[1] = uint8_t(40 + 120 * v + noise);
+            a[2] = uint8_t(30 + 60 * v);
+            out.gloss.at(x, y)[0] = uint8_t(20 + 200 * v);
+            double nx = -(h(x + 1, y) - h(x - 1, y)) * 3, ny = -(h(x, y + 1) - h(x, y - 1)) * 3, nz = 1;
+            const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+            nx /= len, ny /= len, nz /= len;
+            uint8_t* n = out.normal.at(x, y);
+            n[0] = uint8_t(std::lround((nx + 1) * 127.5));
+            n[1] = uint8_t(std::lround((ny + 1) * 127.5));
+            n[2] = uint8_t(std::lround((nz + 1) * 127.5));
+        }
+    return out;
+}
+
+vqtex_image view(const Image& im) {
+    return vqtex_image{uint32_t(im.width), uint32_t(im.height), uint32_t(im.channels),
+                       const_cast<uint8_t*>(im.pixels.data())};
+}
+
+std::vector<uint8_t> encode_surface(const Surface& s) {
+    const std::vector<vqtex_map> maps = {{"albedo", VQTEX_MAP_COLOUR, 0, view(s.albedo)},
+                                         {"normal", VQTEX_MAP_NORMAL, 0, view(s.normal)},
+                                         {"gloss", VQTEX_MAP_DATA, 0, view(s.gloss)}};
+    vqtex_encode_params p;
+    vqtex_encode_params_init(&p);
+    p.threads = 1;
+    p.quality = 75;
+    const vqtex_cpp::Buffer file = vqtex_cpp::encode_maps(p, maps);
+    return std::vector<uint8_t>(file.data(), file.data() + file.size());
+}
+
+const std::vector<uint8_t>& surface_file() {
+    static const std::vector<uint8_t> file = encode_surface(make_surface(64, 7));
+    return file;
+}
+
+double luminance(const uint8_t* p, int channels) {
+    return channels >= 3 ? 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2] : p[0];
+}
+
+double correlation(const uint8_t* a, int ca, const uint8_t* b, int cb, std::size_t n) {
+    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double x = luminance(a + i * std::size_t(ca), ca), y = luminance(b + i * std::size_t(cb), cb);
+        sa += x, sb += y, saa += x * x, sbb += y * y, sab += x * y;
+    }
+    const double ma = sa / double(n), mb = sb / double(n);
+    return (sab / double(n) - ma * mb) / std::sqrt((saa / double(n) - ma * ma) * (sbb / double(n) - mb * mb));
+}
+
+double worst_normal_length_error(const uint8_t* p, std::size_t n) {
+    double worst = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        double l = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double v = 2.0 * p[i * 3 + std::size_t(c)] / 255.0 - 1.0;
+            l += v * v;
+        }
+        worst = std::max(worst, std::fabs(std::sqrt(l) - 1.0));
+    }
+    return worst;
+}
+
+}  // namespace
+
+TEST(Material, MapsDecodeAlignedWithUnitNormals) {
+    const Surface s = make_surface(64, 7);
+    const std::vector<uint8_t>& file = surface_file();
+    const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
+    EXPECT_EQ(info.format_version, 9u);
+    ASSERT_EQ(info.map_count, 3u);
+    EXPECT_STREQ(info.maps[1].name, "normal");
+    EXPECT_EQ(info.maps[1].kind, VQTEX_MAP_NORMAL);
+    EXPECT_EQ(info.maps[2].channels, 1u);
+    const std::vector<vqtex_cpp::Map> out = vqtex_cpp::decode_maps(decode_params(128, 96, 3, 2), file.data(), file.size());
+    ASSERT_EQ(out.size(), 3u);
+    const std::size_t n = 128 * 96;
+    for (const auto& m : out) {
+        ASSERT_EQ(m.image.width(), 128u);
+        ASSERT_EQ(m.image.height(), 96u);
+    }
+    // Aligned: albedo and gloss correlate as in the example; maps decoded
+    // apart (seeds differing) would not.
+    const double example = correlation(s.albedo.pixels.data(), 3, s.gloss.pixels.data(), 1, 64 * 64);
+    const double decoded = correlation(out[0].image.data(), 3, out[2].image.data(), 1, n);
+    EXPECT_GT(example, 0.8);
+    EXPECT_NEAR(decoded, example, 0.05);
+    // The measure does see a misalignment: the gloss moved by 9 pixels.
+    std::vector<uint8_t> moved(n);
+    for (std::size_t i = 0; i < n; ++i) moved[i] = out[2].image.data()[(i + 9) % n];
+    EXPECT_LT(correlation(out[0].image.data(), 3, moved.data(), 1, n), example - 0.3);
+    // And the normals are unit vectors, within what 8 bits can say.
+    EXPECT_LT(worst_normal_length_error(out[1].image.data(), n), 0.01);
+    // vqtex_decode gives the first map.
+    const Image first = vqtex_test::decode(file, decode_params(128, 96, 3, 2));
+    ASSERT_EQ(first.byte_count(), out[0].image.size_bytes());
+    EXPECT_EQ(std::memcmp(first.pixels.data(), out[0].image.data(), first.byte_count()), 0);
+}
+
+TEST(Material, SameBytesForAnyThreadCount) {
+    const std::vector<uint8_t>& file = surface_file();
+    const auto one = vqtex_cpp::decode_maps(decode_params(200, 72, 5, 1), file.data(), file.size());
+    for (uint32_t threads : {2u, 3u}) {
+        const auto many = vqtex_cpp::decode_maps(decode_params(200, 72, 5, threads), file.data(), file.size());
+        ASSERT_EQ(many.size(), one.size());
+        for (std::size_t i = 0; i < one.size(); ++i)
+            EXPECT_EQ(std::memcmp(many[i].image.data(), one[i].image.data(), one[i].image.size_bytes()), 0)
+                << one[i].name << " on " << threads << " threads";
+    }
+}
+
+TEST(Material, ReadingTheExampleItselfGivesTheSynthesis) {
+    // Readouts are what the positions show: the example read as a readout
+    // is the example's synthesis, byte for byte, whole and in bands.
+    const Image ex = make_surface(64, 3).albedo;
+    for (int band : {0, 24}) {
+        CoherentOptions o;
+        o.width = 150;
+        o.height = 100;
+        o.seed = 4;
+        o.blend = 2;
+        o.cut = 8;
+        o.band_rows = band;
+        const Image plain = synthesize_coherent(ex, 4, false, 1, o).image;
+        const CoherentResult r = synthesize_coherent(ex, 4, false, 1, o, {}, {Readout{&ex, false}, Readout{&ex, false}});
+        ASSERT_EQ(r.maps.size(), 2u);
+        EXPECT_EQ(r.maps[0], plain) << "band " << band;
+        EXPECT_EQ(r.maps[1], plain) << "band " << band;
+    }
+}
+
+TEST(Material, RenormalisedNormalsHaveUnitLength) {
+    Image im(256, 256, 3);
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) {
+            uint8_t* p = im.at(x, y);
+            p[0] = uint8_t(x), p[1] = uint8_t(y), p[2] = uint8_t((x * 7 + y * 3) & 255);
+        }
+    renormalise_normals(im, 2);
+    EXPECT_LT(worst_normal_length_error(im.pixels.data(), im.pixel_count()), 0.01);
+    // A unit vector stays where it is.
+    Image up(1, 1, 3);
+    up.at(0, 0)[0] = 128, up.at(0, 0)[1] = 128, up.at(0, 0)[2] = 255;
+    renormalise_normals(up, 1);
+    EXPECT_EQ(up.at(0, 0)[0], 128);
+    EXPECT_EQ(up.at(0, 0)[2], 255);
+}
+
+// Version 9 files written field by field, with the checksum made, so that
+// each check of docs/FORMAT.md §2.3 is reached with one field wrong.
+namespace {
+
+struct MapField {
+    std::string name;
+    int kind = 0, channels = 3;
+    std::vector<uint8_t> bits;
+};
+
+std::vector<uint8_t> v9_file(const std::vector<MapField>& maps, const std::vector<uint64_t>& guide,
+                             uint8_t packed_extra = 0, int64_t length_delta = 0) {
+    ByteWriter w;
+    w.bytes(kMagic, sizeof kMagic);
+    w.u16(9);
+    w.u8(uint8_t((2 << kPackedLevelsShift) | packed_extra));  // 3 levels
+    w.varint(32);
+    w.varint(32);
+    w.varint(1);
+    w.varint(maps.size());
+    for (const MapField& m : maps) {
+        w.varint(m.name.size());
+        w.bytes(reinterpret_cast<const uint8_t*>(m.name.data()), m.name.size());
+        w.u8(uint8_t(m.kind));
+        w.varint(uint64_t(m.channels));
+        w.varint(uint64_t(int64_t(m.bits.size()) + length_delta));
+    }
+    for (uint64_t v : guide) w.varint(v);
+    for (const MapField& m : maps) w.bytes(m.bits);
+    w.u32(crc32(w.data().data(), w.size()));
+    return w.data();
+}
+
+}  // namespace
+
+TEST(Material, WrongFieldsAreRefusedByTheirCheck) {
+    // Real bitstreams, taken from a file the encoder made.
+    const std::vector<uint8_t>& file = surface_file();
+    const AtlasFile f = decode_atlas_file(file.data(), file.size(), 256u << 20);
+    ASSERT_EQ(f.maps.size(), 3u);
+    std::vector<std::vector<uint8_t>> bits;
+    std::size_t at = f.bitstream_offset;
+    for (const AtlasMap& m : f.maps) {
+        bits.emplace_back(file.begin() + std::ptrdiff_t(at), file.begin() + std::ptrdiff_t(at + m.bytes));
+        at += m.bytes;
+    }
+    // The atlas is the 64x64 example: rebuild the same header at that size.
+    const auto with_size = [&](std::vector<uint8_t> v) {
+        // Header fields: aw, ah at bytes 11, 12 (one-byte varints of 32)
+        // become 64; the CRC is made again.
+        v[11] = 64, v[12] = 64;
+        const uint32_t crc = crc32(v.data(), v.size() - 4);
+        for (int k = 0; k < 4; ++k) v[v.size() - 4 + std::size_t(k)] = uint8_t(crc >> (8 * k));
+        return v;
+    };
+    const MapField albedo{"albedo", 0, 3, bits[0]}, normal{"normal", 1, 3, bits[1]}, gloss{"gloss", 2, 1, bits[2]};
+    const auto status = [](const std::vector<uint8_t>& bytes, std::string* detail = nullptr) {
+        vqtex_status st = VQTEX_OK;
+        vqtex_error err{};
+        vqtex_test::decode(bytes, decode_params(40, 40), &st, &err);
+        if (detail) *detail = err.detail;
+        return st;
+    };
+    // A good file of two maps decodes: a guide of one channel, the
+    // albedo's red (coefficient 256 in Q8, zigzag 512; offset 0).
+    const std::vector<uint64_t> guide2 = {1, 512, 0, 0, 0, 0};
+    EXPECT_EQ(status(with_size(v9_file({albedo, gloss}, guide2))), VQTEX_OK);
+    struct Case {
+        std::vector<uint8_t> bytes;
+        const char* what;
+    };
+    std::vector<MapField> dup = {albedo, albedo};
+    MapField bad_name = gloss;
+    bad_name.name = "gl/oss";
+    MapField bad_kind = gloss;
+    bad_kind.kind = 3;
+    MapField grey_normal = gloss;
+    grey_normal.kind = 1;
+    const std::vector<Case> cases = {
+        {with_size(v9_file({albedo, gloss}, guide2, 0x02)), "packed bits 0-1"},
+        {with_size(v9_file(dup, {1, 512, 0, 0, 0, 0, 0, 0})), "two maps are named"},
+        {with_size(v9_file({albedo, bad_name}, guide2)), "name holds a character"},
+        {with_size(v9_file({albedo, bad_kind}, guide2)), "has kind 3"},
+        {with_size(v9_file({albedo, grey_normal}, guide2)), "a normal map has 3"},
+        {with_size(v9_file({albedo, gloss}, {5, 512, 0, 0, 0, 0})), "guide channels is 5"},
+        {with_size(v9_file({albedo, gloss}, {1, 2 * 5000, 0, 0, 0, 0})), "guide coefficient"},
+        {with_size(v9_file({albedo, gloss}, guide2, 0, 1)), "bitstreams take"},
+        {with_size(v9_file({}, {})), "map count is 0"},
+    };
+    (void)normal;
+    for (const Case& c : cases) {
+        std::string detail;
+        EXPECT_EQ(status(c.bytes, &detail), VQTEX_ERROR_CORRUPT) << c.what;
+        EXPECT_NE(detail.find(c.what), std::string::npos) << c.what << ": " << detail;
+    }
+    // The memory limit counts every map's atlas.
+    vqtex_decode_params small = decode_params(40, 40);
+    small.memory_limit = 8u << 20;
+    vqtex_status st = VQTEX_OK;
+    vqtex_test::decode(file, small, &st);
+    EXPECT_EQ(st, VQTEX_ERROR_LIMIT_EXCEEDED);
+}
+
+TEST(Material, EveryTruncationAndByteFlipIsRejected) {
+    const std::vector<uint8_t>& file = surface_file();
+    const vqtex_decode_params p = decode_params(24, 20);
+    for (std::size_t n = 0; n < file.size(); n += 7) {
+        const std::vector<uint8_t> cut(file.begin(), file.begin() + std::ptrdiff_t(n));
+        vqtex_status st = VQTEX_OK;
+        vqtex_test::decode(cut, p, &st);
+        EXPECT_EQ(st, n < 18 ? VQTEX_ERROR_TRUNCATED : VQTEX_ERROR_CHECKSUM) << "prefix of " << n << " bytes";
+    }
+    for (std::size_t i = 10; i < file.size(); i += 5) {
+        std::vector<uint8_t> bad = file;
+        bad[i] ^= 0x10;
+        vqtex_status st = VQTEX_OK;
+        vqtex_test::decode(bad, p, &st);
+        EXPECT_EQ(st, VQTEX_ERROR_CHECKSUM) << "byte " << i;
+    }
+}
