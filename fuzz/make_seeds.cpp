@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/checksum.hpp"
@@ -186,6 +187,32 @@ int main(int argc, char** argv) {
         }
         vqtex_free(data);
         ++files;
+    }
+    // Version 9 sets, so that the fuzzers reach the maps' reader and the
+    // guide: a colour map with a grey data map, and a normal map alone.
+    {
+        const vqtex_tools::LoadedImage img = vqtex_tools::load_image((corpus / images[0]).string());
+        std::vector<uint8_t> colour = crop(img, 16, 3), grey = crop(img, 16, 1);
+        const vqtex_image c{16, 16, 3, colour.data()}, g{16, 16, 1, grey.data()};
+        const vqtex_map two[2] = {{"albedo", VQTEX_MAP_COLOUR, 0, c}, {"gloss", VQTEX_MAP_DATA, 0, g}};
+        const vqtex_map one[1] = {{"normal", VQTEX_MAP_NORMAL, 0, c}};
+        const std::pair<const vqtex_map*, uint32_t> sets[2] = {{two, 2}, {one, 1}};
+        for (const auto& [maps, count] : sets) {
+            vqtex_encode_params p;
+            vqtex_encode_params_init(&p);
+            p.threads = 1;
+            p.target_size = 500;
+            uint8_t* data = nullptr;
+            size_t size = 0;
+            vqtex_error err;
+            if (vqtex_encode_maps(&p, maps, count, &data, &size, nullptr, &err) != VQTEX_OK) {
+                std::fprintf(stderr, "make_seeds: set of %u maps: %s\n", count, err.detail);
+                return 1;
+            }
+            write(out / "decode" / ("set_" + std::to_string(count) + "_maps.vqt"), data, size);
+            vqtex_free(data);
+            ++files;
+        }
     }
     std::printf("make_seeds: wrote %d seed files under %s\n", files, out.string().c_str());
     return 0;
