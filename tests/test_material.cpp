@@ -5,6 +5,7 @@
 // whose fields are wrong refused with the check that catches it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -84,9 +85,9 @@ vqtex_image view(const Image& im) {
 }
 
 std::vector<uint8_t> encode_surface(const Surface& s) {
-    const std::vector<vqtex_map> maps = {{"albedo", VQTEX_MAP_COLOUR, 0, view(s.albedo)},
-                                         {"normal", VQTEX_MAP_NORMAL, 0, view(s.normal)},
-                                         {"gloss", VQTEX_MAP_DATA, 0, view(s.gloss)}};
+    const std::vector<vqtex_map> maps = {{"albedo", VQTEX_MAP_COLOUR, 0, view(s.albedo), nullptr},
+                                         {"normal", VQTEX_MAP_NORMAL, 0, view(s.normal), nullptr},
+                                         {"gloss", VQTEX_MAP_DATA, 0, view(s.gloss), nullptr}};
     vqtex_encode_params p;
     vqtex_encode_params_init(&p);
     p.threads = 1;
@@ -188,10 +189,12 @@ TEST(Material, ReadingTheExampleItselfGivesTheSynthesis) {
         o.cut = 8;
         o.band_rows = band;
         const Image plain = synthesize_coherent(ex, 4, false, 1, o).image;
-        const CoherentResult r = synthesize_coherent(ex, 4, false, 1, o, {}, {Readout{&ex, false}, Readout{&ex, false}});
+        Readout read;
+        read.image = &ex;
+        const CoherentResult r = synthesize_coherent(ex, 4, false, 1, o, {}, {read, read});
         ASSERT_EQ(r.maps.size(), 2u);
-        EXPECT_EQ(r.maps[0], plain) << "band " << band;
-        EXPECT_EQ(r.maps[1], plain) << "band " << band;
+        EXPECT_EQ(r.maps[0].image, plain) << "band " << band;
+        EXPECT_EQ(r.maps[1].image, plain) << "band " << band;
     }
 }
 
@@ -220,6 +223,7 @@ struct MapField {
     std::string name;
     int kind = 0, channels = 3;
     std::vector<uint8_t> bits;
+    int depth = 8;
 };
 
 std::vector<uint8_t> v9_file(const std::vector<MapField>& maps, const std::vector<uint64_t>& guide,
@@ -237,6 +241,7 @@ std::vector<uint8_t> v9_file(const std::vector<MapField>& maps, const std::vecto
         w.bytes(reinterpret_cast<const uint8_t*>(m.name.data()), m.name.size());
         w.u8(uint8_t(m.kind));
         w.varint(uint64_t(m.channels));
+        w.varint(uint64_t(m.depth));
         w.varint(uint64_t(int64_t(m.bits.size()) + length_delta));
     }
     for (uint64_t v : guide) w.varint(v);
@@ -290,12 +295,15 @@ TEST(Material, WrongFieldsAreRefusedByTheirCheck) {
     bad_kind.kind = 3;
     MapField grey_normal = gloss;
     grey_normal.kind = 1;
+    MapField nine_bits = gloss;
+    nine_bits.depth = 9;
     const std::vector<Case> cases = {
         {with_size(v9_file({albedo, gloss}, guide2, 0x02)), "packed bits 0-1"},
         {with_size(v9_file(dup, {1, 512, 0, 0, 0, 0, 0, 0})), "two maps are named"},
         {with_size(v9_file({albedo, bad_name}, guide2)), "name holds a character"},
         {with_size(v9_file({albedo, bad_kind}, guide2)), "has kind 3"},
         {with_size(v9_file({albedo, grey_normal}, guide2)), "a normal map has 3"},
+        {with_size(v9_file({albedo, nine_bits}, guide2)), "9 bits a sample"},
         {with_size(v9_file({albedo, gloss}, {5, 512, 0, 0, 0, 0})), "guide channels is 5"},
         {with_size(v9_file({albedo, gloss}, {1, 2 * 5000, 0, 0, 0, 0})), "guide coefficient"},
         {with_size(v9_file({albedo, gloss}, guide2, 0, 1)), "bitstreams take"},
@@ -331,4 +339,73 @@ TEST(Material, EveryTruncationAndByteFlipIsRejected) {
         vqtex_test::decode(bad, p, &st);
         EXPECT_EQ(st, VQTEX_ERROR_CHECKSUM) << "byte " << i;
     }
+}
+
+// A 16-bit height map (a bundled photograph-like texture, box-filtered in
+// 16 bits so that it has thousands of levels) keeps them: 12 bits in the
+// file, 16-bit samples out.
+TEST(Material, SixteenBitHeightsKeepTheirLevels) {
+    const Image grey = vqtex_test::load_corpus("clouds_128.png");
+    Image16 heights(grey.width, grey.height, 1);
+    for (int y = 0; y < grey.height; ++y)
+        for (int x = 0; x < grey.width; ++x) {
+            uint32_t sum = 0;
+            for (int dy = -2; dy <= 2; ++dy)
+                for (int dx = -2; dx <= 2; ++dx) sum += grey.wrapped(x + dx, y + dy)[0];
+            heights.at(x, y)[0] = uint16_t(sum * 65535u / (255u * 25u));
+        }
+    std::vector<uint16_t> levels(heights.pixels);
+    std::sort(levels.begin(), levels.end());
+    ASSERT_GT(std::unique(levels.begin(), levels.end()) - levels.begin(), 2000);
+    vqtex_image16 in{uint32_t(heights.width), uint32_t(heights.height), 1, heights.pixels.data()};
+    vqtex_map map{"height", VQTEX_MAP_DATA, 0, {}, &in};
+    vqtex_encode_params p;
+    vqtex_encode_params_init(&p);
+    p.threads = 1;
+    p.quality = 75;
+    const vqtex_cpp::Buffer file = vqtex_cpp::encode_maps(p, {map});
+    const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
+    EXPECT_EQ(info.format_version, 9u);
+    ASSERT_EQ(info.map_count, 1u);
+    EXPECT_EQ(info.maps[0].bits, 12u);
+    const auto maps = vqtex_cpp::decode_maps(decode_params(256, 256, 2, 2), file.data(), file.size());
+    ASSERT_EQ(maps.size(), 1u);
+    ASSERT_EQ(maps[0].bits, 12u);
+    const vqtex_cpp::Image16& out = maps[0].image16;
+    ASSERT_EQ(out.channels(), 1u);
+    ASSERT_EQ(out.width(), 256u);
+    // vqtex_decode's image has bytes: it refuses the map and says why.
+    vqtex_status st = VQTEX_OK;
+    vqtex_error err{};
+    vqtex_test::decode(std::vector<uint8_t>(file.data(), file.data() + file.size()), decode_params(64, 64), &st, &err);
+    EXPECT_EQ(st, VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(err.detail).find("vqtex_decode_maps"), std::string::npos) << err.detail;
+    const uint16_t* samples = out.data();
+    std::vector<uint16_t> decoded(samples, samples + 256 * 256);
+    // No terraces: 8 bits widened to 16 would make every step between
+    // neighbours a multiple of 257; and the output has the example's share
+    // of steps finer than one 8-bit level.
+    const auto steps = [](const uint16_t* v, int w, int h, double* fine) {
+        uint64_t all = 0, off_grid = 0, small = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 1; x < w; ++x) {
+                const int d = std::abs(int(v[std::size_t(y) * std::size_t(w) + std::size_t(x)]) -
+                                       int(v[std::size_t(y) * std::size_t(w) + std::size_t(x) - 1]));
+                if (d == 0) continue;
+                ++all;
+                if (d % 257 != 0) ++off_grid;
+                if (d < 257) ++small;
+            }
+        *fine = double(small) / double(all);
+        return double(off_grid) / double(all);
+    };
+    double example_fine = 0, output_fine = 0;
+    steps(heights.pixels.data(), heights.width, heights.height, &example_fine);
+    EXPECT_GT(steps(decoded.data(), 256, 256, &output_fine), 0.9);
+    EXPECT_GT(output_fine, 0.7 * example_fine) << output_fine << " against the example's " << example_fine;
+    std::sort(decoded.begin(), decoded.end());
+    EXPECT_GE(std::unique(decoded.begin(), decoded.end()) - decoded.begin(), 1024);
+    // The same bytes on other thread counts.
+    const auto again = vqtex_cpp::decode_maps(decode_params(256, 256, 2, 3), file.data(), file.size());
+    EXPECT_EQ(std::memcmp(again[0].image16.data(), out.data(), out.samples() * 2), 0);
 }

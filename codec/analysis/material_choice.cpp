@@ -56,15 +56,33 @@ void jacobi_eigen(std::vector<double>& a, std::vector<double>& vectors, int n) {
     }
 }
 
-Image crop_top_left(const Image& image, int w, int h) {
+template <typename T>
+BasicImage<T> crop_top_left(const BasicImage<T>& image, int w, int h) {
     if (w == image.width && h == image.height) return image;
-    Image out(w, h, image.channels);
+    BasicImage<T> out(w, h, image.channels);
     for (int y = 0; y < h; ++y)
-        std::memcpy(out.at(0, y), image.at(0, y), std::size_t(w) * std::size_t(image.channels));
+        std::memcpy(out.at(0, y), image.at(0, y), std::size_t(w) * std::size_t(image.channels) * sizeof(T));
     return out;
 }
 
 }  // namespace
+
+MaterialMap map_from_16_bits(std::string name, MapKind kind, int weight, const Image16& samples) {
+    MaterialMap m;
+    m.name = std::move(name);
+    m.kind = kind;
+    m.weight = weight;
+    m.bits = kHighBitDepth;
+    m.image16 = Image16(samples.width, samples.height, samples.channels);
+    m.image = Image(samples.width, samples.height, samples.channels);
+    const uint32_t top = (1u << kHighBitDepth) - 1;
+    for (std::size_t i = 0; i < samples.pixels.size(); ++i) {
+        const uint16_t v = uint16_t((uint32_t(samples.pixels[i]) * top + 32767) / 65535);
+        m.image16.pixels[i] = v;
+        m.image.pixels[i] = uint8_t(v >> (kHighBitDepth - 8));
+    }
+    return m;
+}
 
 GuideMatrix guide_matrix(const std::vector<MaterialMap>& maps) {
     GuideMatrix g;
@@ -138,7 +156,11 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
         const int w = std::min({kMaxAtlasSide, first.width, std::max(kMinAtlasSide, first.width * scale / 16)});
         const int h = std::min({kMaxAtlasSide, first.height, std::max(kMinAtlasSide, first.height * scale / 16)});
         std::vector<Image> atlases;
-        for (const MaterialMap& m : maps) atlases.push_back(crop_top_left(m.image, w, h));
+        std::vector<Image16> atlases16;
+        for (const MaterialMap& m : maps) {
+            atlases.push_back(crop_top_left(m.image, w, h));
+            atlases16.push_back(m.bits > 8 ? crop_top_left(m.image16, w, h) : Image16());
+        }
         const int deepest = coherent_levels(w, h);
         const int levels = options.levels ? std::min(options.levels, deepest) : deepest;
         std::map<int, std::vector<uint8_t>> files;
@@ -149,7 +171,9 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
             AtlasEncodeOptions ao;
             ao.cq_level = cq;
             for (std::size_t i = 0; i < maps.size(); ++i)
-                coded.push_back({maps[i].name, maps[i].kind, atlases[i].channels, encode_atlas(atlases[i], ao)});
+                coded.push_back({maps[i].name, maps[i].kind, atlases[i].channels, maps[i].bits,
+                                 maps[i].bits > 8 ? encode_atlas_high(atlases16[i], maps[i].bits, ao)
+                                                  : encode_atlas(atlases[i], ao)});
             ++attempts;
             FileHeader hd;
             hd.exemplar_width = uint32_t(first.width);

@@ -21,8 +21,17 @@ struct MaterialMap {
     std::string name;
     MapKind kind = MapKind::Colour;
     int weight = 1;  // 1..8: how much the map counts in the guide
-    Image image;
+    Image image;     // bytes; for a map of more than 8 bits, its samples >> (bits - 8)
+    int bits = 8;    // 8, or 10 or 12 with image16
+    Image16 image16; // above 8 bits: the samples, 0 to 2^bits - 1
 };
+
+// The bits a 16-bit example keeps in the file: AV1's highest depth, so that
+// a height map keeps 4096 levels.
+inline constexpr int kHighBitDepth = 12;
+
+// A map of 16-bit samples (0..65535) as kHighBitDepth bits, rounded.
+MaterialMap map_from_16_bits(std::string name, MapKind kind, int weight, const Image16& samples);
 
 // The guide of a set of more than one map (a set of one is its own guide):
 // the first min(4, channels) principal components of the maps' channels,

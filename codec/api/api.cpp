@@ -47,6 +47,12 @@ void vqtex_image_free(vqtex_image* image) {
     *image = vqtex_image{};
 }
 
+void vqtex_image16_free(vqtex_image16* image) {
+    if (!image) return;
+    std::free(image->pixels);
+    *image = vqtex_image16{};
+}
+
 void vqtex_free(void* data) { std::free(data); }
 
 void vqtex_volume_free(vqtex_volume* v) {

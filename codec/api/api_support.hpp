@@ -53,7 +53,9 @@ vqtex_status guarded(vqtex_error* error, Fn&& body) {
     }
 }
 
-inline Image image_from_c(const vqtex_image* in, const char* what) {
+// The checks every image from the caller passes, 8 or 16 bits a sample.
+template <typename CImage>
+inline void check_image_from_c(const CImage* in, const char* what) {
     if (!in) fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " is NULL");
     if (in->width == 0 || in->height == 0)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has zero size (" +
@@ -68,13 +70,26 @@ inline Image image_from_c(const vqtex_image* in, const char* what) {
         fail(VQTEX_ERROR_LIMIT_EXCEEDED, std::string(what) + " is larger than " + std::to_string(VQTEX_MAX_SIDE) +
                                              " on a side or 2^30 pixels");
     if (!in->pixels) fail(VQTEX_ERROR_INVALID_ARGUMENT, std::string(what) + " has no pixels");
+}
+
+inline Image image_from_c(const vqtex_image* in, const char* what) {
+    check_image_from_c(in, what);
     Image img(int(in->width), int(in->height), int(in->channels));
     std::memcpy(img.pixels.data(), in->pixels, img.byte_count());
     return img;
 }
 
-inline void image_to_c(Image&& img, vqtex_image* out) {
-    uint8_t* p = static_cast<uint8_t*>(std::malloc(img.byte_count()));
+inline Image16 image16_from_c(const vqtex_image16* in, const char* what) {
+    check_image_from_c(in, what);
+    Image16 img(int(in->width), int(in->height), int(in->channels));
+    std::memcpy(img.pixels.data(), in->pixels, img.byte_count());
+    return img;
+}
+
+// A library-allocated copy for the caller (vqtex_image or vqtex_image16).
+template <typename T, typename CImage>
+inline void image_to_c(BasicImage<T>&& img, CImage* out) {
+    auto* p = static_cast<T*>(std::malloc(img.byte_count()));
     if (!p) throw std::bad_alloc();
     std::memcpy(p, img.pixels.data(), img.byte_count());
     out->width = uint32_t(img.width);
@@ -153,6 +168,7 @@ inline void describe_container(const FileHeader& h, const std::vector<Section>& 
     std::memcpy(info->maps[0].name, "texture", 8);
     info->maps[0].kind = VQTEX_MAP_COLOUR;
     info->maps[0].channels = h.channels;
+    info->maps[0].bits = 8;
     info->section_count = uint32_t(std::min<std::size_t>(sections.size(), VQTEX_MAX_SECTIONS));
     for (uint32_t i = 0; i < info->section_count; ++i) {
         const Section& s = sections[i];

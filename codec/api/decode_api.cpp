@@ -84,12 +84,21 @@ Options tree_options(const vqtex_decode_params* p, const FileHeader& header, Lev
     return opt;
 }
 
-// A decoded map with its name and kind.
+// A decoded map with its name and kind: bytes, or for a map of more than
+// 8 bits 16-bit samples.
 struct NamedMap {
     std::string name;
     MapKind kind = MapKind::Colour;
+    int bits = 8;
     Image image;
+    Image16 image16;
 };
+
+// Samples of `bits` (10 or 12) to 16 bits by repeating their high bits
+// below them, so that 0 and 2^bits - 1 become 0 and 65535.
+void widen_to_16_bits(Image16& image, int bits) {
+    for (uint16_t& v : image.pixels) v = uint16_t((v << (16 - bits)) | (v >> (2 * bits - 16)));
+}
 
 // An atlas file (docs/FORMAT.md §2-§4, §A): the atlas decoded, then the
 // coherent engine synthesises from it exactly as vqtex_synthesize would
@@ -108,8 +117,8 @@ std::vector<NamedMap> decode_atlas_maps(const vqtex_decode_params* p, const uint
     int channels = f.atlas.channels;
     uint64_t atlases = 0;
     for (const AtlasMap& m : f.maps) {
-        channels += m.atlas.channels;
-        atlases += m.atlas.byte_count();
+        channels += m.atlas.channels * (m.bits > 8 ? 2 : 1);
+        atlases += m.atlas.byte_count() + m.atlas16.byte_count();
     }
     check_output_memory(f.input_bytes + atlases +
                             atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels, f.header.levels,
@@ -121,25 +130,48 @@ std::vector<NamedMap> decode_atlas_maps(const vqtex_decode_params* p, const uint
     opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
     std::vector<NamedMap> out;
     if (f.maps.empty()) {
-        out.push_back({"texture", MapKind::Colour,
-                       synthesize_coherent(f.atlas, f.header.levels, f.params.example_tileable, f.params.coherence, opt)
-                           .image});
+        out.emplace_back();
+        out.back().name = "texture";
+        out.back().image =
+            synthesize_coherent(f.atlas, f.header.levels, f.params.example_tileable, f.params.coherence, opt).image;
         return out;
     }
     std::vector<Readout> readouts;
-    for (const AtlasMap& m : f.maps)
-        readouts.push_back({&m.atlas, m.kind == MapKind::Colour && f.params.blend_straight_alpha});
+    for (const AtlasMap& m : f.maps) {
+        Readout r;
+        if (m.bits > 8)
+            r.image16 = &m.atlas16;
+        else
+            r.image = &m.atlas;
+        r.straight_alpha = m.kind == MapKind::Colour && f.params.blend_straight_alpha;
+        readouts.push_back(r);
+    }
     CoherentResult r =
         synthesize_coherent(f.atlas, f.header.levels, f.params.example_tileable, f.params.coherence, opt, {}, readouts);
     for (std::size_t i = 0; i < f.maps.size(); ++i) {
-        if (f.maps[i].kind == MapKind::Normal) renormalise_normals(r.maps[i], opt.threads);
-        out.push_back({f.maps[i].name, f.maps[i].kind, std::move(r.maps[i])});
+        const AtlasMap& m = f.maps[i];
+        NamedMap named;
+        named.name = m.name;
+        named.kind = m.kind;
+        named.bits = m.bits;
+        if (m.bits > 8) {
+            named.image16 = std::move(r.maps[i].image16);
+            if (m.kind == MapKind::Normal) renormalise_normals(named.image16, m.bits, opt.threads);
+            widen_to_16_bits(named.image16, m.bits);
+        } else {
+            named.image = std::move(r.maps[i].image);
+            if (m.kind == MapKind::Normal) renormalise_normals(named.image, opt.threads);
+        }
+        out.push_back(std::move(named));
     }
     return out;
 }
 
 std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
     std::vector<NamedMap> maps = decode_atlas_maps(p, data, size);
+    if (!maps[0].image16.empty())
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "the file's first map keeps 12 bits a sample, and a mip chain is made "
+                                           "of bytes: decode it with vqtex_decode_maps");
     std::vector<Image> out;
     out.push_back(std::move(maps[0].image));
     return out;
@@ -192,6 +224,17 @@ vqtex_status vqtex_decode(const vqtex_decode_params* params, const uint8_t* data
     return guarded(error, [&] {
         if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output image pointer is NULL");
         *out = vqtex_image{};
+        validate(params);
+        if (is_atlas_file(data, size)) {
+            // The first map.
+            std::vector<NamedMap> maps = decode_atlas_maps(params, data, size);
+            maps.resize(1);
+            if (!maps[0].image16.empty())
+                fail(VQTEX_ERROR_INVALID_ARGUMENT, "the file's first map keeps 12 bits a sample, more than "
+                                                   "vqtex_image holds: decode it with vqtex_decode_maps");
+            image_to_c(std::move(maps[0].image), out);
+            return;
+        }
         std::vector<Image> pyramid = decode_pyramid(params, data, size);
         // The coarser levels go before the copy to the caller's buffer: the
         // peak is then twice the output, not two and a third times.
@@ -212,7 +255,9 @@ vqtex_status vqtex_decode_maps(const vqtex_decode_params* params, const uint8_t*
         } else {
             std::vector<Image> pyramid = decode_pyramid(params, data, size);
             pyramid.resize(1);
-            decoded.push_back({"texture", MapKind::Colour, std::move(pyramid[0])});
+            decoded.emplace_back();
+            decoded.back().name = "texture";
+            decoded.back().image = std::move(pyramid[0]);
         }
         if (capacity < decoded.size())
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "the file holds " + std::to_string(decoded.size()) +
@@ -222,9 +267,18 @@ vqtex_status vqtex_decode_maps(const vqtex_decode_params* params, const uint8_t*
             std::snprintf(maps[i].name, sizeof maps[i].name, "%s", decoded[i].name.c_str());
             maps[i].kind = vqtex_map_kind(decoded[i].kind);
             try {
-                image_to_c(std::move(decoded[i].image), &maps[i].image);
+                if (!decoded[i].image16.empty()) {
+                    maps[i].bits = uint32_t(decoded[i].bits);
+                    image_to_c(std::move(decoded[i].image16), &maps[i].image16);
+                } else {
+                    maps[i].bits = 8;
+                    image_to_c(std::move(decoded[i].image), &maps[i].image);
+                }
             } catch (...) {
-                for (std::size_t j = 0; j < i; ++j) vqtex_image_free(&maps[j].image);
+                for (std::size_t j = 0; j < i; ++j) {
+                    vqtex_image_free(&maps[j].image);
+                    vqtex_image16_free(&maps[j].image16);
+                }
                 throw;
             }
         }
@@ -281,6 +335,7 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
                 std::snprintf(info->maps[0].name, sizeof info->maps[0].name, "texture");
                 info->maps[0].kind = VQTEX_MAP_COLOUR;
                 info->maps[0].channels = uint32_t(f.atlas.channels);
+                info->maps[0].bits = 8;
                 info->maps[0].bytes = f.atlas_bytes;
             } else {
                 info->map_count = uint32_t(f.maps.size());
@@ -288,6 +343,7 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
                     std::snprintf(info->maps[i].name, sizeof info->maps[i].name, "%s", f.maps[i].name.c_str());
                     info->maps[i].kind = vqtex_map_kind(f.maps[i].kind);
                     info->maps[i].channels = uint32_t(f.maps[i].atlas.channels);
+                    info->maps[i].bits = uint32_t(f.maps[i].bits);
                     info->maps[i].bytes = f.maps[i].bytes;
                 }
                 info->channels = uint32_t(f.maps[0].atlas.channels);

@@ -52,10 +52,15 @@ std::vector<MaterialMap> maps_from_c(const vqtex_map* maps, uint32_t count) {
                                                    " is not colour, normal or data");
         if (m.weight > 8) fail(VQTEX_ERROR_INVALID_ARGUMENT, "map '" + name + "': weight above 8");
         MaterialMap mm;
-        mm.name = name;
-        mm.kind = MapKind(m.kind);
-        mm.weight = m.weight ? int(m.weight) : default_weight(m, name);
-        mm.image = image_from_c(&m.image, "map image");
+        const int weight = m.weight ? int(m.weight) : default_weight(m, name);
+        if (m.image16) {
+            mm = map_from_16_bits(name, MapKind(m.kind), weight, image16_from_c(m.image16, "map image"));
+        } else {
+            mm.name = name;
+            mm.kind = MapKind(m.kind);
+            mm.weight = weight;
+            mm.image = image_from_c(&m.image, "map image");
+        }
         if (mm.kind == MapKind::Normal && mm.image.channels != 3)
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "normal map '" + name + "' has " + std::to_string(mm.image.channels) +
                                                    " channels; a normal map is RGB (x, y, z)");

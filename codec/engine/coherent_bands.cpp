@@ -4,6 +4,7 @@
 #include "engine/coherent_bands.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cstdint>
 #include <vector>
 
@@ -57,11 +58,35 @@ void move_into_frame(std::vector<uint32_t>& positions, int frame) {
     for (uint32_t& p : positions) p += by;
 }
 
+// A readout's output, allocated.
+ReadImage allocate(const Readout& r, int w, int h) {
+    ReadImage out;
+    if (r.image16)
+        out.image16 = Image16(w, h, r.image16->channels);
+    else
+        out.image = Image(w, h, r.image->channels);
+    return out;
+}
+
+// Rows [first, first + count) of a readout through `row_at`.
+void read_rows(const Readout& r, bool wraps, int blend, const std::function<const uint32_t*(int)>& row_at, int first,
+               int count, ReadImage& out, int threads) {
+    if (r.image16)
+        blend_rows(*r.image16, wraps, blend, row_at, first, count, out.image16, threads, r.straight_alpha);
+    else
+        blend_rows(*r.image, wraps, blend, row_at, first, count, out.image, threads, r.straight_alpha);
+}
+
 // Cuts the tori of images of one size open at one place, found on all.
-void roll_all(std::vector<Image>& images, int threads) {
+void roll_all(std::vector<ReadImage>& images, int w, int h, int threads) {
     std::vector<TorusPlane> planes;
-    for (Image& im : images) planes.push_back({im.pixels.data(), im.channels});
-    cut_torus(planes, images[0].width, images[0].height, threads);
+    for (ReadImage& im : images) {
+        if (!im.image16.empty())
+            planes.push_back({reinterpret_cast<uint8_t*>(im.image16.pixels.data()), im.image16.channels, 2});
+        else
+            planes.push_back({im.image.pixels.data(), im.image.channels, 1});
+    }
+    cut_torus(planes, w, h, threads);
 }
 
 // The output of a large texture: the finest level synthesised in bands of
@@ -71,8 +96,8 @@ void roll_all(std::vector<Image>& images, int threads) {
 // level's positions nor a second image are ever whole. The same bytes as
 // read_positions on the whole level: a band's rows are exact, and the torus
 // cut is found on the pixels, the same sums as through the positions.
-std::vector<Image> synthesize_in_bands(const Image& example, const std::vector<Readout>& readouts, int frame,
-                                       LevelPasses& passes, int band, int margin) {
+std::vector<ReadImage> synthesize_in_bands(const Image& example, const std::vector<Readout>& readouts, int frame,
+                                           LevelPasses& passes, int band, int margin) {
     const CoherentOptions& options = passes.options;
     const AppearanceSpace& space = passes.space;
     const int w = options.width, h = options.height;
@@ -82,8 +107,8 @@ std::vector<Image> synthesize_in_bands(const Image& example, const std::vector<R
     PixelIndices parents =
         narrow_positions(space.width, uint64_t(space.width) * uint64_t(space.height), coarse.positions, options.threads);
     const auto parent_at = [&](std::size_t i) { return parents.position(i); };
-    std::vector<Image> out;
-    for (const Readout& r : readouts) out.emplace_back(w, h, r.image->channels);
+    std::vector<ReadImage> out;
+    for (const Readout& r : readouts) out.push_back(allocate(r, w, h));
     PositionMap part{w, 0, {}};
     passes.enter(0);
     for (int y0 = 0; y0 < h; y0 += band) {
@@ -99,13 +124,13 @@ std::vector<Image> synthesize_in_bands(const Image& example, const std::vector<R
                   rows_of.first, h);
         // The band's own rows (blend 0 copies each pixel).
         for (std::size_t m = 0; m < readouts.size(); ++m)
-            blend_rows(*readouts[m].image, space.wraps, options.blend,
-                       [&](int y) { return part.positions.data() + std::size_t(y - y0 + margin) * std::size_t(w); },
-                       y0, rows, out[m], options.threads, readouts[m].straight_alpha);
+            read_rows(readouts[m], space.wraps, options.blend,
+                      [&](int y) { return part.positions.data() + std::size_t(y - y0 + margin) * std::size_t(w); }, y0,
+                      rows, out[m], options.threads);
     }
     std::vector<uint32_t>().swap(part.positions);
     std::vector<uint8_t>().swap(parents.data);
-    if (options.roll) roll_all(out, options.threads);
+    if (options.roll) roll_all(out, w, h, options.threads);
     return out;
 }
 
@@ -123,41 +148,42 @@ uint64_t band_bytes(const Image& example, const AppearanceSpace& space, int cohe
 }  // namespace
 
 // The finest level whole, or for a large output in bands.
-std::vector<Image> synthesize_pixels(const Image& example, int frame, const AppearanceSpace& space,
-                                     const CoherenceSets& sets, const CoherentOptions& options,
-                                     const std::vector<Readout>& readouts, AppearanceSpace* by_level_space,
-                                     CoherenceSets* by_level_sets) {
+std::vector<ReadImage> synthesize_pixels(const Image& example, int frame, const AppearanceSpace& space,
+                                         const CoherenceSets& sets, const CoherentOptions& options,
+                                         const std::vector<Readout>& readouts, AppearanceSpace* by_level_space,
+                                         CoherenceSets* by_level_sets) {
     LevelPasses passes(space, sets, options);
     passes.by_level_space = by_level_space;
     passes.by_level_sets = by_level_sets;
     const int margin = passes.band_margin();
     // What is read: the example itself, or the readouts (their channels
-    // together count as one image's for the memory plan).
+    // together count as one image's for the memory plan, 16-bit ones twice).
     std::vector<Readout> read = readouts;
-    if (read.empty()) read.push_back({&example, options.blend_straight_alpha});
+    if (read.empty()) read.push_back({&example, nullptr, options.blend_straight_alpha});
     int channels = 0;
-    for (const Readout& r : read) channels += r.image->channels;
+    for (const Readout& r : read) channels += r.channels() * (r.image16 ? 2 : 1);
     const int band = band_rows(options, channels, margin, band_bytes(example, space, sets.k));
-    std::vector<Image> out;
+    std::vector<ReadImage> out;
     if (band == 0) {
         PositionMap map = passes.levels_down_to(0);
         move_into_frame(map.positions, frame);
         cut_seams(example, space.wraps, map.width, map.height, map.positions, cut_rules(options), options.threads);
         if (readouts.empty()) {
-            out.push_back(read_positions(example, std::move(map), options.roll, options.threads, options.blend,
-                                         space.wraps, options.blend_straight_alpha));
+            out.emplace_back();
+            out.back().image = read_positions(example, std::move(map), options.roll, options.threads, options.blend,
+                                              space.wraps, options.blend_straight_alpha);
             return out;
         }
         for (const Readout& r : read) {
-            out.emplace_back(map.width, map.height, r.image->channels);
-            blend_rows(*r.image, space.wraps, options.blend,
-                       [&](int y) {
-                           return map.positions.data() + std::size_t(Image::wrap(y, map.height)) * std::size_t(map.width);
-                       },
-                       0, map.height, out.back(), options.threads, r.straight_alpha);
+            out.push_back(allocate(r, map.width, map.height));
+            read_rows(r, space.wraps, options.blend,
+                      [&](int y) {
+                          return map.positions.data() + std::size_t(Image::wrap(y, map.height)) * std::size_t(map.width);
+                      },
+                      0, map.height, out.back(), options.threads);
         }
         std::vector<uint32_t>().swap(map.positions);
-        if (options.roll) roll_all(out, options.threads);
+        if (options.roll) roll_all(out, map.width, map.height, options.threads);
         return out;
     }
     return synthesize_in_bands(example, read, frame, passes, band, margin);

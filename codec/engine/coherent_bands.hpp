@@ -20,9 +20,10 @@ namespace vqtex::coherent {
 // `by_level_space` and `by_level_sets` are `space` and `sets`, whose
 // levels the synthesis fills and empties. Returns the example's pixels
 // through the positions, or with `readouts` each readout's.
-std::vector<Image> synthesize_pixels(const Image& example, int margin, const AppearanceSpace& space,
-                                     const CoherenceSets& sets, const CoherentOptions& options,
-                                     const std::vector<Readout>& readouts = {},
-                                     AppearanceSpace* by_level_space = nullptr, CoherenceSets* by_level_sets = nullptr);
+std::vector<ReadImage> synthesize_pixels(const Image& example, int margin, const AppearanceSpace& space,
+                                         const CoherenceSets& sets, const CoherentOptions& options,
+                                         const std::vector<Readout>& readouts = {},
+                                         AppearanceSpace* by_level_space = nullptr,
+                                         CoherenceSets* by_level_sets = nullptr);
 
 }  // namespace vqtex::coherent

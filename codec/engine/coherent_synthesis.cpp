@@ -100,10 +100,10 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     const auto t1 = Clock::now();
     CoherentResult r;
-    std::vector<Image> images = coherent::synthesize_pixels(example, margin, space, sets, options, readouts,
-                                                            by_level ? &space : nullptr, by_level ? &sets : nullptr);
+    std::vector<ReadImage> images = coherent::synthesize_pixels(example, margin, space, sets, options, readouts,
+                                                                by_level ? &space : nullptr, by_level ? &sets : nullptr);
     if (readouts.empty())
-        r.image = std::move(images[0]);
+        r.image = std::move(images[0].image);
     else
         r.maps = std::move(images);
     // What the analysis makes, whether it is held at once or level by level.

@@ -170,11 +170,20 @@ int coherent_levels(int width, int height);
 
 // An image read through the positions that a synthesis from another
 // image (the guide of a material's maps, docs/FORMAT.md §4.15) gives:
-// the same size as that image, any channel count. `straight_alpha` is
+// the same size as that image, any channel count, bytes (`image`) or
+// 16-bit samples (`image16`, a map of 10 or 12 bits). `straight_alpha` is
 // CoherentOptions::blend_straight_alpha for this image alone.
 struct Readout {
     const Image* image = nullptr;
+    const Image16* image16 = nullptr;
     bool straight_alpha = false;
+    int channels() const { return image16 ? image16->channels : image->channels; }
+};
+
+// What a readout gives: `image`, or `image16` for a 16-bit readout.
+struct ReadImage {
+    Image image;
+    Image16 image16;
 };
 
 // The whole engine, example to texture: the appearance space of `levels`
@@ -189,7 +198,7 @@ struct Readout {
 // and rolled alike, the roll found on all of them), and `image` is empty.
 struct CoherentResult {
     Image image;
-    std::vector<Image> maps;
+    std::vector<ReadImage> maps;
     std::size_t model_bytes = 0;  // appearance space and coherence sets
     double analyse_seconds = 0, synthesise_seconds = 0;
 };

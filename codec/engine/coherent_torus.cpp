@@ -22,7 +22,16 @@ int first_least(const std::vector<int64_t>& across) {
     return int(at);
 }
 
-// The sum of |a[i] - b[i]| over n bytes.
+// The sum of |a[i] - b[i]| over n samples.
+template <typename T>
+uint64_t sample_distance(const T* __restrict a, const T* __restrict b, std::size_t n) {
+    uint64_t d = 0;
+    for (std::size_t i = 0; i < n; ++i) d += uint32_t(std::abs(int(a[i]) - int(b[i])));
+    return d;
+}
+
+// The bytes' sums in 32 bits (a row of at most 16384 x 4 bytes fits),
+// which vectorise.
 uint32_t byte_distance(const uint8_t* __restrict a, const uint8_t* __restrict b, std::size_t n) {
     uint32_t d = 0;
     for (std::size_t i = 0; i < n; ++i) d += uint32_t(std::abs(int(a[i]) - int(b[i])));
@@ -30,9 +39,35 @@ uint32_t byte_distance(const uint8_t* __restrict a, const uint8_t* __restrict b,
 }
 
 // acc[i - first] += |row[i] - row[i - channels]| for i in [first, last).
-void add_steps(const uint8_t* __restrict row, std::size_t first, std::size_t last, std::size_t channels,
+template <typename T>
+void add_steps(const T* __restrict row, std::size_t first, std::size_t last, std::size_t channels,
                uint32_t* __restrict acc) {
     for (std::size_t i = first; i < last; ++i) acc[i - first] += uint32_t(std::abs(int(row[i]) - int(row[i - channels])));
+}
+
+// One plane's sums into across_y (rows y0..y1) or a strip's into acc.
+template <typename T>
+uint64_t row_step(const TorusPlane& plane, int w, int h, std::size_t y) {
+    const std::size_t samples = std::size_t(w) * std::size_t(plane.channels);
+    const T* base = reinterpret_cast<const T*>(plane.pixels);
+    const T* above = base + (y == 0 ? std::size_t(h - 1) : y - 1) * samples;
+    if constexpr (sizeof(T) == 1)
+        return byte_distance(above, base + y * samples, samples);
+    else
+        return sample_distance(above, base + y * samples, samples);
+}
+
+template <typename T>
+void strip_steps(const TorusPlane& plane, int w, int h, int x0, int x1, std::vector<uint32_t>& acc) {
+    const std::size_t ch = std::size_t(plane.channels), row_samples = std::size_t(w) * ch;
+    const T* base = reinterpret_cast<const T*>(plane.pixels);
+    for (int y = 0; y < h; ++y) {
+        const T* row = base + std::size_t(y) * row_samples;
+        // Column 0 steps from the last column (the wrap).
+        if (x0 == 0)
+            for (std::size_t c = 0; c < ch; ++c) acc[c] += uint32_t(std::abs(int(row[c]) - int(row[row_samples - ch + c])));
+        add_steps(row, std::size_t(std::max(x0, 1)) * ch, std::size_t(x1) * ch, ch, acc.data() + (x0 == 0 ? ch : 0));
+    }
 }
 
 // Cuts the w x h torus at `pixels` open at (ox, oy) in place: pixel (x, y)
@@ -71,28 +106,21 @@ void cut_torus(const std::vector<TorusPlane>& planes, int w, int h, int threads)
     std::vector<int64_t> across_x(std::size_t(w), 0), across_y(std::size_t(h), 0);
     parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
         for (std::size_t y = y0; y < y1; ++y)
-            for (const TorusPlane& plane : planes) {
-                const std::size_t row_bytes = std::size_t(w) * std::size_t(plane.channels);
-                across_y[y] += byte_distance(plane.pixels + (y == 0 ? std::size_t(h - 1) : y - 1) * row_bytes,
-                                             plane.pixels + y * row_bytes, row_bytes);
-            }
+            for (const TorusPlane& plane : planes)
+                across_y[y] += int64_t(plane.sample_bytes == 2 ? row_step<uint16_t>(plane, w, h, y)
+                                                               : row_step<uint8_t>(plane, w, h, y));
     });
     constexpr int kStrip = 256;
     parallel_for(threads, std::size_t((w + kStrip - 1) / kStrip), 1, [&](std::size_t s0, std::size_t s1) {
         const int x0 = int(s0) * kStrip, x1 = std::min(w, int(s1) * kStrip);
         std::vector<uint32_t> acc;  // per byte of the strip, a plane at a time
         for (const TorusPlane& plane : planes) {
-            const std::size_t ch = std::size_t(plane.channels), row_bytes = std::size_t(w) * ch;
+            const std::size_t ch = std::size_t(plane.channels);
             acc.assign(std::size_t(x1 - x0) * ch, 0u);
-            for (int y = 0; y < h; ++y) {
-                const uint8_t* row = plane.pixels + std::size_t(y) * row_bytes;
-                // Column 0 steps from the last column (the wrap).
-                if (x0 == 0)
-                    for (std::size_t c = 0; c < ch; ++c)
-                        acc[c] += uint32_t(std::abs(int(row[c]) - int(row[row_bytes - ch + c])));
-                add_steps(row, std::size_t(std::max(x0, 1)) * ch, std::size_t(x1) * ch, ch,
-                          acc.data() + (x0 == 0 ? ch : 0));
-            }
+            if (plane.sample_bytes == 2)
+                strip_steps<uint16_t>(plane, w, h, x0, x1, acc);
+            else
+                strip_steps<uint8_t>(plane, w, h, x0, x1, acc);
             for (int x = x0; x < x1; ++x) {
                 int64_t sum = 0;
                 for (std::size_t c = 0; c < ch; ++c) sum += acc[std::size_t(x - x0) * ch + c];
@@ -101,7 +129,8 @@ void cut_torus(const std::vector<TorusPlane>& planes, int w, int h, int threads)
         }
     });
     const int ox = first_least(across_x), oy = first_least(across_y);
-    for (const TorusPlane& plane : planes) roll_in_place(plane.pixels, w, h, plane.channels, ox, oy);
+    for (const TorusPlane& plane : planes)
+        roll_in_place(plane.pixels, w, h, plane.channels * plane.sample_bytes, ox, oy);
 }
 
 }  // namespace vqtex::coherent

@@ -15,10 +15,12 @@
 
 namespace vqtex::coherent {
 
-// One w x h plane of a torus to cut: `channels` bytes a pixel, rows packed.
+// One w x h plane of a torus to cut: `channels` samples a pixel of
+// `sample_bytes` (1, or 2 for 16-bit values), rows packed.
 struct TorusPlane {
     uint8_t* pixels;
     int channels;
+    int sample_bytes = 1;
 };
 
 // Cuts the torus of `planes` (frames of an animation, or the maps of a

@@ -13,5 +13,7 @@ namespace vqtex {
 // Each pixel's first three channels (x, y, z: a = 2v - 255, odd, so never
 // all zero) scaled to unit length and mapped back to 0..255, rounded.
 void renormalise_normals(Image& image, int threads);
+// The same for samples of `bits` (10 or 12): 2^bits - 1 in place of 255.
+void renormalise_normals(Image16& image, int bits, int threads);
 
 }  // namespace vqtex

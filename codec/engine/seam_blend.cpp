@@ -26,13 +26,13 @@ constexpr int kWeights[kMaxBlendRadius + 1][2 * kMaxBlendRadius + 1] = {
 // transparent copy's colour (often black) does not darken an opaque one
 // where they meet; where every tap is transparent, colour is weighted as
 // alpha is.
-template <int C, bool kStraightAlpha>
-void blend_pixel(const Image& example, bool wraps, int r, const uint32_t* const* rows, const int* xs, uint8_t* dst) {
+template <int C, bool kStraightAlpha, typename T>
+void blend_pixel(const BasicImage<T>& example, bool wraps, int r, const uint32_t* const* rows, const int* xs, T* dst) {
     const int ew = example.width, eh = example.height;
     const int* weight = kWeights[r];
-    // Sums of a tap's weight (at most 64 x 64) times a value fit 32 bits;
-    // times alpha and colour they need 64.
-    using Sum = std::conditional_t<kStraightAlpha, uint64_t, uint32_t>;
+    // Sums of a tap's weight (at most 64 x 64) times a byte fit 32 bits;
+    // times alpha and colour, or of 16-bit samples, they need 64.
+    using Sum = std::conditional_t<kStraightAlpha || (sizeof(T) > 1), uint64_t, uint32_t>;
     Sum sum[C] = {}, weighted[C] = {}, total = 0, alpha = 0;
     for (int dy = -r; dy <= r; ++dy) {
         const uint32_t* taps = rows[dy + r];
@@ -46,7 +46,7 @@ void blend_pixel(const Image& example, bool wraps, int r, const uint32_t* const*
                 continue;  // this neighbour's copy does not reach (x, y)
             }
             const Sum wt = Sum(weight[dx + r] * weight[dy + r]);
-            const uint8_t* src = example.pixels.data() + (std::size_t(sy) * std::size_t(ew) + std::size_t(sx)) * C;
+            const T* src = example.pixels.data() + (std::size_t(sy) * std::size_t(ew) + std::size_t(sx)) * C;
             for (int c = 0; c < C; ++c) sum[c] += wt * src[c];
             if constexpr (kStraightAlpha) {
                 for (int c = 0; c < C - 1; ++c) weighted[c] += wt * src[C - 1] * src[c];
@@ -57,14 +57,14 @@ void blend_pixel(const Image& example, bool wraps, int r, const uint32_t* const*
     }
     for (int c = 0; c < C; ++c) {
         const bool by_alpha = kStraightAlpha && c < C - 1 && alpha > 0;
-        dst[c] = uint8_t(by_alpha ? (weighted[c] + alpha / 2) / alpha : (sum[c] + total / 2) / total);
+        dst[c] = T(by_alpha ? (weighted[c] + alpha / 2) / alpha : (sum[c] + total / 2) / total);
     }
 }
 
-}  // namespace
-
-void blend_rows(const Image& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
-                int first, int count, Image& out, int threads, bool straight_alpha) {
+template <typename T>
+void blend_rows_of(const BasicImage<T>& example, bool wraps, int radius,
+                   const std::function<const uint32_t*(int)>& row_at, int first, int count, BasicImage<T>& out,
+                   int threads, bool straight_alpha) {
     const int r = std::clamp(radius, 0, kMaxBlendRadius);
     const int w = out.width;
     const std::size_t channels = std::size_t(example.channels);
@@ -74,7 +74,7 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
         parallel_for(threads, std::size_t(count), 16, [&](std::size_t i0, std::size_t i1) {
             for (std::size_t i = i0; i < i1; ++i) {
                 const uint32_t* positions = row_at(first + int(i));
-                uint8_t* dst = out.at(0, first + int(i));
+                T* dst = out.at(0, first + int(i));
                 for (int x = 0; x < w; ++x, dst += channels)
                     copy_pixel(dst, example.at(position_x(positions[x]), position_y(positions[x])), example.channels);
             }
@@ -109,7 +109,7 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
             coherent::whole_windows(centre, runs.data() + std::size_t(local - r) * w,
                                     down.data() + std::size_t(local - r) * w, w, r, uint32_t(r), inside_x, inside_y,
                                     whole.data());
-            uint8_t* dst = out.at(0, y);
+            T* dst = out.at(0, y);
             for (int x = 0; x < w; ++x, dst += channels) {
                 const uint32_t own = centre[x];
                 if (whole[std::size_t(x)]) {
@@ -129,6 +129,18 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
             }
         }
     });
+}
+
+}  // namespace
+
+void blend_rows(const Image& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
+                int first, int count, Image& out, int threads, bool straight_alpha) {
+    blend_rows_of(example, wraps, radius, row_at, first, count, out, threads, straight_alpha);
+}
+
+void blend_rows(const Image16& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
+                int first, int count, Image16& out, int threads, bool straight_alpha) {
+    blend_rows_of(example, wraps, radius, row_at, first, count, out, threads, straight_alpha);
 }
 
 }  // namespace vqtex

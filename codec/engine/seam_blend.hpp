@@ -38,5 +38,9 @@ inline constexpr int kDefaultBlendRadius = 2;
 // bleed into an opaque one's at a seam.
 void blend_rows(const Image& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
                 int first, int count, Image& out, int threads, bool straight_alpha = false);
+// The same for 16-bit samples (a map of 10 or 12 bits, docs/FORMAT.md
+// §4.15): the same weights and rounding.
+void blend_rows(const Image16& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
+                int first, int count, Image16& out, int threads, bool straight_alpha = false);
 
 }  // namespace vqtex

@@ -47,7 +47,8 @@ void keep_buffer(const uint8_t*, void*) {}
 // bitstream holds. dav1d runs on one thread, applies no film grain and
 // outputs only shown frames of operating point 0: its output is then the
 // frame the AV1 specification defines, on any platform.
-PicturePtr decode_frame(const uint8_t* data, std::size_t size, int width, int height, const std::string& where) {
+PicturePtr decode_frame(const uint8_t* data, std::size_t size, int width, int height, const std::string& where,
+                        int bits = 8) {
     if (size == 0) bad_bitstream(where, "the AV1 bitstream is empty");
     Dav1dSettings s;
     dav1d_default_settings(&s);
@@ -110,7 +111,9 @@ PicturePtr decode_frame(const uint8_t* data, std::size_t size, int width, int he
     if (pp.w != width || pp.h != height)
         bad_bitstream(where, "the AV1 frame is " + std::to_string(pp.w) + "x" + std::to_string(pp.h) +
                                  ", the section announces " + std::to_string(width) + "x" + std::to_string(height));
-    if (pp.bpc != 8) bad_bitstream(where, "the AV1 frame has " + std::to_string(pp.bpc) + " bits per sample, not 8");
+    if (pp.bpc != bits)
+        bad_bitstream(where, "the AV1 frame has " + std::to_string(pp.bpc) + " bits per sample, not " +
+                                 std::to_string(bits));
     return picture;
 }
 
@@ -181,6 +184,53 @@ Image decode_atlas(const uint8_t* data, std::size_t size, int width, int height,
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x)
                 out.at(x, y)[channels - 1] = ap[std::ptrdiff_t(y) * pic->stride[0] + x];
+    }
+    return out;
+}
+
+Image16 decode_atlas_high(const uint8_t* data, std::size_t size, int width, int height, int channels, int bits,
+                          const std::string& where) {
+    if (width < 1 || height < 1 || width > kMaxAtlasSide || height > kMaxAtlasSide)
+        bad_bitstream(where, "atlas size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range");
+    if (channels < 1 || channels > 4) bad_bitstream(where, "an atlas has 1 to 4 channels");
+    if (bits != 10 && bits != 12) bad_bitstream(where, "a high bit depth atlas has 10 or 12 bits");
+    const bool alpha = channels == 2 || channels == 4;
+    const int colour_channels = alpha ? channels - 1 : channels;
+    std::size_t colour_size = size, colour_at = 0;
+    if (alpha) {
+        ByteReader r(data, size, where);
+        colour_size = std::size_t(r.varint_in("colour bitstream size", 1, size));
+        colour_at = r.position();
+        if (colour_size >= size - colour_at) r.corrupt("no room left for the alpha bitstream");
+    }
+    Image16 out(width, height, channels);
+    // The frame's planes as they are, one per channel from `first`: no
+    // colour conversion at high bit depth (docs/FORMAT.md §3).
+    const auto take_planes = [&](const Dav1dPicture& pic, int planes, int first) {
+        for (int p = 0; p < planes; ++p) {
+            const auto* base = static_cast<const uint8_t*>(pic.data[p]);
+            const std::ptrdiff_t stride = pic.stride[p == 0 ? 0 : 1];
+            for (int y = 0; y < height; ++y) {
+                const auto* row = reinterpret_cast<const uint16_t*>(base + std::ptrdiff_t(y) * stride);
+                for (int x = 0; x < width; ++x) out.at(x, y)[first + p] = row[x];
+            }
+        }
+    };
+    {
+        const PicturePtr pic = decode_frame(data + colour_at, colour_size, width, height, where, bits);
+        const Dav1dPixelLayout layout = pic->p.layout;
+        if (colour_channels == 1 && layout != DAV1D_PIXEL_LAYOUT_I400)
+            bad_bitstream(where, "a grey atlas must be a monochrome AV1 frame");
+        if (colour_channels == 3 && layout != DAV1D_PIXEL_LAYOUT_I444)
+            bad_bitstream(where, "a 3-channel atlas of high bit depth must be a 4:4:4 AV1 frame");
+        take_planes(*pic, colour_channels, 0);
+    }
+    if (alpha) {
+        const std::size_t at = colour_at + colour_size;
+        const PicturePtr pic = decode_frame(data + at, size - at, width, height, where + " (alpha)", bits);
+        if (pic->p.layout != DAV1D_PIXEL_LAYOUT_I400)
+            bad_bitstream(where, "the alpha plane must be a monochrome AV1 frame");
+        take_planes(*pic, 1, channels - 1);
     }
     return out;
 }

@@ -35,6 +35,13 @@ inline constexpr int kMaxAtlasSide = 4096;
 Image decode_atlas(const uint8_t* data, std::size_t size, int width, int height, int channels,
                    const std::string& where);
 
+// The bitstream of an atlas of 10 or 12 bits a sample (a map of a version
+// 9 file, docs/FORMAT.md §3): as above, every frame at that bit depth, and
+// no colour conversion: a 3-channel frame is 4:4:4 and its planes are the
+// channels in order. Samples 0 to 2^bits - 1.
+Image16 decode_atlas_high(const uint8_t* data, std::size_t size, int width, int height, int channels, int bits,
+                          const std::string& where);
+
 // The colour conversion both sides share (JPEG's full-range BT.601 in 16-bit
 // fixed point). The inverse is normative: docs/FORMAT.md §3 spells it out.
 void atlas_rgb_to_ycbcr(const uint8_t* rgb, uint8_t& y, uint8_t& cb, uint8_t& cr);

@@ -85,7 +85,7 @@ void read_maps(ByteReader& r, uint8_t packed, int aw, int ah, std::size_t size, 
     if (packed & kPackedChannels) r.corrupt("packed bits 0-1 must be 0 in format version 9 (each map has its channels)");
     const int count = int(r.varint_in("map count", 1, kMaxMaps));
     std::set<std::string> names;
-    int channels = 0;
+    int channels = 0, memory_channels = 0;
     std::vector<int> map_channels;
     for (int m = 0; m < count; ++m) {
         AtlasMap map;
@@ -101,9 +101,14 @@ void read_maps(ByteReader& r, uint8_t packed, int aw, int ah, std::size_t size, 
         const int ch = int(r.varint_in("map channels", 1, 4));
         if (map.kind == MapKind::Normal && ch != 3)
             r.corrupt("normal map '" + map.name + "' has " + std::to_string(ch) + " channels; a normal map has 3");
+        map.bits = int(r.varint_in("map bits", 8, 12));
+        if (map.bits != 8 && map.bits != 10 && map.bits != 12)
+            r.corrupt("map '" + map.name + "' has " + std::to_string(map.bits) + " bits a sample; 8, 10 or 12");
         map.bytes = std::size_t(r.varint_in("map bitstream length", 1, size));
         map_channels.push_back(ch);
         channels += ch;
+        // A map above 8 bits is held as 16-bit samples and as bytes.
+        memory_channels += map.bits > 8 ? 3 * ch : ch;
         f.maps.push_back(std::move(map));
     }
     GuideMatrix& g = f.guide;
@@ -133,12 +138,18 @@ void read_maps(ByteReader& r, uint8_t packed, int aw, int ah, std::size_t size, 
     h.channels = uint8_t(count > 1 ? g.channels : map_channels[0]);
     f.input_bytes = size;
     // All the maps' atlases, the guide, and dav1d's frame for one of them.
-    check_atlas(aw, ah, h.levels, channels + (count > 1 ? g.channels : 0), f.input_bytes, memory_limit);
+    check_atlas(aw, ah, h.levels, memory_channels + (count > 1 ? g.channels : 0), f.input_bytes, memory_limit);
     f.bitstream_offset = r.position();
     for (int m = 0; m < count; ++m) {
         AtlasMap& map = f.maps[std::size_t(m)];
         const uint8_t* bits = r.bytes(map.bytes, "map bitstream");
-        map.atlas = decode_atlas(bits, map.bytes, aw, ah, map_channels[std::size_t(m)], "map '" + map.name + "'");
+        const int ch = map_channels[std::size_t(m)];
+        if (map.bits == 8) {
+            map.atlas = decode_atlas(bits, map.bytes, aw, ah, ch, "map '" + map.name + "'");
+        } else {
+            map.atlas16 = decode_atlas_high(bits, map.bytes, aw, ah, ch, map.bits, "map '" + map.name + "'");
+            map.atlas = reduce_to_8_bits(map.atlas16, map.bits);
+        }
         f.atlas_bytes += map.bytes;
     }
     f.atlas = guide_of(f.maps, f.guide);
@@ -229,6 +240,12 @@ bool is_map_name(const std::string& name) {
               c == '-'))
             return false;
     return true;
+}
+
+Image reduce_to_8_bits(const Image16& image, int bits) {
+    Image out(image.width, image.height, image.channels);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) out.pixels[i] = uint8_t(image.pixels[i] >> (bits - 8));
+    return out;
 }
 
 Image guide_of(const std::vector<AtlasMap>& maps, const GuideMatrix& matrix, int threads) {

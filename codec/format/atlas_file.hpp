@@ -105,13 +105,20 @@ inline constexpr int kMaxGuideChannels = 4;
 // of [A-Za-z0-9_.-].
 bool is_map_name(const std::string& name);
 
-// One map of a set: its atlas at the set's atlas positions.
+// One map of a set: its atlas at the set's atlas positions, 8, 10 or 12
+// bits a sample.
 struct AtlasMap {
     std::string name;
     MapKind kind = MapKind::Colour;
-    Image atlas;            // decoded (reader) or to code (writer)
+    int bits = 8;
+    Image atlas;            // decoded; above 8 bits, the samples >> (bits - 8), for the guide
+    Image16 atlas16;        // above 8 bits: the decoded samples, 0 to 2^bits - 1
     std::size_t bytes = 0;  // its coded bitstream
 };
+
+// A map's samples of `bits` (10 or 12) reduced to 8 (>> bits - 8), as the
+// guide reads them (docs/FORMAT.md §4.15).
+Image reduce_to_8_bits(const Image16& image, int bits);
 
 // The image a set's synthesis matches (docs/FORMAT.md §4.15): channel g of
 // a pixel is clamp((sum over c of coefficients[g * C + c] * v_c +

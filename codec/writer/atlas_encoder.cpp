@@ -7,6 +7,7 @@
 #include <aom/aom_encoder.h>
 #include <aom/aomcx.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -35,12 +36,14 @@ struct ImageFree {
 }
 
 // One plane image to an AV1 frame; `planes` are the Y (or grey), Cb and Cr
-// samples at full resolution (Cb, Cr empty for monochrome).
-std::vector<uint8_t> encode_frame(int width, int height, const std::vector<uint8_t>& luma,
-                                  const std::vector<uint8_t>& cb, const std::vector<uint8_t>& cr,
-                                  const AtlasEncodeOptions& o) {
+// samples at full resolution (Cb, Cr empty for monochrome), 8 bits a
+// sample, or `bits` (10 or 12) in 16-bit values, always 4:4:4 then.
+template <typename T>
+std::vector<uint8_t> encode_frame(int width, int height, const std::vector<T>& luma, const std::vector<T>& cb,
+                                  const std::vector<T>& cr, const AtlasEncodeOptions& o, int bits = 8) {
     const bool mono = cb.empty();
-    const bool full_chroma = o.chroma444 && !mono;
+    const bool high = bits > 8;
+    const bool full_chroma = (o.chroma444 || high) && !mono;
     aom_codec_iface_t* iface = aom_codec_av1_cx();
     aom_codec_enc_cfg_t cfg;
     if (aom_codec_enc_config_default(iface, &cfg, AOM_USAGE_ALL_INTRA) != AOM_CODEC_OK)
@@ -50,9 +53,11 @@ std::vector<uint8_t> encode_frame(int width, int height, const std::vector<uint8
     cfg.g_threads = 1;
     cfg.g_limit = 1;  // a still picture: reduced still-picture header
     cfg.g_lag_in_frames = 0;
-    cfg.g_profile = full_chroma ? 1 : 0;
-    cfg.g_bit_depth = AOM_BITS_8;
-    cfg.g_input_bit_depth = 8;
+    // AV1's profiles: main (0) 8 and 10 bits, 4:2:0 and monochrome; high
+    // (1) 4:4:4 at those; professional (2) 12 bits.
+    cfg.g_profile = bits == 12 ? 2 : full_chroma ? 1 : 0;
+    cfg.g_bit_depth = bits == 12 ? AOM_BITS_12 : bits == 10 ? AOM_BITS_10 : AOM_BITS_8;
+    cfg.g_input_bit_depth = unsigned(bits);
     cfg.monochrome = mono ? 1 : 0;
     cfg.rc_end_usage = AOM_Q;
     cfg.rc_min_quantizer = 0;
@@ -60,7 +65,7 @@ std::vector<uint8_t> encode_frame(int width, int height, const std::vector<uint8
     std::unique_ptr<aom_codec_ctx_t, CodecCloser> ctx;
     {
         auto* c = new aom_codec_ctx_t{};
-        if (aom_codec_enc_init(c, iface, &cfg, 0) != AOM_CODEC_OK) {
+        if (aom_codec_enc_init(c, iface, &cfg, high ? AOM_CODEC_USE_HIGHBITDEPTH : 0) != AOM_CODEC_OK) {
             const std::string detail = c->err_detail ? c->err_detail : "";
             delete c;
             fail(VQTEX_ERROR_INTERNAL, "libaom: encoder initialisation failed " + detail);
@@ -76,20 +81,26 @@ std::vector<uint8_t> encode_frame(int width, int height, const std::vector<uint8
     for (const auto& [id, value] : o.controls)
         if (aom_codec_control(ctx.get(), id, value) != AOM_CODEC_OK) aom_failed(ctx.get(), "control");
 
-    std::unique_ptr<aom_image_t, ImageFree> img(
-        aom_img_alloc(nullptr, full_chroma ? AOM_IMG_FMT_I444 : AOM_IMG_FMT_I420, unsigned(width), unsigned(height), 1));
+    const aom_img_fmt_t format = full_chroma ? AOM_IMG_FMT_I444 : AOM_IMG_FMT_I420;
+    std::unique_ptr<aom_image_t, ImageFree> img(aom_img_alloc(
+        nullptr, high ? aom_img_fmt_t(format | AOM_IMG_FMT_HIGHBITDEPTH) : format, unsigned(width), unsigned(height), 1));
     if (!img) fail(VQTEX_ERROR_OUT_OF_MEMORY, "libaom: no memory for the atlas image");
     img->range = AOM_CR_FULL_RANGE;
     img->monochrome = mono ? 1 : 0;
+    if (high) img->bit_depth = unsigned(bits);
+    // Samples of plane p at (x, y), strides in bytes.
+    const auto sample = [&](int p, int x, int y) -> T& {
+        return reinterpret_cast<T*>(img->planes[p] + std::ptrdiff_t(y) * img->stride[p])[x];
+    };
+    const T neutral = T(1 << (bits - 1));
     for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            img->planes[0][std::ptrdiff_t(y) * img->stride[0] + x] = luma[std::size_t(y) * width + x];
+        for (int x = 0; x < width; ++x) sample(0, x, y) = luma[std::size_t(y) * width + x];
     const int cw = full_chroma ? width : (width + 1) / 2, ch = full_chroma ? height : (height + 1) / 2;
     for (int p = 1; p <= 2; ++p) {
-        const std::vector<uint8_t>* src = p == 1 ? &cb : &cr;
+        const std::vector<T>* src = p == 1 ? &cb : &cr;
         for (int y = 0; y < ch; ++y)
             for (int x = 0; x < cw; ++x) {
-                uint8_t v = 128;
+                T v = neutral;
                 if (mono) {
                 } else if (full_chroma) {
                     v = (*src)[std::size_t(y) * width + x];
@@ -105,9 +116,9 @@ std::vector<uint8_t> encode_frame(int width, int height, const std::vector<uint8
                                 ++n;
                             }
                         }
-                    v = uint8_t((sum + n / 2) / n);
+                    v = T((sum + n / 2) / n);
                 }
-                img->planes[p][std::ptrdiff_t(y) * img->stride[p] + x] = v;
+                sample(p, x, y) = v;
             }
     }
     std::vector<uint8_t> out;
@@ -170,12 +181,39 @@ std::vector<uint8_t> encode_atlas(const Image& image, const AtlasEncodeOptions& 
             y[i] = p[0];
         if (alpha) a[i] = p[c - 1];
     }
-    std::vector<uint8_t> colour = encode_frame(w, h, y, cb, cr, options);
+    std::vector<uint8_t> colour = encode_frame<uint8_t>(w, h, y, cb, cr, options);
     if (!alpha) return colour;
     ByteWriter out;
     out.varint(colour.size());
     out.bytes(colour);
-    out.bytes(encode_frame(w, h, a, {}, {}, options));
+    out.bytes(encode_frame<uint8_t>(w, h, a, {}, {}, options));
+    return std::move(out.data());
+}
+
+std::vector<uint8_t> encode_atlas_high(const Image16& image, int bits, const AtlasEncodeOptions& options) {
+    const int w = image.width, h = image.height, c = image.channels;
+    if (w < 1 || h < 1 || w > kMaxAtlasSide || h > kMaxAtlasSide || c < 1 || c > 4 || (bits != 10 && bits != 12))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "a high bit depth atlas of 1 to " + std::to_string(kMaxAtlasSide) +
+                                               " pixels a side, 1 to 4 channels, 10 or 12 bits");
+    if (options.cq_level < 0 || options.cq_level > 63 || options.speed < 0 || options.speed > 9)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "atlas quality level 0..63 and speed 0..9");
+    const std::size_t n = image.pixel_count();
+    const bool alpha = c == 2 || c == 4;
+    const int colour = alpha ? c - 1 : c;
+    const uint16_t top = uint16_t((1 << bits) - 1);
+    std::vector<std::vector<uint16_t>> planes(static_cast<std::size_t>(c), std::vector<uint16_t>(n));
+    for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < c; ++k)
+            planes[std::size_t(k)][i] = std::min(image.pixels[i * std::size_t(c) + std::size_t(k)], top);
+    const std::vector<uint16_t> none;
+    std::vector<uint8_t> frame = colour == 1
+                                     ? encode_frame(w, h, planes[0], none, none, options, bits)
+                                     : encode_frame(w, h, planes[0], planes[1], planes[2], options, bits);
+    if (!alpha) return frame;
+    ByteWriter out;
+    out.varint(frame.size());
+    out.bytes(frame);
+    out.bytes(encode_frame(w, h, planes[std::size_t(c - 1)], none, none, options, bits));
     return std::move(out.data());
 }
 

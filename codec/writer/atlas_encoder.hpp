@@ -30,6 +30,11 @@ struct AtlasEncodeOptions {
 // count.
 std::vector<uint8_t> encode_atlas(const Image& image, const AtlasEncodeOptions& options);
 
+// The bitstream of atlas_coder.hpp's decode_atlas_high: every frame at
+// `bits` (10 or 12) a sample, 4:4:4 or monochrome, the channels as planes
+// with no colour conversion; samples above 2^bits - 1 are clamped.
+std::vector<uint8_t> encode_atlas_high(const Image16& image, int bits, const AtlasEncodeOptions& options);
+
 // Drops the temporal delimiter OBUs (AV1 specification 6.2.2: 2 bytes that
 // carry nothing for a lone frame) from a sequence of OBUs with size fields.
 std::vector<uint8_t> strip_temporal_delimiters(const std::vector<uint8_t>& obus);

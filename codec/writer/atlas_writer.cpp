@@ -84,7 +84,7 @@ std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_wi
     int channels = 0;
     for (const CodedMap& m : maps) {
         if (!is_map_name(m.name) || m.channels < 1 || m.channels > 4 || m.bitstream.empty() ||
-            (m.kind == MapKind::Normal && m.channels != 3))
+            (m.kind == MapKind::Normal && m.channels != 3) || (m.bits != 8 && m.bits != 10 && m.bits != 12))
             fail(VQTEX_ERROR_INTERNAL, "encode_material_file: map '" + m.name + "' cannot be stored");
         channels += m.channels;
     }
@@ -102,6 +102,7 @@ std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_wi
         w.bytes(reinterpret_cast<const uint8_t*>(m.name.data()), m.name.size());
         w.u8(uint8_t(m.kind));
         w.varint(uint64_t(m.channels));
+        w.varint(uint64_t(m.bits));
         w.varint(m.bitstream.size());
     }
     if (!one) {

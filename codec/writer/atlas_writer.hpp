@@ -24,6 +24,7 @@ struct CodedMap {
     std::string name;
     MapKind kind = MapKind::Colour;
     int channels = 0;
+    int bits = 8;
     std::vector<uint8_t> bitstream;
 };
 

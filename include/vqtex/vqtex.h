@@ -116,8 +116,18 @@ typedef struct vqtex_image {
     uint8_t* pixels;   /* width * height * channels bytes */
 } vqtex_image;
 
+/* The same with 16-bit samples (0 to 65535, interleaved): a map of a
+ * material set that keeps more than 8 bits (vqtex_map, vqtex_map_image). */
+typedef struct vqtex_image16 {
+    uint32_t width;
+    uint32_t height;
+    uint32_t channels; /* 1 to 4 */
+    uint16_t* pixels;  /* width * height * channels samples */
+} vqtex_image16;
+
 /* Frees pixels the library allocated and zeroes the struct; NULL is fine. */
 VQTEX_API void vqtex_image_free(vqtex_image* image);
+VQTEX_API void vqtex_image16_free(vqtex_image16* image);
 
 /* The largest side of an example, and the most frames of an example
  * sequence: positions in the example are stored as 16-bit coordinates. An
@@ -378,6 +388,8 @@ typedef struct vqtex_map {
     uint32_t weight;      /* 0..8: how much the map counts in the guide; 0 = the kind's default
                              (colour 2, height-like data named height/disp/bump 2, others 1) */
     vqtex_image image;    /* every map of a set has the same size; 1 to 4 channels (normal: 3) */
+    const vqtex_image16* image16; /* or, when not NULL, the map's 16-bit samples (`image` is then
+                                     not read): the file keeps 12 bits of them */
 } vqtex_map;
 
 /* Encodes a set of 1 to VQTEX_MAX_MAPS maps into one file (an atlas: the
@@ -391,7 +403,9 @@ VQTEX_API vqtex_status vqtex_encode_maps(const vqtex_encode_params* params, cons
 typedef struct vqtex_map_image {
     char name[VQTEX_MAX_MAP_NAME + 1];
     vqtex_map_kind kind;
-    vqtex_image image;    /* free with vqtex_image_free */
+    uint32_t bits;          /* bits a sample in the file: 8, or 12 for a map made from 16-bit samples */
+    vqtex_image image;      /* bits 8 (free with vqtex_image_free) */
+    vqtex_image16 image16;  /* bits 12: widened to 16 bits (free with vqtex_image16_free) */
 } vqtex_map_image;
 
 #define VQTEX_SEED_FROM_FILE UINT64_MAX
@@ -416,7 +430,7 @@ VQTEX_API vqtex_status vqtex_decode(const vqtex_decode_params* params, const uin
  * A file that is not a set (a single colour image, any format) gives one
  * colour map named "texture". `maps` must hold `capacity` entries
  * (VQTEX_MAX_MAPS is always enough); *count receives how many were
- * written. vqtex_decode on a set gives its first map. */
+ * written. vqtex_decode on a set gives its first map (when it has 8 bits). */
 VQTEX_API vqtex_status vqtex_decode_maps(const vqtex_decode_params* params, const uint8_t* data, size_t size,
                                          vqtex_map_image* maps, uint32_t capacity, uint32_t* count,
                                          vqtex_error* error);
@@ -475,6 +489,7 @@ typedef struct vqtex_file_info {
         char name[VQTEX_MAX_MAP_NAME + 1];         /* "texture" for a file that is not a set */
         vqtex_map_kind kind;
         uint32_t channels;
+        uint32_t bits;                             /* bits a sample in the file: 8, or 12 for a 16-bit map */
         uint64_t bytes;                            /* its coded atlas */
     } maps[VQTEX_MAX_MAPS];
 } vqtex_file_info;

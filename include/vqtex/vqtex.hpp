@@ -54,6 +54,34 @@ private:
     vqtex_image raw_{};
 };
 
+// Owns a vqtex_image16 the library allocated.
+class Image16 {
+public:
+    Image16() = default;
+    explicit Image16(vqtex_image16 raw) : raw_(raw) {}
+    Image16(const Image16&) = delete;
+    Image16& operator=(const Image16&) = delete;
+    Image16(Image16&& o) noexcept : raw_(std::exchange(o.raw_, vqtex_image16{})) {}
+    Image16& operator=(Image16&& o) noexcept {
+        if (this != &o) {
+            vqtex_image16_free(&raw_);
+            raw_ = std::exchange(o.raw_, vqtex_image16{});
+        }
+        return *this;
+    }
+    ~Image16() { vqtex_image16_free(&raw_); }
+
+    const vqtex_image16& get() const { return raw_; }
+    uint32_t width() const { return raw_.width; }
+    uint32_t height() const { return raw_.height; }
+    uint32_t channels() const { return raw_.channels; }
+    const uint16_t* data() const { return raw_.pixels; }
+    size_t samples() const { return size_t(raw_.width) * raw_.height * raw_.channels; }
+
+private:
+    vqtex_image16 raw_{};
+};
+
 inline void check(vqtex_status status, const vqtex_error& error) {
     if (status != VQTEX_OK) {
         vqtex_error e = error;
@@ -111,11 +139,14 @@ inline Image decode(const vqtex_decode_params& params, const uint8_t* data, size
     return out;
 }
 
-// A decoded map of a set: its name, kind and pixels (owned).
+// A decoded map of a set: its name, kind and pixels (owned): `image` for
+// 8 bits, `image16` for a map kept at 12 bits.
 struct Map {
     std::string name;
     vqtex_map_kind kind = VQTEX_MAP_COLOUR;
+    uint32_t bits = 8;
     Image image;
+    Image16 image16;
 };
 
 inline Buffer encode_maps(const vqtex_encode_params& params, const std::vector<vqtex_map>& maps,
@@ -136,7 +167,9 @@ inline std::vector<Map> decode_maps(const vqtex_decode_params& params, const uin
     for (uint32_t i = 0; i < count; ++i) {  // owned before any throw
         out[i].name = raw[i].name;
         out[i].kind = raw[i].kind;
-        *out[i].image.out() = raw[i].image;
+        out[i].bits = raw[i].bits;
+        out[i].image = Image(raw[i].image);
+        out[i].image16 = Image16(raw[i].image16);
     }
     check(st, err);
     return out;
