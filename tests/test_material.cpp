@@ -409,3 +409,42 @@ TEST(Material, SixteenBitHeightsKeepTheirLevels) {
     const auto again = vqtex_cpp::decode_maps(decode_params(256, 256, 2, 3), file.data(), file.size());
     EXPECT_EQ(std::memcmp(again[0].image16.data(), out.data(), out.samples() * 2), 0);
 }
+
+// The coordinates of a decode say where each pixel was read: away from
+// the seams, where the blend mixes copies, the texture's pixel is the
+// atlas's pixel there, for a single image and for each map of a set.
+TEST(Material, CoordinatesAreWhereEachPixelIsRead) {
+    const Image ex = vqtex_test::load_corpus("cellular_128.png");
+    vqtex_encode_params ep;
+    vqtex_encode_params_init(&ep);
+    ep.threads = 1;
+    const std::vector<uint8_t> single = vqtex_test::encode(ex, ep);
+    for (const std::vector<uint8_t>* file : {&single, &surface_file()}) {
+        const vqtex_decode_params p = decode_params(160, 120, 4, 2);
+        const AtlasFile f = decode_atlas_file(file->data(), file->size(), 256u << 20);
+        vqtex_image16 raw{};
+        vqtex_error err{};
+        ASSERT_EQ(vqtex_decode_coords(&p, file->data(), file->size(), &raw, &err), VQTEX_OK) << err.detail;
+        const vqtex_cpp::Image16 coords(raw);
+        ASSERT_EQ(coords.channels(), 2u);
+        ASSERT_EQ(coords.width(), 160u);
+        const auto maps = vqtex_cpp::decode_maps(p, file->data(), file->size());
+        for (std::size_t m = 0; m < maps.size(); ++m) {
+            const Image& atlas = f.maps.empty() ? f.atlas : f.maps[m].atlas;
+            if (maps[m].kind == VQTEX_MAP_NORMAL) continue;  // renormalised after the read-out
+            std::size_t same = 0;
+            const uint8_t* pixels = maps[m].image.data();
+            for (std::size_t i = 0; i < 160 * 120; ++i) {
+                const int x = coords.data()[2 * i], y = coords.data()[2 * i + 1];
+                ASSERT_LT(x, atlas.width);
+                ASSERT_LT(y, atlas.height);
+                same += std::memcmp(pixels + i * std::size_t(atlas.channels), atlas.at(x, y),
+                                    std::size_t(atlas.channels)) == 0;
+            }
+            EXPECT_GT(double(same) / (160 * 120), 0.8) << maps[m].name;
+        }
+        // Coordinates leave the texture as it was.
+        const Image plain = vqtex_test::decode(*file, p);
+        EXPECT_EQ(std::memcmp(plain.pixels.data(), maps[0].image.data(), plain.byte_count()), 0);
+    }
+}

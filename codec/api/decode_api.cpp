@@ -107,7 +107,9 @@ void widen_to_16_bits(Image16& image, int bits) {
 // maps are then brought back to unit length. Returns the maps (one,
 // "texture", for a single image): the engine has no pyramid of pixels, so
 // a mip chain is downsampled from the texture.
-std::vector<NamedMap> decode_atlas_maps(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
+// With `coords`, also the coordinates each output pixel was read from.
+std::vector<NamedMap> decode_atlas_maps(const vqtex_decode_params* p, const uint8_t* data, std::size_t size,
+                                        Image16* coords = nullptr) {
     const std::size_t limit = memory_limit_of(p);
     const AtlasFile f = decode_atlas_file(data, size, limit);
     const OutputSize out_size = output_size(p, f.header);
@@ -123,33 +125,52 @@ std::vector<NamedMap> decode_atlas_maps(const vqtex_decode_params* p, const uint
     check_output_memory(f.input_bytes + atlases +
                             atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels, f.header.levels,
                                                 f.params.coherence, w, h) +
-                            (f.maps.empty() ? 0 : coherent_output_memory(w, h, channels)),
+                            (f.maps.empty() && !coords ? 0 : coherent_output_memory(w, h, channels + (coords ? 4 : 0))),
                         limit, out_size.name());
     CoherentOptions opt = coherent_options(f.params, int(w), int(h), seed_of(p, f.header));
     opt.threads = resolve_threads(p->threads);
     opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
     std::vector<NamedMap> out;
-    if (f.maps.empty()) {
+    if (f.maps.empty() && !coords) {
         out.emplace_back();
         out.back().name = "texture";
         out.back().image =
             synthesize_coherent(f.atlas, f.header.levels, f.params.example_tileable, f.params.coherence, opt).image;
         return out;
     }
+    // A single image read as the one map of a set gives the same bytes
+    // (the engine reads it the same way and cuts the torus on it alone).
+    std::vector<AtlasMap> single;
+    if (f.maps.empty()) {
+        single.emplace_back();
+        single[0].name = "texture";
+        single[0].atlas = f.atlas;
+    }
+    const std::vector<AtlasMap>& maps = f.maps.empty() ? single : f.maps;
+    const bool straight = f.params.blend_straight_alpha;
     std::vector<Readout> readouts;
-    for (const AtlasMap& m : f.maps) {
+    for (const AtlasMap& m : maps) {
         Readout r;
         if (m.bits > 8)
             r.image16 = &m.atlas16;
         else
             r.image = &m.atlas;
-        r.straight_alpha = m.kind == MapKind::Colour && f.params.blend_straight_alpha;
+        r.straight_alpha = m.kind == MapKind::Colour && straight;
+        readouts.push_back(r);
+    }
+    Image16 grid;
+    if (coords) {
+        grid = coordinate_image(f.atlas.width, f.atlas.height);
+        Readout r;
+        r.image16 = &grid;
+        r.coordinates = true;
         readouts.push_back(r);
     }
     CoherentResult r =
         synthesize_coherent(f.atlas, f.header.levels, f.params.example_tileable, f.params.coherence, opt, {}, readouts);
-    for (std::size_t i = 0; i < f.maps.size(); ++i) {
-        const AtlasMap& m = f.maps[i];
+    if (coords) *coords = std::move(r.maps.back().image16);
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        const AtlasMap& m = maps[i];
         NamedMap named;
         named.name = m.name;
         named.kind = m.kind;
@@ -283,6 +304,21 @@ vqtex_status vqtex_decode_maps(const vqtex_decode_params* params, const uint8_t*
             }
         }
         *count = uint32_t(decoded.size());
+    });
+}
+
+vqtex_status vqtex_decode_coords(const vqtex_decode_params* params, const uint8_t* data, size_t size,
+                                 vqtex_image16* coords, vqtex_error* error) {
+    return guarded(error, [&] {
+        if (!coords) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output pointer is NULL");
+        *coords = vqtex_image16{};
+        validate(params);
+        if (!is_atlas_file(data, size))
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "only an atlas file (format 3 to 9) decodes through coordinates; "
+                                               "this is a trees or animation file");
+        Image16 grid;
+        decode_atlas_maps(params, data, size, &grid);
+        image_to_c(std::move(grid), coords);
     });
 }
 

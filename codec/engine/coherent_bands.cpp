@@ -71,6 +71,7 @@ ReadImage allocate(const Readout& r, int w, int h) {
 // Rows [first, first + count) of a readout through `row_at`.
 void read_rows(const Readout& r, bool wraps, int blend, const std::function<const uint32_t*(int)>& row_at, int first,
                int count, ReadImage& out, int threads) {
+    if (r.coordinates) blend = 0;
     if (r.image16)
         blend_rows(*r.image16, wraps, blend, row_at, first, count, out.image16, threads, r.straight_alpha);
     else
@@ -78,13 +79,15 @@ void read_rows(const Readout& r, bool wraps, int blend, const std::function<cons
 }
 
 // Cuts the tori of images of one size open at one place, found on all.
-void roll_all(std::vector<ReadImage>& images, int w, int h, int threads) {
+void roll_all(std::vector<ReadImage>& images, const std::vector<Readout>& readouts, int w, int h, int threads) {
     std::vector<TorusPlane> planes;
-    for (ReadImage& im : images) {
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        ReadImage& im = images[i];
+        const bool counted = !readouts[i].coordinates;
         if (!im.image16.empty())
-            planes.push_back({reinterpret_cast<uint8_t*>(im.image16.pixels.data()), im.image16.channels, 2});
+            planes.push_back({reinterpret_cast<uint8_t*>(im.image16.pixels.data()), im.image16.channels, 2, counted});
         else
-            planes.push_back({im.image.pixels.data(), im.image.channels, 1});
+            planes.push_back({im.image.pixels.data(), im.image.channels, 1, counted});
     }
     cut_torus(planes, w, h, threads);
 }
@@ -130,7 +133,7 @@ std::vector<ReadImage> synthesize_in_bands(const Image& example, const std::vect
     }
     std::vector<uint32_t>().swap(part.positions);
     std::vector<uint8_t>().swap(parents.data);
-    if (options.roll) roll_all(out, w, h, options.threads);
+    if (options.roll) roll_all(out, readouts, w, h, options.threads);
     return out;
 }
 
@@ -183,7 +186,7 @@ std::vector<ReadImage> synthesize_pixels(const Image& example, int frame, const 
                       0, map.height, out.back(), options.threads);
         }
         std::vector<uint32_t>().swap(map.positions);
-        if (options.roll) roll_all(out, map.width, map.height, options.threads);
+        if (options.roll) roll_all(out, read, map.width, map.height, options.threads);
         return out;
     }
     return synthesize_in_bands(example, read, frame, passes, band, margin);

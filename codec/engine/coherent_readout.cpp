@@ -13,6 +13,16 @@
 
 namespace vqtex {
 
+Image16 coordinate_image(int width, int height) {
+    Image16 out(width, height, 2);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            out.at(x, y)[0] = uint16_t(x);
+            out.at(x, y)[1] = uint16_t(y);
+        }
+    return out;
+}
+
 PixelIndices narrow_positions(int example_width, uint64_t example_pixels, std::vector<uint32_t>& positions,
                               int threads) {
     PixelIndices out;

@@ -173,12 +173,18 @@ int coherent_levels(int width, int height);
 // the same size as that image, any channel count, bytes (`image`) or
 // 16-bit samples (`image16`, a map of 10 or 12 bits). `straight_alpha` is
 // CoherentOptions::blend_straight_alpha for this image alone.
+// `coordinates`: the image holds each pixel's own coordinates, read
+// without a blend and left out of where the torus is cut.
 struct Readout {
     const Image* image = nullptr;
     const Image16* image16 = nullptr;
     bool straight_alpha = false;
+    bool coordinates = false;
     int channels() const { return image16 ? image16->channels : image->channels; }
 };
+
+// The coordinates readout of a width x height example: each pixel's (x, y).
+Image16 coordinate_image(int width, int height);
 
 // What a readout gives: `image`, or `image16` for a 16-bit readout.
 struct ReadImage {

@@ -107,7 +107,8 @@ void cut_torus(const std::vector<TorusPlane>& planes, int w, int h, int threads)
     parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
         for (std::size_t y = y0; y < y1; ++y)
             for (const TorusPlane& plane : planes)
-                across_y[y] += int64_t(plane.sample_bytes == 2 ? row_step<uint16_t>(plane, w, h, y)
+                if (plane.counted)
+                    across_y[y] += int64_t(plane.sample_bytes == 2 ? row_step<uint16_t>(plane, w, h, y)
                                                                : row_step<uint8_t>(plane, w, h, y));
     });
     constexpr int kStrip = 256;
@@ -115,6 +116,7 @@ void cut_torus(const std::vector<TorusPlane>& planes, int w, int h, int threads)
         const int x0 = int(s0) * kStrip, x1 = std::min(w, int(s1) * kStrip);
         std::vector<uint32_t> acc;  // per byte of the strip, a plane at a time
         for (const TorusPlane& plane : planes) {
+            if (!plane.counted) continue;
             const std::size_t ch = std::size_t(plane.channels);
             acc.assign(std::size_t(x1 - x0) * ch, 0u);
             if (plane.sample_bytes == 2)

@@ -21,6 +21,7 @@ struct TorusPlane {
     uint8_t* pixels;
     int channels;
     int sample_bytes = 1;
+    bool counted = true;  // false: rolled with the others, but not summed (coordinates)
 };
 
 // Cuts the torus of `planes` (frames of an animation, or the maps of a

@@ -435,6 +435,17 @@ VQTEX_API vqtex_status vqtex_decode_maps(const vqtex_decode_params* params, cons
                                          vqtex_map_image* maps, uint32_t capacity, uint32_t* count,
                                          vqtex_error* error);
 
+/* The coordinates a decode of an atlas file (format 3 to 9) reads its
+ * texture from: a 2-channel image of the output's size holding, for every
+ * output pixel, the (x, y) of the atlas pixel that its copy puts there
+ * (the atlas is the exemplar, or a crop of it: a material set's is its
+ * top-left corner, so the coordinates are the exemplar's). The decoder
+ * blends neighbouring copies over a few pixels at seams; the coordinates
+ * are each pixel's own copy. For applying one layout to maps of your own
+ * (free with vqtex_image16_free). */
+VQTEX_API vqtex_status vqtex_decode_coords(const vqtex_decode_params* params, const uint8_t* data, size_t size,
+                                           vqtex_image16* coords, vqtex_error* error);
+
 /* Decodes the whole synthesised pyramid as a mip chain: levels[0] is the
  * texture, each next level half the size (rounded up) down to 1x1. For a
  * trees file the synthesised pyramid levels come first; for an atlas file
