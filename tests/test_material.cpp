@@ -84,13 +84,13 @@ vqtex_image view(const Image& im) {
                        const_cast<uint8_t*>(im.pixels.data())};
 }
 
-std::vector<uint8_t> encode_surface(const Surface& s) {
+std::vector<uint8_t> encode_surface(const Surface& s, uint32_t threads = 1) {
     const std::vector<vqtex_map> maps = {{"albedo", VQTEX_MAP_COLOUR, 0, view(s.albedo), nullptr},
                                          {"normal", VQTEX_MAP_NORMAL, 0, view(s.normal), nullptr},
                                          {"gloss", VQTEX_MAP_DATA, 0, view(s.gloss), nullptr}};
     vqtex_encode_params p;
     vqtex_encode_params_init(&p);
-    p.threads = 1;
+    p.threads = threads;
     p.quality = 75;
     const vqtex_cpp::Buffer file = vqtex_cpp::encode_maps(p, maps);
     return std::vector<uint8_t>(file.data(), file.data() + file.size());
@@ -166,6 +166,7 @@ TEST(Material, MapsDecodeAlignedWithUnitNormals) {
 
 TEST(Material, SameBytesForAnyThreadCount) {
     const std::vector<uint8_t>& file = surface_file();
+    EXPECT_EQ(encode_surface(make_surface(64, 7), 3), file) << "encoding on 3 threads";
     const auto one = vqtex_cpp::decode_maps(decode_params(200, 72, 5, 1), file.data(), file.size());
     for (uint32_t threads : {2u, 3u}) {
         const auto many = vqtex_cpp::decode_maps(decode_params(200, 72, 5, threads), file.data(), file.size());

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "common/error.hpp"
+#include "common/parallel.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "format/atlas_coder.hpp"
 #include "writer/atlas_encoder.hpp"
@@ -167,13 +168,17 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
         const auto file_at = [&](int cq) -> const std::vector<uint8_t>& {
             auto it = files.find(cq);
             if (it != files.end()) return it->second;
-            std::vector<CodedMap> coded;
+            std::vector<CodedMap> coded(maps.size());
             AtlasEncodeOptions ao;
             ao.cq_level = cq;
-            for (std::size_t i = 0; i < maps.size(); ++i)
-                coded.push_back({maps[i].name, maps[i].kind, atlases[i].channels, maps[i].bits,
-                                 maps[i].bits > 8 ? encode_atlas_high(atlases16[i], maps[i].bits, ao)
-                                                  : encode_atlas(atlases[i], ao)});
+            // The maps code independently (libaom on one thread each), so
+            // the bytes do not depend on the thread count.
+            parallel_for(options.threads, maps.size(), 1, [&](std::size_t i0, std::size_t i1) {
+                for (std::size_t i = i0; i < i1; ++i)
+                    coded[i] = {maps[i].name, maps[i].kind, atlases[i].channels, maps[i].bits,
+                                maps[i].bits > 8 ? encode_atlas_high(atlases16[i], maps[i].bits, ao)
+                                                 : encode_atlas(atlases[i], ao)};
+            });
             ++attempts;
             FileHeader hd;
             hd.exemplar_width = uint32_t(first.width);
