@@ -1,11 +1,13 @@
 // vqtex-decode - regenerate a texture of any size from a .vqt file by
 // synthesis (paper section 6), through the public API only. One file
-// (`vqtex-decode IN OUT`) or a batch (`vqtex-decode IN... -o DIR`).
+// (`vqtex-decode IN OUT`) or a batch (`vqtex-decode IN... -o DIR`); a
+// material set's maps to one file each (`vqtex-decode IN 'out_{map}.png'`).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -21,11 +23,128 @@ using namespace vqtex_tools;
 
 namespace {
 
+namespace fs = std::filesystem;
+
 struct Settings {
     vqtex_decode_params params;  // without threads and progress
     uint32_t frames = 0;
     bool mips = false;
+    bool batch = false;  // -o DIR: outputs are named by --suffix
 };
+
+// The field of an output name that each map of a set replaces with its name.
+constexpr std::string_view kMapField = "{map}";
+
+bool has_map_field(const std::string& output) { return output.find(kMapField) != std::string::npos; }
+
+std::string map_output_name(std::string pattern, const std::string& map) {
+    for (std::size_t at; (at = pattern.find(kMapField)) != std::string::npos;)
+        pattern.replace(at, kMapField.size(), map);
+    return pattern;
+}
+
+// How to ask for one file per map, in the words of the call's mode.
+std::string map_field_hint(const Settings& s) {
+    return s.batch ? "put {map} in --suffix (e.g. --suffix '_{map}')"
+                   : "put {map} in the output name (e.g. 'out_{map}.png')";
+}
+
+// Decodes every map of `input` (a file that is not a set gives one map,
+// "texture") into `pattern` with {map} replaced by each map's name. Every
+// map is written under a temporary name first and only then renamed into
+// place, so a failed write leaves every existing file as it was; a failed
+// rename (rare: folders are refused before) removes the maps already renamed.
+FileReport decode_maps_one(const vqtex_decode_params& p, const std::string& input, const std::vector<uint8_t>& bytes,
+                           const std::string& pattern, ProgressBar* bar) {
+    std::vector<vqtex_map_image> maps(VQTEX_MAX_MAPS);
+    uint32_t count = 0;
+    vqtex_error err{};
+    const double t0 = now_seconds();
+    const vqtex_status st =
+        vqtex_decode_maps(&p, bytes.data(), bytes.size(), maps.data(), uint32_t(maps.size()), &count, &err);
+    // The library's images, released when these go out of scope.
+    std::vector<vqtex_cpp::Image> owned;
+    std::vector<vqtex_cpp::Image16> owned16;
+    for (uint32_t i = 0; i < count; ++i) {
+        owned.emplace_back(maps[i].image);
+        owned16.emplace_back(maps[i].image16);
+    }
+    if (bar) bar->finish();
+    if (st != VQTEX_OK) throw std::runtime_error(input + ": " + err.detail);
+    std::vector<std::string> names, outputs;
+    for (uint32_t i = 0; i < count; ++i) {
+        // The image I/O writes 8-bit samples only: a 12-bit map would lose
+        // what it was stored for.
+        if (maps[i].bits > 8)
+            throw std::runtime_error(input + ": map '" + maps[i].name + "' has " + std::to_string(maps[i].bits) +
+                                     "-bit samples, and vqtex-decode writes 8-bit images only: decode it with "
+                                     "the library (vqtex_decode_maps)");
+        names.emplace_back(maps[i].name);
+        outputs.push_back(map_output_name(pattern, names.back()));
+        std::error_code ec;
+        if (fs::exists(outputs.back(), ec) && fs::equivalent(input, outputs.back(), ec))
+            throw std::invalid_argument("'" + outputs.back() + "' (map '" + names.back() +
+                                        "') is the input itself: give another output name");
+    }
+    refuse_folders(outputs);
+    // OpenImageIO's load (first file of a call only) is timed apart from
+    // the write: it is start-up, not work (docs/PERFORMANCE.md).
+    const double t_load = now_seconds();
+    load_image_io();
+    const double t1 = now_seconds();
+    std::vector<std::string> staged;  // written, not yet renamed into place
+    std::size_t placed = 0;
+    try {
+        for (uint32_t i = 0; i < count; ++i) {
+            const vqtex_image& m = maps[i].image;
+            staged.push_back(temporary_name_for(outputs[i]));
+            save_image(staged.back(), m.width, m.height, m.channels, m.pixels);
+        }
+        for (; placed < outputs.size(); ++placed) {
+            std::error_code ec;
+            fs::rename(staged[placed], outputs[placed], ec);
+            if (ec) throw std::runtime_error("cannot write '" + outputs[placed] + "': " + ec.message());
+        }
+    } catch (const std::exception& e) {
+        // The outputs of this decode go, renamed or not: all or nothing.
+        std::error_code ec;
+        for (std::size_t i = 0; i < staged.size(); ++i) fs::remove(i < placed ? outputs[i] : staged[i], ec);
+        // A failed write names the file it was given, a temporary, or that
+        // one's own temporary: name the output instead.
+        std::string why = e.what();
+        if (!staged.empty()) {
+            const std::string& output = outputs[staged.size() - 1];
+            for (const std::string& from : {temporary_name_for(staged.back()), staged.back()})
+                for (std::size_t at = 0; (at = why.find(from, at)) != std::string::npos; at += output.size())
+                    why.replace(at, from.size(), output);
+        }
+        throw std::runtime_error(why);
+    }
+    const uint32_t w = maps[0].image.width, h = maps[0].image.height;
+    const double t2 = now_seconds();
+    FileReport report;
+    report.json = {{"input", input},
+                   {"output", pattern},
+                   {"bytes", bytes.size()},
+                   {"width", w},
+                   {"height", h},
+                   {"bpp_output", 8.0 * double(bytes.size()) / (double(w) * h)},
+                   {"maps", names},
+                   {"outputs", outputs},
+                   {"decode_seconds", t_load - t0},
+                   {"image_io_load_seconds", t1 - t_load},
+                   {"write_seconds", t2 - t1}};
+    char line[1024];
+    std::snprintf(line, sizeof line, "%s (%zu bytes) -> %u map%s of %ux%u in %.3f s (%.2f Mpixel/s):\n", input.c_str(),
+                  bytes.size(), count, count == 1 ? "" : "s", w, h, t_load - t0,
+                  double(w) * h / std::max(t_load - t0, 1e-9) / 1e6);
+    report.text = line;
+    for (uint32_t i = 0; i < count; ++i) {
+        std::snprintf(line, sizeof line, "  %s -> %s\n", names[i].c_str(), outputs[i].c_str());
+        report.text += line;
+    }
+    return report;
+}
 
 // Decodes `input` into `output` with `threads` library threads; `bar` draws
 // the per-stage progress of a single file (null in a batch). Throws a
@@ -43,6 +162,16 @@ FileReport decode_one(const Settings& s, const std::string& input, const std::st
     const std::vector<uint8_t> bytes = load_bytes(input, p.memory_limit, "raise --memory-limit if it is a .vqt file");
     FileReport report;
     char line[1024];
+    if (has_map_field(output)) {
+        if (s.frames || is_frame_pattern(output))
+            throw std::invalid_argument("output '" + output +
+                                        "': {map} names the maps of a material set and does not go with an "
+                                        "animation's frames (--frames, or a frame-number field): drop one");
+        if (s.mips)
+            throw std::invalid_argument("output '" + output +
+                                        "': --mips does not go with {map} (the maps of a material set): drop one");
+        return decode_maps_one(p, input, bytes, output, bar);
+    }
     if (s.frames || is_frame_pattern(output)) {
         if (s.mips) throw std::invalid_argument("--mips is not supported for animations");
         if (!is_frame_pattern(output))
@@ -65,6 +194,22 @@ FileReport decode_one(const Settings& s, const std::string& input, const std::st
                       (t1 - t0) / n);
         report.text = line;
         return report;
+    }
+    // A set decoded into one file would silently be its first map. A file
+    // inspect refuses goes on to the decoder, which says why as it always has.
+    vqtex_file_info info{};
+    vqtex_error inspect_err{};
+    if (vqtex_inspect(bytes.data(), bytes.size(), p.memory_limit, &info, &inspect_err) == VQTEX_OK &&
+        info.map_count > 1) {
+        std::string names;
+        for (uint32_t i = 0; i < info.map_count && i < VQTEX_MAX_MAPS; ++i)
+            names += std::string(i ? ", " : "") + info.maps[i].name;
+        const std::string what =
+            input + " is a material set of " + std::to_string(info.map_count) + " maps (" + names + ")";
+        if (s.mips)
+            throw std::invalid_argument(what + ": --mips decodes single textures; decode the set without --mips, and " +
+                                        map_field_hint(s) + " to write one file per map");
+        throw std::invalid_argument(what + ": " + map_field_hint(s) + " to write one file per map");
     }
     vqtex_error err{};
     const double t0 = now_seconds();
@@ -129,12 +274,13 @@ int main(int argc, char** argv) {
     uint32_t frames = 0;
     auto* seed_opt = app.add_option("--seed", seed, "seed (default: the file's)");
     app.add_option("files", files,
-                   "INPUT.vqt OUTPUT (format from the extension), or with -o: .vqt files and folders of them")
+                   "INPUT.vqt OUTPUT (format from the extension; {map} in OUTPUT writes one file per map of a "
+                   "material set, e.g. 'out_{map}.png'), or with -o: .vqt files and folders of them")
         ->required();
     auto* out_dir_opt = app.add_option("-o,--output-dir", out_dir,
                                        "batch: write OUTDIR/NAME[SUFFIX].FORMAT for every input (created if missing)");
     app.add_option("--format", format, "batch: output format, as a file extension")->capture_default_str();
-    app.add_option("--suffix", suffix, "batch: text added to each output's name, e.g. _1k");
+    app.add_option("--suffix", suffix, "batch: text added to each output's name, e.g. _1k ({map}: one file per map)");
     app.add_option("-s,--size", size, "output size WxH, 1 to 16384 per side (default: the example's size)");
     app.add_option("--frames", frames,
                    "animated texture: frames to write (1 to 16384; default: the example's count); the output "
@@ -163,6 +309,7 @@ int main(int argc, char** argv) {
         s.params.memory_limit = memory_mib << 20;
         s.frames = frames;
         s.mips = mips;
+        s.batch = bool(*out_dir_opt);
         WriteOptions write;
         write.png_compression = png_compression;
         set_write_options(write);

@@ -1,7 +1,10 @@
 // vqtex-encode - encode an example texture into a compact .vqt file holding
 // its codebook only (paper section 6): an AV1 atlas by default, TSVQ trees
 // with --trees; through the public API only. One
-// example (`vqtex-encode IN OUT.vqt`) or a batch (`vqtex-encode IN... -o DIR`).
+// example (`vqtex-encode IN OUT.vqt`), a batch (`vqtex-encode IN... -o DIR`)
+// or a material set (`vqtex-encode --map albedo=A.png --map normal=N.png OUT.vqt`).
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -57,18 +60,244 @@ FileReport encode_animation(const std::string& input, const std::string& output,
     return r;
 }
 
+// One map of a material set, as --map or --normal gives it.
+struct MapInput {
+    std::string name;
+    vqtex_map_kind kind = VQTEX_MAP_DATA;
+    bool kind_given = false;  // else implied by the name
+    uint32_t weight = 0;
+    std::string file;
+};
+
+std::string lower(std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+const char* kind_name(vqtex_map_kind kind) {
+    return kind == VQTEX_MAP_NORMAL ? "normal" : kind == VQTEX_MAP_DATA ? "data" : "colour";
+}
+
+// The kind a map's name implies when --map gives none: the usual names of
+// colour and normal maps; any other map holds values as they are.
+vqtex_map_kind kind_from_name(const std::string& name) {
+    const std::string n = lower(name);
+    if (n.rfind("normal", 0) == 0 || n.rfind("nrm", 0) == 0) return VQTEX_MAP_NORMAL;
+    for (const char* colour : {"albedo", "diffuse", "basecolor", "base_color", "color", "colour", "emissive"})
+        if (n == colour) return VQTEX_MAP_COLOUR;
+    return VQTEX_MAP_DATA;
+}
+
+// "NAME[:KIND[:WEIGHT]]=FILE". Throws a one-line reason quoting `spec`.
+MapInput parse_map(const std::string& spec) {
+    const std::string where = "--map '" + spec + "'";
+    const std::size_t eq = spec.find('=');
+    if (eq == std::string::npos || eq + 1 == spec.size())
+        throw std::invalid_argument(where + " is not NAME[:KIND[:WEIGHT]]=FILE (e.g. --map albedo=stone_albedo.png)");
+    MapInput m;
+    m.file = spec.substr(eq + 1);
+    std::vector<std::string> parts{""};
+    for (const char c : spec.substr(0, eq)) {
+        if (c == ':')
+            parts.emplace_back();
+        else
+            parts.back() += c;
+    }
+    if (parts.size() > 3)
+        throw std::invalid_argument(where +
+                                    ": give at most a kind and a weight after the name (NAME:KIND:WEIGHT=FILE)");
+    m.name = parts[0];
+    // The name becomes part of file names ({map} in vqtex-decode's output).
+    const bool name_ok =
+        !m.name.empty() && m.name.size() <= VQTEX_MAX_MAP_NAME && std::all_of(m.name.begin(), m.name.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-';
+        });
+    if (!name_ok)
+        throw std::invalid_argument(where + ": the name '" + m.name + "' must be 1 to " +
+                                    std::to_string(VQTEX_MAX_MAP_NAME) + " characters of A-Z a-z 0-9 _ . -");
+    if (parts.size() >= 2) {
+        const std::string kind = lower(parts[1]);
+        if (kind == "colour" || kind == "color")
+            m.kind = VQTEX_MAP_COLOUR;
+        else if (kind == "normal")
+            m.kind = VQTEX_MAP_NORMAL;
+        else if (kind == "data")
+            m.kind = VQTEX_MAP_DATA;
+        else
+            throw std::invalid_argument(where + ": kind '" + parts[1] + "' is not colour, normal or data");
+        m.kind_given = true;
+    } else {
+        m.kind = kind_from_name(m.name);
+    }
+    if (parts.size() == 3) {
+        const std::string& w = parts[2];
+        if (w.size() != 1 || w[0] < '0' || w[0] > '8')
+            throw std::invalid_argument(where + ": weight '" + w + "' is not 0 to 8 (0: the kind's default)");
+        m.weight = uint32_t(w[0] - '0');
+    }
+    return m;
+}
+
+// The maps of all --map options: at most VQTEX_MAX_MAPS, names distinct
+// even in case (they name files, and some file systems ignore case).
+std::vector<MapInput> parse_maps(const std::vector<std::string>& specs) {
+    if (specs.size() > VQTEX_MAX_MAPS)
+        throw std::invalid_argument(std::to_string(specs.size()) + " --map options: a set holds at most " +
+                                    std::to_string(VQTEX_MAX_MAPS) + " maps; encode the others into another file");
+    std::vector<MapInput> maps;
+    for (const std::string& spec : specs) {
+        MapInput m = parse_map(spec);
+        for (const MapInput& earlier : maps) {
+            if (earlier.name == m.name)
+                throw std::invalid_argument("--map: two maps are named '" + m.name +
+                                            "': give each map a name of its own");
+            if (lower(earlier.name) == lower(m.name))
+                throw std::invalid_argument("--map: the names '" + earlier.name + "' and '" + m.name +
+                                            "' differ only in case, and they name the decoded files: give each "
+                                            "map a name of its own");
+        }
+        maps.push_back(std::move(m));
+    }
+    return maps;
+}
+
 // What the options set, for every file.
 struct Settings {
     vqtex_encode_params params;  // without threads and progress
     std::string shapes;
     bool atlas_asked = false;  // --atlas given (the default for still textures)
+    bool normal = false;       // --normal: each example is a normal map
     bool quiet = false;
 };
+
+// A set's maps into `output`: every file loaded and checked before the
+// library sees them, so that the error names the map and its file.
+// `normal_flag`: the one map comes from --normal (the messages say so).
+FileReport encode_set(const Settings& s, const std::vector<MapInput>& maps, const std::string& output, unsigned threads,
+                      ProgressBar* bar, bool normal_flag) {
+    vqtex_encode_params p = s.params;
+    p.threads = threads;
+    std::vector<LoadedImage> images;
+    images.reserve(maps.size());
+    for (const MapInput& m : maps) {
+        const std::string what = normal_flag ? "'" + m.file + "'" : "map '" + m.name + "' ('" + m.file + "')";
+        images.push_back(load_image(m.file));
+        const LoadedImage& img = images.back();
+        if (!img.notice.empty() && !s.quiet) write_stderr("vqtex-encode: note: " + m.file + ": " + img.notice + "\n");
+        if (m.kind == VQTEX_MAP_NORMAL && img.channels != 3) {
+            const std::string has =
+                what + " has " + std::to_string(img.channels) + (img.channels == 1 ? " channel" : " channels");
+            const std::string drop_alpha = img.channels == 4 ? "remove its alpha channel, or " : "";
+            if (normal_flag)
+                throw std::invalid_argument(has + ": --normal takes a normal map of 3 (x, y, z): " + drop_alpha +
+                                            "encode it without --normal");
+            throw std::invalid_argument(
+                has + (m.kind_given ? ", but a normal map" : ", but its name makes it a normal map, which") +
+                " has 3 (x, y, z): " + drop_alpha + "give it another kind, e.g. --map " + m.name + ":data=" + m.file);
+        }
+        const LoadedImage& first = images.front();
+        if (img.width != first.width || img.height != first.height)
+            throw std::invalid_argument(what + " is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                                        " but map '" + maps[0].name + "' ('" + maps[0].file + "') is " +
+                                        std::to_string(first.width) + "x" + std::to_string(first.height) +
+                                        ": the maps of a set have one size; resize them to it");
+    }
+    if (bar) {
+        p.progress = ProgressBar::callback;
+        p.progress_user = bar;
+    }
+    std::vector<vqtex_map> set(maps.size());
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        set[i].name = maps[i].name.c_str();
+        set[i].kind = maps[i].kind;
+        set[i].weight = maps[i].weight;
+        set[i].image.width = images[i].width;
+        set[i].image.height = images[i].height;
+        set[i].image.channels = images[i].channels;
+        set[i].image.pixels = images[i].pixels.data();
+    }
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_encode_stats stats{};
+    vqtex_error err{};
+    const double t0 = now_seconds();
+    const vqtex_status st = vqtex_encode_maps(&p, set.data(), uint32_t(set.size()), &data, &size, &stats, &err);
+    if (bar) bar->finish();
+    if (st != VQTEX_OK) throw std::runtime_error(err.detail);
+    const vqtex_cpp::Buffer file(data, size);  // owns the bytes from here
+    save_bytes(output, std::vector<uint8_t>(file.data(), file.data() + file.size()));
+    const double seconds = now_seconds() - t0;
+    const uint32_t width = images[0].width, height = images[0].height;
+    const double pixels = double(width) * height;
+    // An atlas found for a target size comes from no preset: no quality to report.
+    const bool preset_free = p.target_size != 0;
+    const int quality = int(stats.quality);
+    std::vector<std::string> names, kinds, files;
+    std::vector<uint32_t> channels;
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        names.push_back(maps[i].name);
+        kinds.push_back(kind_name(maps[i].kind));
+        files.push_back(maps[i].file);
+        channels.push_back(images[i].channels);
+    }
+    FileReport r;
+    auto& j = r.json;
+    if (normal_flag)
+        j["input"] = files[0];
+    else
+        j["inputs"] = files;
+    j["output"] = output;
+    j["width"] = width;
+    j["height"] = height;
+    j["maps"] = names;
+    j["kinds"] = kinds;
+    j["channels"] = channels;
+    j["bytes"] = size;
+    j["bpp"] = 8.0 * double(size) / pixels;
+    j["quality"] = preset_free ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(quality);
+    j["attempts"] = stats.attempts;
+    j["encode_seconds"] = seconds;
+    char line[2048];
+    if (normal_flag) {
+        std::snprintf(line, sizeof line, "%s (%ux%u, normal map) -> %s\n", files[0].c_str(), width, height,
+                      output.c_str());
+        r.text = line;
+    } else {
+        std::snprintf(line, sizeof line, "%zu maps of %ux%u -> %s\n", maps.size(), width, height, output.c_str());
+        r.text = line;
+        std::size_t name_width = 0;
+        for (const std::string& name : names) name_width = std::max(name_width, name.size());
+        for (std::size_t i = 0; i < maps.size(); ++i) {
+            std::snprintf(line, sizeof line, "  %-*s  %-6s  %u channel%s  %s\n", int(name_width), names[i].c_str(),
+                          kinds[i].c_str(), channels[i], channels[i] == 1 ? " " : "s", files[i].c_str());
+            r.text += line;
+        }
+    }
+    if (preset_free)
+        std::snprintf(line, sizeof line,
+                      "%zu bytes, %.3f bits per example pixel, atlas chosen for the target size, %.3f s\n", size,
+                      8.0 * double(size) / pixels, seconds);
+    else
+        std::snprintf(line, sizeof line, "%zu bytes, %.3f bits per example pixel, quality %d, %.3f s\n", size,
+                      8.0 * double(size) / pixels, quality, seconds);
+    r.text += line;
+    return r;
+}
 
 // Encodes `input` into `output` with `threads` library threads; `bar` draws
 // a single file's progress (null in a batch). Throws a one-line message.
 FileReport encode_one(const Settings& s, const std::string& input, const std::string& output, unsigned threads,
                       ProgressBar* bar) {
+    if (s.normal) {
+        if (is_sequence(input))
+            throw std::invalid_argument("--normal takes a still image: '" + input + "' is an animation");
+        MapInput m;
+        m.name = "normal";
+        m.kind = VQTEX_MAP_NORMAL;
+        m.kind_given = true;
+        m.file = input;
+        return encode_set(s, {m}, output, threads, bar, true);
+    }
     vqtex_encode_params p = s.params;
     p.threads = threads;
     if (is_sequence(input)) {
@@ -160,12 +389,22 @@ int main(int argc, char** argv) {
     bool no_entry_keys = false;
     uint64_t target_size = 0, seed = 1;
     bool json = false, quiet = false, no_closing = false, tileable = false, atlas = false, trees = false;
-    bool animation = false;
+    bool animation = false, normal = false;
+    std::vector<std::string> map_specs;
     app.add_option("files", files,
                    "EXAMPLE OUTPUT.vqt: an image (any format OpenImageIO reads) or an animation (a numbered "
                    "sequence 'frames/frame_%03d.png', a folder of frames, or a multi-image file); with -o: "
-                   "examples and folders of images, one texture each")
+                   "examples and folders of images, one texture each; with --map: OUTPUT.vqt only")
         ->required();
+    // One value per --map: the positional OUTPUT may follow the last one.
+    app.add_option("--map", map_specs,
+                   "NAME[:KIND[:WEIGHT]]=FILE, repeatable (up to 16): a material set, its maps (one size) "
+                   "decoded aligned. KIND colour|normal|data (default from the name: normal*/nrm* normal; albedo, "
+                   "diffuse, basecolor, base_color, color, colour, emissive colour; else data); WEIGHT 0 to 8, "
+                   "its say in the synthesis (0: the kind's default)")
+        ->allow_extra_args(false);
+    app.add_flag("--normal", normal,
+                 "EXAMPLE is a tangent-space normal map (3 channels): stored as a set of one map named 'normal'");
     auto* out_dir_opt = app.add_option("-o,--output-dir", out_dir,
                                        "batch: write OUTDIR/NAME[SUFFIX].vqt for every example (created if missing)");
     app.add_option("--suffix", suffix, "batch: text added to each output's name");
@@ -250,7 +489,52 @@ int main(int argc, char** argv) {
         s.params = p;
         s.shapes = shapes;
         s.atlas_asked = atlas;
+        s.normal = normal;
         s.quiet = quiet;
+
+        if (!map_specs.empty() && normal)
+            throw std::invalid_argument(
+                "--normal is for one image: in a set, give the normal map as --map normal=FILE");
+        // A material set is stored as an atlas; the trees have no maps.
+        if (!map_specs.empty() || normal) {
+            const std::string set_option = normal ? "--normal" : "--map";
+            if (trees) throw std::invalid_argument(set_option + " stores an atlas: drop --trees");
+            if (tree_options)
+                throw std::invalid_argument(set_option +
+                                            " stores no TSVQ trees: drop the options that describe "
+                                            "them (codewords, entries, precision, smoothing, closing, backtrack, "
+                                            "shapes)");
+        }
+        if (!map_specs.empty()) {
+            if (*out_dir_opt)
+                throw std::invalid_argument("--map makes one file: give its OUTPUT.vqt instead of -o DIR");
+            if (animation) throw std::invalid_argument("--map takes still images: drop --animation");
+            if (files.size() > 1) {
+                std::string extra;
+                for (std::size_t i = 0; i + 1 < files.size(); ++i) extra += (i ? ", '" : "'") + files[i] + "'";
+                throw std::invalid_argument("with --map, the one file argument is the OUTPUT.vqt: give " + extra +
+                                            " as --map NAME=FILE, or drop it");
+            }
+            const std::vector<MapInput> maps = parse_maps(map_specs);
+            const std::string& output = files[0];
+            // A forgotten output would make an image the output, replacing it.
+            const std::string ext = lower(fs::path(output).extension().string());
+            const auto& images = image_extensions();
+            if (std::find(images.begin(), images.end(), ext) != images.end())
+                throw std::invalid_argument("with --map, the one file argument is the OUTPUT.vqt: '" + output +
+                                            "' looks like an image; give the maps as --map NAME=FILE and the "
+                                            "output last");
+            for (const MapInput& m : maps) {
+                std::error_code ec;
+                if (fs::exists(output, ec) && fs::equivalent(m.file, output, ec))
+                    throw std::invalid_argument("'" + output + "' is the file of map '" + m.name +
+                                                "': give another OUTPUT.vqt, or the map would be replaced");
+            }
+            ProgressBar bar(!quiet && !json);
+            const FileReport r = encode_set(s, maps, output, threads, &bar, false);
+            print_report(r, json, quiet);
+            return 0;
+        }
 
         if (!*out_dir_opt) {
             require_single_pair(files, "OUTPUT .vqt", "encode", "examples");

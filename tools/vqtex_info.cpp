@@ -1,8 +1,10 @@
 // vqtex-info - verify a .vqt file and show what it holds and where its
 // bytes go, through the public API only. Reads no image, so it never loads
 // the image I/O module and starts in milliseconds.
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -28,6 +30,10 @@ __attribute__((format(printf, 2, 3))) void add(std::string& out, const char* for
     std::vsnprintf(line, sizeof line, format, args);
     va_end(args);
     out += line;
+}
+
+const char* kind_name(vqtex_map_kind kind) {
+    return kind == VQTEX_MAP_NORMAL ? "normal" : kind == VQTEX_MAP_DATA ? "data" : "colour";
 }
 
 FileReport info_one(const std::string& input) {
@@ -92,6 +98,19 @@ FileReport info_one(const std::string& input) {
                                  {"raw", info.sections[i].raw_bytes},
                                  {"stored", info.sections[i].stored_bytes}});
     j["header_and_checksum"] = overhead;
+    // A plain colour texture is one map, "texture": shown only for a set,
+    // or a normal or data map stored alone.
+    const uint32_t map_count = std::min<uint32_t>(info.map_count, VQTEX_MAX_MAPS);
+    const bool show_maps = map_count > 1 || (map_count == 1 && info.maps[0].kind != VQTEX_MAP_COLOUR);
+    if (show_maps) {
+        j["maps"] = nlohmann::ordered_json::array();
+        for (uint32_t i = 0; i < map_count; ++i)
+            j["maps"].push_back({{"name", info.maps[i].name},
+                                 {"kind", kind_name(info.maps[i].kind)},
+                                 {"channels", info.maps[i].channels},
+                                 {"bits", info.maps[i].bits},
+                                 {"bytes", info.maps[i].bytes}});
+    }
 
     std::string& t = r.text;
     add(t, "%s: vqtex format %u, %llu bytes, checksum OK\n", input.c_str(), info.format_version,
@@ -124,6 +143,15 @@ FileReport info_one(const std::string& input) {
         add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
             info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",
             info.precision, info.pixel_precision);
+    if (show_maps) {
+        add(t, "maps      %u%s\n", map_count, map_count > 1 ? ", decoded aligned (one synthesis for all)" : "");
+        int width = 0;
+        for (uint32_t i = 0; i < map_count; ++i) width = std::max(width, int(std::strlen(info.maps[i].name)));
+        for (uint32_t i = 0; i < map_count; ++i)
+            add(t, "  %-*s  %-6s  %u channel%s  %2u bits  %7llu bytes of coded atlas\n", width, info.maps[i].name,
+                kind_name(info.maps[i].kind), info.maps[i].channels, info.maps[i].channels == 1 ? " " : "s",
+                info.maps[i].bits, (unsigned long long)info.maps[i].bytes);
+    }
     for (uint32_t l = 0; l < info.levels && !atlas; ++l)
         add(t, "  level %u  {%ux%u,%u}  %5u codewords  %6u entries  %5u closing codewords\n", l, info.shapes[l].rows,
             info.shapes[l].cols, info.shapes[l].levels, info.codewords[l], info.entries[l],
