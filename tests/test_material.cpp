@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -448,4 +450,28 @@ TEST(Material, CoordinatesAreWhereEachPixelIsRead) {
         const Image plain = vqtex_test::decode(*file, p);
         EXPECT_EQ(std::memcmp(plain.pixels.data(), maps[0].image.data(), plain.byte_count()), 0);
     }
+}
+
+// Pins format version 9 and its decoder (tests/golden/README.md): an 8-bit
+// colour map (corpus/bricks_128.png) and a 12-bit data map (a 16-bit height
+// field from corpus/clouds_128.png, box-filtered 5x5) at a 4000-byte
+// target, decoded at 96x80 with seed 5: the hash of the albedo's bytes
+// then the height's 16-bit samples, little-endian.
+TEST(Material, GoldenFileDecodesToKnownPixels) {
+    std::ifstream in(std::string(VQTEX_GOLDEN_DIR) + "/material_v9.vqt", std::ios::binary);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(bytes.empty()) << "missing tests/golden/material_v9.vqt";
+    const vqtex_file_info info = vqtex_cpp::inspect(bytes.data(), bytes.size());
+    EXPECT_EQ(info.format_version, 9u);
+    ASSERT_EQ(info.map_count, 2u);
+    EXPECT_EQ(info.maps[1].bits, 12u);
+    const auto maps = vqtex_cpp::decode_maps(decode_params(96, 80, 5), bytes.data(), bytes.size());
+    ASSERT_EQ(maps.size(), 2u);
+    std::vector<uint8_t> all(maps[0].image.data(), maps[0].image.data() + maps[0].image.size_bytes());
+    for (std::size_t i = 0; i < maps[1].image16.samples(); ++i) {
+        all.push_back(uint8_t(maps[1].image16.data()[i] & 0xFF));
+        all.push_back(uint8_t(maps[1].image16.data()[i] >> 8));
+    }
+    const uint64_t hash = vqtex_test::fnv1a(all.data(), all.size());
+    EXPECT_EQ(hash, 0xc3e88ee853d6775aull) << std::hex << "decoded hash 0x" << hash;
 }
