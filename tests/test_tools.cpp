@@ -2,6 +2,7 @@
 // no partial output on failure.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <algorithm>
@@ -298,28 +299,56 @@ TEST(Tools, EncodeRejectsBadArgumentsWithoutOutput) {
     EXPECT_NE(r.output.find("no such file"), std::string::npos) << r.output;
 }
 
+// vqtex-synth works in 8 bits: a 16-bit or float example is rounded, with
+// a note. A float file holds linear light, which the reader puts back on
+// the sRGB curve; 16 bits read as such are the file's samples as they are.
 TEST(Tools, SixteenBitAndFloatInputsAreConvertedWithANotice) {
     const fs::path dir = scratch_dir();
     const vqtex::Image src = vqtex_test::load_corpus("weave_128.png");
-    for (const auto& [name, type] : {std::pair{"deep.png", OIIO::TypeDesc::UINT16}, {"float.exr", OIIO::TypeDesc::FLOAT}}) {
+    std::vector<uint16_t> deep(src.pixels.size());
+    std::vector<float> linear(src.pixels.size());
+    for (std::size_t i = 0; i < src.pixels.size(); ++i) {
+        deep[i] = uint16_t(src.pixels[i] * 257);
+        const float v = float(src.pixels[i]) / 255.0f;
+        linear[i] = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+    }
+    const std::pair<const char*, OIIO::TypeDesc> files[] = {{"deep.png", OIIO::TypeDesc::UINT16},
+                                                            {"float.exr", OIIO::TypeDesc::FLOAT}};
+    for (const auto& [name, type] : files) {
         const fs::path path = dir / name;
         auto out = OIIO::ImageOutput::create(path.string());
         ASSERT_TRUE(out);
         OIIO::ImageSpec spec(src.width, src.height, src.channels, type);
         ASSERT_TRUE(out->open(path.string(), spec));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, src.pixels.data()));
+        const bool is_float = type == OIIO::TypeDesc::FLOAT;
+        ASSERT_TRUE(is_float ? out->write_image(OIIO::TypeDesc::FLOAT, linear.data())
+                             : out->write_image(OIIO::TypeDesc::UINT16, deep.data()));
         out->close();
         const fs::path result = dir / (std::string(name) + ".out.png");
         const ToolRun r = run_tool(path.string() + " " + result.string() + " --size 32");
         EXPECT_EQ(r.status, 0) << r.output;
         EXPECT_NE(r.output.find("note:"), std::string::npos) << name << ": " << r.output;
         EXPECT_NE(r.output.find("to 8 bits"), std::string::npos) << r.output;
+        if (is_float) EXPECT_NE(r.output.find("from linear light"), std::string::npos) << r.output;
         // The conversion is a rounding of the same values, not a truncation.
         const vqtex_tools::LoadedImage back = vqtex_tools::load_image(path.string());
+        ASSERT_EQ(back.bits, 8u);
         int worst = 0;
         for (std::size_t i = 0; i < src.pixels.size(); ++i)
             worst = std::max(worst, std::abs(int(back.pixels[i]) - int(src.pixels[i])));
         EXPECT_LE(worst, 1) << name;
+        // Kept in 16 bits: the PNG's samples exactly, the float's within
+        // the rounding of the curve.
+        vqtex_tools::ReadOptions keep;
+        keep.keep_16 = true;
+        const vqtex_tools::LoadedImage back16 = vqtex_tools::load_image(path.string(), keep);
+        ASSERT_EQ(back16.bits, 16u);
+        ASSERT_EQ(back16.pixels16.size(), deep.size());
+        int worst16 = 0;
+        for (std::size_t i = 0; i < deep.size(); ++i)
+            worst16 = std::max(worst16, std::abs(int(back16.pixels16[i]) - int(deep[i])));
+        EXPECT_LE(worst16, is_float ? 2 : 0) << name;
+        EXPECT_EQ(back16.notice.empty(), !is_float) << name << ": " << back16.notice;
     }
 }
 

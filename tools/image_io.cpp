@@ -211,25 +211,30 @@ void set_write_options(const WriteOptions& options) { g_write_options = options;
 
 const WriteOptions& write_options() { return g_write_options; }
 
-LoadedImage load_image(const std::string& path) {
+LoadedImage load_image(const std::string& path) { return load_image(path, ReadOptions{}); }
+
+LoadedImage load_image(const std::string& path, const ReadOptions& options) {
     if (!fs::exists(path)) throw std::runtime_error("cannot read '" + path + "': no such file");
     if (fs::is_directory(path)) throw std::runtime_error("cannot read '" + path + "': it is a folder, not an image");
     const ImageioModule& io = imageio();
     const QuietStderr quiet;
-    return io.read(path);
+    return io.read(path, options);
 }
 
 namespace {
 
 // Writes an image to a temporary name beside `path` and returns that name;
-// on failure removes it and throws naming `path`.
-std::string write_temporary(const std::string& path, const ImageLevel* levels, uint32_t count) {
+// on failure removes it and throws naming `path`. `written` receives what
+// the file holds.
+std::string write_temporary(const std::string& path, const ImageLevel* levels, uint32_t count, SampleSpace space,
+                            WrittenImage* written = nullptr) {
     const ImageioModule& io = imageio();
     const std::string tmp = temporary_name_for(path);
     track(tmp);
     try {
         const QuietStderr quiet;
-        io.write(path, tmp, levels, count, g_write_options);
+        const WrittenImage w = io.write(path, tmp, levels, count, g_write_options, space);
+        if (written) *written = w;
     } catch (...) {
         std::error_code ec;
         fs::remove(tmp, ec);
@@ -241,10 +246,20 @@ std::string write_temporary(const std::string& path, const ImageLevel* levels, u
 
 }  // namespace
 
-void save_image(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
-                const uint8_t* pixels) {
-    const ImageLevel level{width, height, channels, pixels};
-    commit_temporary(write_temporary(path, &level, 1), path, true, "");
+WrittenImage save_image(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
+                        const uint8_t* pixels, SampleSpace space) {
+    const ImageLevel level{width, height, channels, pixels, nullptr};
+    WrittenImage written;
+    commit_temporary(write_temporary(path, &level, 1, space, &written), path, true, "");
+    return written;
+}
+
+WrittenImage save_image16(const std::string& path, uint32_t width, uint32_t height, uint32_t channels,
+                          const uint16_t* pixels, SampleSpace space) {
+    const ImageLevel level{width, height, channels, nullptr, pixels};
+    WrittenImage written;
+    commit_temporary(write_temporary(path, &level, 1, space, &written), path, true, "");
+    return written;
 }
 
 std::vector<uint8_t> load_bytes(const std::string& path, uint64_t max_bytes, const std::string& raise) {
@@ -287,13 +302,14 @@ void refuse_folders(const std::vector<std::string>& names) {
     }
 }
 
-std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_image* levels, uint32_t count) {
+std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_image* levels, uint32_t count,
+                                        SampleSpace space, WrittenImage* written_image) {
     std::vector<std::string> written;
     if (imageio().supports_mipmap(path)) {
         std::vector<ImageLevel> all;
         for (uint32_t i = 0; i < count; ++i)
-            all.push_back(ImageLevel{levels[i].width, levels[i].height, levels[i].channels, levels[i].pixels});
-        commit_temporary(write_temporary(path, all.data(), count), path, true, "");
+            all.push_back(ImageLevel{levels[i].width, levels[i].height, levels[i].channels, levels[i].pixels, nullptr});
+        commit_temporary(write_temporary(path, all.data(), count, space, written_image), path, true, "");
         written.push_back(path);
         return written;
     }
@@ -308,8 +324,8 @@ std::vector<std::string> save_mip_chain(const std::string& path, const vqtex_ima
                                             : (p.parent_path() / (p.stem().string() + "_mip" + std::to_string(i) +
                                                                   p.extension().string()))
                                                   .string();
-            const ImageLevel level{levels[i].width, levels[i].height, levels[i].channels, levels[i].pixels};
-            temporaries.push_back(write_temporary(name, &level, 1));
+            const ImageLevel level{levels[i].width, levels[i].height, levels[i].channels, levels[i].pixels, nullptr};
+            temporaries.push_back(write_temporary(name, &level, 1, space, i == 0 ? written_image : nullptr));
             written.push_back(name);
         }
         refuse_folders(written);

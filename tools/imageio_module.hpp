@@ -20,29 +20,34 @@
 namespace vqtex_tools {
 
 // Raise whenever ImageioModule or a type it passes changes.
-constexpr uint32_t kImageioAbi = 2;
+constexpr uint32_t kImageioAbi = 3;
 
+// One image to write: 8-bit samples in `pixels`, or 16-bit ones in
+// `pixels16` when that is not null.
 struct ImageLevel {
     uint32_t width = 0, height = 0, channels = 0;
     const uint8_t* pixels = nullptr;
+    const uint16_t* pixels16 = nullptr;
 };
 
 struct ImageioModule {
     uint32_t abi;
-    // One image as 8 bits, 1 to 4 channels (the first subimage).
-    LoadedImage (*read)(const std::string& path);
+    // One image, 1 to 4 channels (the first subimage), as `options` say.
+    LoadedImage (*read)(const std::string& path, const ReadOptions& options);
     // Whether the format named by `name`'s extension keeps MIP levels in
     // one file; throws for an extension no format claims.
     bool (*supports_mipmap)(const std::string& name);
     // Writes `count` levels (more than one only where supports_mipmap) to
-    // `file` in the format of `name`'s extension. Leaves a partial `file`
-    // on failure: the caller writes to a temporary name and removes it.
-    void (*write)(const std::string& name, const std::string& file, const ImageLevel* levels, uint32_t count,
-                  const WriteOptions& options);
+    // `file` in the format of `name`'s extension, with samples that stand
+    // for `space`; every level has the same sample size. Leaves a partial
+    // `file` on failure: the caller writes to a temporary name and removes it.
+    WrittenImage (*write)(const std::string& name, const std::string& file, const ImageLevel* levels, uint32_t count,
+                          const WriteOptions& options, SampleSpace space);
     // Images in a multi-image file (TIFF pages, GIF frames); 0 when it is
     // not an image OpenImageIO reads.
     int (*subimage_count)(const std::string& path);
-    // Calls `each` with every image of a multi-image file in order.
+    // Calls `each` with every image of a multi-image file in order, as
+    // 8-bit colour.
     void (*read_subimages)(const std::string& path, const std::function<void(LoadedImage&&)>& each);
 };
 

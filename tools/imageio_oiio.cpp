@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -18,7 +19,10 @@ namespace {
 
 using vqtex_tools::ImageLevel;
 using vqtex_tools::LoadedImage;
+using vqtex_tools::ReadOptions;
+using vqtex_tools::SampleSpace;
 using vqtex_tools::WriteOptions;
+using vqtex_tools::WrittenImage;
 
 // OpenImageIO's errors may span lines (one per layer that saw them).
 std::string one_line(std::string why) {
@@ -87,29 +91,107 @@ int strip_rows(const OIIO::ImageSpec& spec) {
     return std::max(1, (kStripRows + spec.tile_height - 1) / spec.tile_height) * spec.tile_height;
 }
 
-// A float sample in 0..1 as 8 bits, rounded as OpenImageIO converts.
-uint8_t to_8bit(float v) { return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+// The sRGB transfer curve (IEC 61966-2-1) both ways, on 0..1: the samples
+// of a colour image are on it; a float file holds linear light.
+float srgb_to_linear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
+float linear_to_srgb(float v) { return v <= 0.0031308f ? v * 12.92f : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
 
-// Reads rows [y0, y1) of the first `channels` channels as 8-bit straight
-// alpha into `out`, from a file that holds associated alpha: in float, so
-// that colour under a small alpha keeps the precision the file has.
-bool read_rows_unassociating(OIIO::ImageInput& in, int subimage, int y0, int y1, int channels, int alpha,
-                             uint8_t* out) {
-    const OIIO::ImageSpec& spec = in.spec();
-    const std::size_t samples = std::size_t(spec.width) * std::size_t(y1 - y0) * std::size_t(channels);
-    std::vector<float> rows(samples);
-    if (!read_rows(in, subimage, y0, y1, channels, OIIO::TypeDesc::FLOAT, rows.data())) return false;
-    for (std::size_t p = 0; p < samples; p += std::size_t(channels)) {
-        const float a = rows[p + std::size_t(alpha)];
-        for (int c = 0; c < channels; ++c) {
-            const float v = rows[p + std::size_t(c)];
-            out[p + std::size_t(c)] = to_8bit(c == alpha || a <= 0.0f ? v : v / a);
+// How the samples of a file become the reader's: which channel is alpha,
+// what is undone on the way, and into how many bits.
+struct Reading {
+    int channels = 0;
+    int alpha = -1;            // a colour image's alpha channel, or -1
+    bool unassociate = false;  // the file holds colour premultiplied by alpha: divide it out
+    bool linear = false;       // float colour, linear light: put it on the sRGB curve
+    bool via_float = false;    // read as float and converted here; else OpenImageIO converts
+    uint32_t bits = 8;
+};
+
+Reading reading_of(const OIIO::ImageSpec& spec, const ReadOptions& options) {
+    Reading r;
+    r.channels = std::min(spec.nchannels, 4);
+    const bool is_float = spec.format.is_floating_point();
+    // Data has no alpha: its last channel is a value like the others, read
+    // as the file holds it.
+    if (options.space == SampleSpace::colour && spec.alpha_channel >= 0 && spec.alpha_channel < r.channels)
+        r.alpha = spec.alpha_channel;
+    r.unassociate = r.alpha >= 0 && holds_associated_alpha(spec);
+    r.linear = is_float && options.space == SampleSpace::colour;
+    r.via_float = is_float || r.unassociate;
+    r.bits = options.keep_16 && spec.format.size() > 1 ? 16 : 8;
+    return r;
+}
+
+// Float samples (`samples` of them, whole pixels) as `r` says, rounded to
+// T's range as OpenImageIO rounds; returns how many were outside 0..1 by
+// more than the rounding would have taken back (NaN among them): the
+// clamping changed them.
+template <typename T>
+uint64_t quantise(const float* in, std::size_t samples, const Reading& r, T* out) {
+    const float top = float(std::numeric_limits<T>::max());
+    const float slack = 0.5f / top;
+    const std::size_t channels = std::size_t(r.channels);
+    uint64_t clamped = 0;
+    for (std::size_t p = 0; p < samples; p += channels) {
+        const float a = r.alpha >= 0 ? in[p + std::size_t(r.alpha)] : 1.0f;
+        for (std::size_t c = 0; c < channels; ++c) {
+            float v = in[p + c];
+            if (int(c) != r.alpha) {
+                if (r.unassociate && a > 0.0f) v /= a;
+                if (r.linear) v = linear_to_srgb(v);  // negative stays negative, NaN NaN: clamped below
+            }
+            if (!(v >= -slack && v <= 1.0f + slack)) ++clamped;
+            v = v >= 0.0f ? std::min(v, 1.0f) : 0.0f;
+            out[p + c] = T(std::lround(v * top));
         }
     }
+    return clamped;
+}
+
+// Rows [y0, y1) read as float and converted by `r` into `out`; adds the
+// samples clamped to `clamped`. In float, so that colour under a small
+// alpha keeps the precision the file has.
+template <typename T>
+bool read_rows_converted(OIIO::ImageInput& in, int subimage, int y0, int y1, const Reading& r, T* out,
+                         uint64_t& clamped) {
+    const std::size_t samples = std::size_t(in.spec().width) * std::size_t(y1 - y0) * std::size_t(r.channels);
+    std::vector<float> rows(samples);
+    if (!read_rows(in, subimage, y0, y1, r.channels, OIIO::TypeDesc::FLOAT, rows.data())) return false;
+    clamped += quantise(rows.data(), samples, r, out);
     return true;
 }
 
-LoadedImage read(const std::string& path) {
+// Rows [y0, y1) of `img` (sized for them), as `r` says.
+bool read_image_rows(OIIO::ImageInput& in, int subimage, int y0, int y1, const Reading& r, LoadedImage& img,
+                     std::size_t first_sample, uint64_t& clamped) {
+    if (r.bits == 16) {
+        uint16_t* out = img.pixels16.data() + first_sample;
+        return r.via_float ? read_rows_converted(in, subimage, y0, y1, r, out, clamped)
+                           : read_rows(in, subimage, y0, y1, r.channels, OIIO::TypeDesc::UINT16, out);
+    }
+    uint8_t* out = img.pixels.data() + first_sample;
+    return r.via_float ? read_rows_converted(in, subimage, y0, y1, r, out, clamped)
+                       : read_rows(in, subimage, y0, y1, r.channels, OIIO::TypeDesc::UINT8, out);
+}
+
+// What the reader did to the file's samples, for the notice; empty when it
+// kept them as they are.
+std::string conversion_notice(const OIIO::ImageSpec& spec, const Reading& r, uint64_t clamped) {
+    const std::string from = spec.format.c_str(), to = std::to_string(r.bits) + " bits";
+    std::string n;
+    if (r.linear)
+        n = "converted " + from + " samples from linear light to " + to + " on the sRGB curve";
+    else if (spec.format.is_floating_point())
+        n = "converted " + from + " samples to " + to + " (values as they are)";
+    else if (spec.format.size() > 1 && (r.bits == 8 || spec.format != OIIO::TypeDesc::UINT16))
+        n = "converted " + from + " samples to " + to + " (rounded)";
+    if (clamped)
+        n += (n.empty() ? "" : "; ") + std::to_string(clamped) + " sample" + (clamped == 1 ? "" : "s") +
+             " outside 0..1 clamped";
+    return n;
+}
+
+LoadedImage read(const std::string& path, const ReadOptions& options) {
     const OIIO::ImageSpec hint = straight_alpha_hint();
     auto in = OIIO::ImageInput::open(path, &hint);
     if (!in) {
@@ -126,31 +208,26 @@ LoadedImage read(const std::string& path) {
     if (spec.width > 65536 || spec.height > 65536 || pixels > (uint64_t(1) << 30))
         throw std::runtime_error("'" + path + "' is " + std::to_string(spec.width) + "x" +
                                  std::to_string(spec.height) + ", larger than the 65536-per-side, 2^30-pixel limit");
+    const Reading r = reading_of(spec, options);
     LoadedImage img;
     img.width = uint32_t(spec.width);
     img.height = uint32_t(spec.height);
-    img.channels = uint32_t(std::min(spec.nchannels, 4));
-    if (spec.nchannels > 4) img.notice = "kept the first 4 of " + std::to_string(spec.nchannels) + " channels";
-    if (spec.format != OIIO::TypeDesc::UINT8) {
-        if (!img.notice.empty()) img.notice += "; ";
-        img.notice += "converted " + std::string(spec.format.c_str()) +
-                      " samples to 8 bits (rounded, clamped to 0..1 for float)";
-    }
+    img.channels = uint32_t(r.channels);
+    img.bits = r.bits;
     // Strips of rows, the buffer growing with them: a header that declares
     // a huge image over a short (truncated or forged) body fails after
     // allocating about what the file really holds, not what it claims.
-    const std::size_t row_bytes = std::size_t(spec.width) * img.channels;
-    const bool associated = holds_associated_alpha(spec);
+    const std::size_t row_samples = std::size_t(spec.width) * img.channels;
     const int strip = strip_rows(spec);
+    uint64_t clamped = 0;
     for (int y = 0; y < spec.height; y += strip) {
         const int rows = std::min(strip, spec.height - y);
-        img.pixels.resize((std::size_t(y) + std::size_t(rows)) * row_bytes);
-        uint8_t* const rows_out = img.pixels.data() + std::size_t(y) * row_bytes;
-        const bool read_ok = associated ? read_rows_unassociating(*in, 0, spec.y + y, spec.y + y + rows, int(img.channels),
-                                                                  spec.alpha_channel, rows_out)
-                                        : read_rows(*in, 0, spec.y + y, spec.y + y + rows, int(img.channels),
-                                                    OIIO::TypeDesc::UINT8, rows_out);
-        if (!read_ok) {
+        const std::size_t end = (std::size_t(y) + std::size_t(rows)) * row_samples;
+        if (r.bits == 16)
+            img.pixels16.resize(end);
+        else
+            img.pixels.resize(end);
+        if (!read_image_rows(*in, 0, spec.y + y, spec.y + y + rows, r, img, std::size_t(y) * row_samples, clamped)) {
             const std::string why = one_line(in->geterror());
             throw std::runtime_error("cannot decode '" + path + "' (rows " + std::to_string(y) + " to " +
                                      std::to_string(y + rows - 1) + " of " + std::to_string(spec.height) +
@@ -162,6 +239,9 @@ LoadedImage read(const std::string& path) {
         throw std::runtime_error("cannot decode '" + path +
                                  "': the JPEG data ends before its end-of-image marker: the file is truncated");
     in->close();
+    if (spec.nchannels > 4) img.notice = "kept the first 4 of " + std::to_string(spec.nchannels) + " channels";
+    const std::string converted = conversion_notice(spec, r, clamped);
+    if (!converted.empty()) img.notice += (img.notice.empty() ? "" : "; ") + converted;
     return img;
 }
 
@@ -188,14 +268,57 @@ bool supports_mipmap(const std::string& name) {
 // keep colour under a small alpha that 8 bits would round away.
 bool premultiplies_alpha(const OIIO::ImageOutput& out) { return std::string(out.format_name()) == "openexr"; }
 
-std::vector<float> premultiplied(const ImageLevel& level, int alpha) {
+// Formats of floating-point samples, which by convention hold linear light
+// (OpenEXR, Radiance HDR): colour goes off the sRGB curve into them.
+bool holds_linear_float(const OIIO::ImageOutput& out) {
+    const std::string format = out.format_name();
+    return format == "openexr" || format == "hdr";
+}
+
+// The colour space the metadata names, in OpenImageIO 2.4's words ("sRGB",
+// "Linear"; newer versions also say "lin_srgb" for the latter) and, for
+// samples that are no colour, "Raw", as OpenColorIO configurations name
+// such data.
+const char* colour_space_name(SampleSpace space, bool linear_float) {
+    if (space != SampleSpace::colour) return "Raw";
+    return linear_float ? "Linear" : "sRGB";
+}
+
+// Channel names and the alpha channel: grey+alpha and RGBA colour have
+// alpha last (OpenImageIO's default names a 2-channel image R, G, without
+// alpha); data has none, whatever its channels.
+void name_channels(OIIO::ImageSpec& spec, SampleSpace space) {
+    spec.alpha_channel = -1;
+    if (spec.nchannels == 1) spec.channelnames = {"Y"};
+    if (space == SampleSpace::positions && spec.nchannels == 2) spec.channelnames = {"x", "y"};
+    if (space == SampleSpace::colour && spec.nchannels == 2) {
+        spec.channelnames = {"Y", "A"};
+        spec.alpha_channel = 1;
+    }
+    if (space == SampleSpace::colour && spec.nchannels == 4) spec.alpha_channel = 3;
+}
+
+// A level's samples as a linear float file holds them: colour off the sRGB
+// curve (alpha as it is) and, where `premultiply`, multiplied by alpha;
+// data as value / max; positions as the numbers themselves.
+std::vector<float> linear_samples(const ImageLevel& level, SampleSpace space, int alpha, bool premultiply) {
+    const bool deep = level.pixels16 != nullptr;
     const std::size_t channels = level.channels;
-    std::vector<float> v(std::size_t(level.width) * level.height * channels);
-    for (std::size_t p = 0; p < v.size(); p += channels) {
-        const float a = float(level.pixels[p + std::size_t(alpha)]) / 255.0f;
+    const std::size_t count = std::size_t(level.width) * level.height * channels;
+    const float top = deep ? 65535.0f : 255.0f;
+    // One entry per sample value: the curve costs a pow() per sample.
+    std::vector<float> table(deep ? 65536 : 256);
+    for (std::size_t i = 0; i < table.size(); ++i) {
+        const float x = float(i);
+        table[i] = space == SampleSpace::positions ? x : space == SampleSpace::data ? x / top : srgb_to_linear(x / top);
+    }
+    const auto sample = [&](std::size_t i) -> std::size_t { return deep ? level.pixels16[i] : level.pixels[i]; };
+    std::vector<float> v(count);
+    for (std::size_t p = 0; p < count; p += channels) {
+        const float a = alpha >= 0 ? float(sample(p + std::size_t(alpha))) / top : 1.0f;
         for (std::size_t c = 0; c < channels; ++c) {
-            const float x = float(level.pixels[p + c]) / 255.0f;
-            v[p + c] = int(c) == alpha ? x : x * a;
+            const std::size_t s = sample(p + c);
+            v[p + c] = int(c) == alpha ? a : premultiply ? table[s] * a : table[s];
         }
     }
     return v;
@@ -205,23 +328,39 @@ std::vector<float> premultiplied(const ImageLevel& level, int alpha) {
 // usual one.
 constexpr int kMipTile = 64;
 
-void write(const std::string& name, const std::string& file, const ImageLevel* levels, uint32_t count,
-           const WriteOptions& options) {
+WrittenImage write(const std::string& name, const std::string& file, const ImageLevel* levels, uint32_t count,
+                   const WriteOptions& options, SampleSpace space) {
     auto out = output_for(name);
     const bool mip_tiff = count > 1 && is_tiff(*out);
+    // 16-bit samples stay 16-bit (a format without them, such as JPEG,
+    // takes 8); a float file gets half for 8-bit samples and float for
+    // 16-bit ones, whose 12 bits half's 11 would not keep near 1.
+    const bool deep = levels[0].pixels16 != nullptr;
+    const bool linear_float = holds_linear_float(*out);
+    const OIIO::TypeDesc file_type = linear_float ? (deep ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF)
+                                                  : (deep ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
+    WrittenImage written;
+    written.colour_space = colour_space_name(space, linear_float);
     std::vector<OIIO::ImageSpec> specs;
     for (uint32_t i = 0; i < count; ++i) {
-        OIIO::ImageSpec spec(int(levels[i].width), int(levels[i].height), int(levels[i].channels),
-                             OIIO::TypeDesc::UINT8);
+        OIIO::ImageSpec spec(int(levels[i].width), int(levels[i].height), int(levels[i].channels), file_type);
+        name_channels(spec, space);
         // Only the PNG writer reads this; zlib's level decides most of a
         // PNG's write time (docs/PERFORMANCE.md, "Writing").
         spec.attribute("png:compressionLevel", options.png_compression);
-        if (spec.alpha_channel >= 0) {
-            if (premultiplies_alpha(*out))
-                spec.set_format(OIIO::TypeDesc::HALF);
-            else
-                spec.attribute("oiio:UnassociatedAlpha", 1);  // the pixels are straight: store them so
+        // PNG keeps it (as a text chunk, and "sRGB" also as its sRGB
+        // chunk); TIFF keeps "sRGB" (Exif ColorSpace 1) and drops the rest.
+        spec.attribute("oiio:ColorSpace", written.colour_space);
+        if (linear_float) {
+            // OpenImageIO 2.4 writes no "oiio:" attribute into an OpenEXR
+            // header (and reads every one back as "Linear"): the header
+            // says it itself, linear colour also by its Color Interop
+            // Forum name, which newer OpenImageIO and Blender write.
+            spec.attribute("vqtex:ColorSpace", written.colour_space);
+            if (space == SampleSpace::colour) spec.attribute("colorInteropID", "lin_rec709_scene");
         }
+        if (spec.alpha_channel >= 0 && !premultiplies_alpha(*out))
+            spec.attribute("oiio:UnassociatedAlpha", 1);  // the pixels are straight: store them so
         if (count > 1) {
             spec.tile_width = kMipTile;
             spec.tile_height = kMipTile;
@@ -242,9 +381,13 @@ void write(const std::string& name, const std::string& file, const ImageLevel* l
         else if (i > 0)
             ok = out->open(file, specs[i],
                            mip_tiff ? OIIO::ImageOutput::AppendSubimage : OIIO::ImageOutput::AppendMIPLevel);
-        if (ok && specs[i].alpha_channel >= 0 && premultiplies_alpha(*out)) {
-            const std::vector<float> v = premultiplied(levels[i], specs[i].alpha_channel);
+        if (ok && i == 0) written.samples = out->spec().format.c_str();  // what the format took
+        if (ok && linear_float) {
+            const std::vector<float> v =
+                linear_samples(levels[i], space, specs[i].alpha_channel, premultiplies_alpha(*out));
             ok = out->write_image(OIIO::TypeDesc::FLOAT, v.data());
+        } else if (ok && deep) {
+            ok = out->write_image(OIIO::TypeDesc::UINT16, levels[i].pixels16);
         } else if (ok) {
             ok = out->write_image(OIIO::TypeDesc::UINT8, levels[i].pixels);
         }
@@ -254,6 +397,7 @@ void write(const std::string& name, const std::string& file, const ImageLevel* l
         std::string why = one_line(out->geterror());
         throw std::runtime_error("cannot write '" + name + "': " + (why.empty() ? std::string("write failed") : why));
     }
+    return written;
 }
 
 constexpr int kMaxSubimages = 65536;
@@ -266,7 +410,8 @@ int subimage_count(const std::string& path) {
     return n;
 }
 
-// One subimage of a multi-image file as 8 bits, 1 to 4 channels.
+// One subimage of a multi-image file as 8-bit colour, 1 to 4 channels (the
+// frames of an animation, which the library takes in 8 bits).
 LoadedImage read_subimage(OIIO::ImageInput& in, int index, const std::string& path) {
     if (!in.seek_subimage(index, 0))
         throw std::runtime_error("cannot read image " + std::to_string(index) + " of '" + path + "'");
@@ -275,18 +420,20 @@ LoadedImage read_subimage(OIIO::ImageInput& in, int index, const std::string& pa
         throw std::runtime_error("image " + std::to_string(index) + " of '" + path + "' is not a 2D image");
     if (uint64_t(spec.width) * uint64_t(spec.height) > (uint64_t(1) << 28))
         throw std::runtime_error("image " + std::to_string(index) + " of '" + path + "' is too large");
+    const Reading r = reading_of(spec, ReadOptions{});
     LoadedImage img;
     img.width = uint32_t(spec.width);
     img.height = uint32_t(spec.height);
-    img.channels = uint32_t(std::min(spec.nchannels, 4));
+    img.channels = uint32_t(r.channels);
     img.pixels.resize(std::size_t(img.width) * img.height * img.channels);
-    const bool ok = holds_associated_alpha(spec)
-                        ? read_rows_unassociating(in, index, spec.y, spec.y + spec.height, int(img.channels),
-                                                  spec.alpha_channel, img.pixels.data())
-                        : in.read_image(index, 0, 0, int(img.channels), OIIO::TypeDesc::UINT8, img.pixels.data());
+    uint64_t clamped = 0;
+    const bool ok = r.via_float ? read_rows_converted(in, index, spec.y, spec.y + spec.height, r, img.pixels.data(),
+                                                      clamped)
+                                : in.read_image(index, 0, 0, r.channels, OIIO::TypeDesc::UINT8, img.pixels.data());
     if (!ok)
         throw std::runtime_error("cannot read image " + std::to_string(index) + " of '" + path +
                                  "': " + one_line(in.geterror()));
+    img.notice = conversion_notice(spec, r, clamped);
     return img;
 }
 

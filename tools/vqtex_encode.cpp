@@ -49,8 +49,10 @@ FileReport encode_animation(const std::string& input, const std::string& output,
     const double seconds = now_seconds() - t0;
     FileReport r;
     char line[2048];
-    r.json = {{"input", input},       {"output", output},          {"width", seq.width}, {"height", seq.height},
-              {"frames", seq.frames}, {"channels", seq.channels},  {"bytes", size},      {"encode_seconds", seconds}};
+    r.json = {{"input", input},       {"output", output},         {"width", seq.width}, {"height", seq.height},
+              {"frames", seq.frames}, {"channels", seq.channels}, {"bits", 8},          {"bytes", size},
+              {"encode_seconds", seconds}};
+    if (!seq.notice.empty()) r.json["notices"] = std::vector<std::string>{input + ": " + seq.notice};
     std::snprintf(line, sizeof line, "%s (%ux%u, %u frames, %u channels) -> %s\n", input.c_str(), seq.width,
                   seq.height, seq.frames, seq.channels, output.c_str());
     r.text = line;
@@ -167,28 +169,45 @@ struct Settings {
     std::string shapes;
     bool atlas_asked = false;  // --atlas given (the default for still textures)
     bool normal = false;       // --normal: each example is a normal map
+    bool data = false;         // --data: each example holds values (height, roughness, a mask)
     bool quiet = false;
 };
 
-// A set's maps into `output`: every file loaded and checked before the
-// library sees them, so that the error names the map and its file.
-// `normal_flag`: the one map comes from --normal (the messages say so).
-FileReport encode_set(const Settings& s, const std::vector<MapInput>& maps, const std::string& output, unsigned threads,
-                      ProgressBar* bar, bool normal_flag) {
-    vqtex_encode_params p = s.params;
-    p.threads = threads;
+// How a map's samples are read: colour by the sRGB curve, normal and data
+// maps as values; more than 8 bits a sample kept as 16 (the file keeps 12).
+ReadOptions read_options_for(vqtex_map_kind kind) {
+    ReadOptions o;
+    o.space = kind == VQTEX_MAP_COLOUR ? SampleSpace::colour : SampleSpace::data;
+    o.keep_16 = true;
+    return o;
+}
+
+// What the reader converted, said on stderr (unless quiet) and kept for
+// the JSON report: a note that only reaches a terminal is lost to a
+// pipeline.
+void note(const Settings& s, const std::string& file, const LoadedImage& img, std::vector<std::string>& notices) {
+    if (img.notice.empty()) return;
+    notices.push_back(file + ": " + img.notice);
+    if (!s.quiet) write_stderr("vqtex-encode: note: " + notices.back() + "\n");
+}
+
+// The maps' files, loaded and checked before the library sees them, so
+// that an error names the map and its file. `single`: the one map is the
+// EXAMPLE of --normal or --data (the messages say so).
+std::vector<LoadedImage> load_maps(const Settings& s, const std::vector<MapInput>& maps, bool single,
+                                   std::vector<std::string>& notices) {
     std::vector<LoadedImage> images;
     images.reserve(maps.size());
     for (const MapInput& m : maps) {
-        const std::string what = normal_flag ? "'" + m.file + "'" : "map '" + m.name + "' ('" + m.file + "')";
-        images.push_back(load_image(m.file));
+        const std::string what = single ? "'" + m.file + "'" : "map '" + m.name + "' ('" + m.file + "')";
+        images.push_back(load_image(m.file, read_options_for(m.kind)));
         const LoadedImage& img = images.back();
-        if (!img.notice.empty() && !s.quiet) write_stderr("vqtex-encode: note: " + m.file + ": " + img.notice + "\n");
+        note(s, m.file, img, notices);
         if (m.kind == VQTEX_MAP_NORMAL && img.channels != 3) {
             const std::string has =
                 what + " has " + std::to_string(img.channels) + (img.channels == 1 ? " channel" : " channels");
             const std::string drop_alpha = img.channels == 4 ? "remove its alpha channel, or " : "";
-            if (normal_flag)
+            if (single)
                 throw std::invalid_argument(has + ": --normal takes a normal map of 3 (x, y, z): " + drop_alpha +
                                             "encode it without --normal");
             throw std::invalid_argument(
@@ -202,19 +221,49 @@ FileReport encode_set(const Settings& s, const std::vector<MapInput>& maps, cons
                                         std::to_string(first.width) + "x" + std::to_string(first.height) +
                                         ": the maps of a set have one size; resize them to it");
     }
+    return images;
+}
+
+// The bits a sample each map keeps in `file`, as the file itself says; a
+// file too large for inspect's default memory limit gets what vqtex.h
+// promises instead (12 bits of 16-bit samples).
+std::vector<uint32_t> bits_in_file(const vqtex_cpp::Buffer& file, const std::vector<LoadedImage>& images) {
+    vqtex_file_info info{};
+    const bool inspected = vqtex_inspect(file.data(), file.size(), 0, &info, nullptr) == VQTEX_OK &&
+                           info.map_count == images.size();
+    std::vector<uint32_t> bits;
+    for (std::size_t i = 0; i < images.size(); ++i)
+        bits.push_back(inspected ? info.maps[i].bits : images[i].bits == 16 ? 12u : 8u);
+    return bits;
+}
+
+// A set's maps, loaded, into `output`. `single`: the set is one EXAMPLE
+// (--normal, --data, or an image of more than 8 bits a sample), reported
+// as one input.
+FileReport encode_loaded_set(const Settings& s, const std::vector<MapInput>& maps,
+                             const std::vector<LoadedImage>& images, std::vector<std::string> notices,
+                             const std::string& output, unsigned threads, ProgressBar* bar, bool single) {
+    vqtex_encode_params p = s.params;
+    p.threads = threads;
     if (bar) {
         p.progress = ProgressBar::callback;
         p.progress_user = bar;
     }
+    // 16-bit samples go as image16, which the file keeps 12 bits of.
+    std::vector<vqtex_image16> deep(maps.size());
     std::vector<vqtex_map> set(maps.size());
     for (std::size_t i = 0; i < maps.size(); ++i) {
+        const LoadedImage& img = images[i];
         set[i].name = maps[i].name.c_str();
         set[i].kind = maps[i].kind;
         set[i].weight = maps[i].weight;
-        set[i].image.width = images[i].width;
-        set[i].image.height = images[i].height;
-        set[i].image.channels = images[i].channels;
-        set[i].image.pixels = images[i].pixels.data();
+        if (img.bits == 16) {
+            // The library reads the samples only.
+            deep[i] = vqtex_image16{img.width, img.height, img.channels, const_cast<uint16_t*>(img.pixels16.data())};
+            set[i].image16 = &deep[i];
+        } else {
+            set[i].image = vqtex_image{img.width, img.height, img.channels, const_cast<uint8_t*>(img.pixels.data())};
+        }
     }
     uint8_t* data = nullptr;
     size_t size = 0;
@@ -225,6 +274,7 @@ FileReport encode_set(const Settings& s, const std::vector<MapInput>& maps, cons
     if (bar) bar->finish();
     if (st != VQTEX_OK) throw std::runtime_error(err.detail);
     const vqtex_cpp::Buffer file(data, size);  // owns the bytes from here
+    const std::vector<uint32_t> bits = bits_in_file(file, images);
     save_bytes(output, std::vector<uint8_t>(file.data(), file.data() + file.size()));
     const double seconds = now_seconds() - t0;
     const uint32_t width = images[0].width, height = images[0].height;
@@ -242,7 +292,7 @@ FileReport encode_set(const Settings& s, const std::vector<MapInput>& maps, cons
     }
     FileReport r;
     auto& j = r.json;
-    if (normal_flag)
+    if (single)
         j["input"] = files[0];
     else
         j["inputs"] = files;
@@ -252,15 +302,19 @@ FileReport encode_set(const Settings& s, const std::vector<MapInput>& maps, cons
     j["maps"] = names;
     j["kinds"] = kinds;
     j["channels"] = channels;
+    j["bits"] = bits;  // a sample in the file, per map: 12 for 16-bit inputs
     j["bytes"] = size;
     j["bpp"] = 8.0 * double(size) / pixels;
     j["quality"] = preset_free ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(quality);
     j["attempts"] = stats.attempts;
     j["encode_seconds"] = seconds;
+    if (!notices.empty()) j["notices"] = notices;
     char line[2048];
-    if (normal_flag) {
-        std::snprintf(line, sizeof line, "%s (%ux%u, normal map) -> %s\n", files[0].c_str(), width, height,
-                      output.c_str());
+    if (single) {
+        const std::string what =
+            maps[0].kind == VQTEX_MAP_COLOUR ? std::to_string(channels[0]) + " channels" : kinds[0] + " map";
+        std::snprintf(line, sizeof line, "%s (%ux%u, %s, %u bits kept) -> %s\n", files[0].c_str(), width, height,
+                      what.c_str(), bits[0], output.c_str());
         r.text = line;
     } else {
         std::snprintf(line, sizeof line, "%zu maps of %ux%u -> %s\n", maps.size(), width, height, output.c_str());
@@ -268,8 +322,9 @@ FileReport encode_set(const Settings& s, const std::vector<MapInput>& maps, cons
         std::size_t name_width = 0;
         for (const std::string& name : names) name_width = std::max(name_width, name.size());
         for (std::size_t i = 0; i < maps.size(); ++i) {
-            std::snprintf(line, sizeof line, "  %-*s  %-6s  %u channel%s  %s\n", int(name_width), names[i].c_str(),
-                          kinds[i].c_str(), channels[i], channels[i] == 1 ? " " : "s", files[i].c_str());
+            std::snprintf(line, sizeof line, "  %-*s  %-6s  %u channel%s  %2u bits  %s\n", int(name_width),
+                          names[i].c_str(), kinds[i].c_str(), channels[i], channels[i] == 1 ? " " : "s",
+                          bits[i], files[i].c_str());
             r.text += line;
         }
     }
@@ -284,16 +339,25 @@ FileReport encode_set(const Settings& s, const std::vector<MapInput>& maps, cons
     return r;
 }
 
+// A set's maps into `output` (see load_maps and encode_loaded_set).
+FileReport encode_set(const Settings& s, const std::vector<MapInput>& maps, const std::string& output, unsigned threads,
+                      ProgressBar* bar, bool single) {
+    std::vector<std::string> notices;
+    const std::vector<LoadedImage> images = load_maps(s, maps, single, notices);
+    return encode_loaded_set(s, maps, images, std::move(notices), output, threads, bar, single);
+}
+
 // Encodes `input` into `output` with `threads` library threads; `bar` draws
 // a single file's progress (null in a batch). Throws a one-line message.
 FileReport encode_one(const Settings& s, const std::string& input, const std::string& output, unsigned threads,
                       ProgressBar* bar) {
-    if (s.normal) {
+    if (s.normal || s.data) {
+        const char* option = s.normal ? "--normal" : "--data";
         if (is_sequence(input))
-            throw std::invalid_argument("--normal takes a still image: '" + input + "' is an animation");
+            throw std::invalid_argument(std::string(option) + " takes a still image: '" + input + "' is an animation");
         MapInput m;
-        m.name = "normal";
-        m.kind = VQTEX_MAP_NORMAL;
+        m.name = s.normal ? "normal" : "data";
+        m.kind = s.normal ? VQTEX_MAP_NORMAL : VQTEX_MAP_DATA;
         m.kind_given = true;
         m.file = input;
         return encode_set(s, {m}, output, threads, bar, true);
@@ -325,14 +389,29 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
         return encode_animation(input, output, vp, s.quiet, bar);
     }
     if (!s.shapes.empty()) parse_shapes(s.shapes, p.trees.shapes);
-    LoadedImage example = load_image(input);
-    if (!example.notice.empty() && !s.quiet)
-        write_stderr("vqtex-encode: note: " + input + ": " + example.notice + "\n");
+    // An image of more than 8 bits a sample keeps 12 in an atlas: a set of
+    // one colour map, "texture" (what a file that is not a set decodes
+    // as). Trees hold 8 bits, and the reader's note says so.
+    ReadOptions read;
+    read.keep_16 = p.codebook == VQTEX_CODEBOOK_ATLAS;
+    std::vector<std::string> notices;
+    std::vector<LoadedImage> loaded;
+    loaded.push_back(load_image(input, read));
+    note(s, input, loaded[0], notices);
+    if (loaded[0].bits == 16) {
+        MapInput m;
+        m.name = "texture";
+        m.kind = VQTEX_MAP_COLOUR;
+        m.kind_given = true;
+        m.file = input;
+        return encode_loaded_set(s, {m}, loaded, std::move(notices), output, threads, bar, true);
+    }
+    const LoadedImage& example = loaded[0];
     if (bar) {
         p.progress = ProgressBar::callback;
         p.progress_user = bar;
     }
-    vqtex_image img{example.width, example.height, example.channels, example.pixels.data()};
+    const vqtex_image img{example.width, example.height, example.channels, const_cast<uint8_t*>(example.pixels.data())};
     uint8_t* data = nullptr;
     size_t size = 0;
     vqtex_encode_stats stats{};
@@ -355,6 +434,7 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
               {"width", example.width},
               {"height", example.height},
               {"channels", example.channels},
+              {"bits", 8},
               {"bytes", size},
               {"bpp", 8.0 * double(size) / pixels},
               {"quality", preset_free ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(quality)},
@@ -362,6 +442,7 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
               {"encode_seconds", seconds},
               {"codewords", std::vector<uint32_t>(stats.codewords, stats.codewords + stats.levels)},
               {"entries", std::vector<uint32_t>(stats.entries, stats.entries + stats.levels)}};
+    if (!notices.empty()) r.json["notices"] = notices;
     std::snprintf(line, sizeof line, "%s (%ux%u, %u channels) -> %s\n", input.c_str(), example.width,
                   example.height, example.channels, output.c_str());
     r.text = line;
@@ -389,7 +470,7 @@ int main(int argc, char** argv) {
     bool no_entry_keys = false;
     uint64_t target_size = 0, seed = 1;
     bool json = false, quiet = false, no_closing = false, tileable = false, atlas = false, trees = false;
-    bool animation = false, normal = false;
+    bool animation = false, normal = false, data = false;
     std::vector<std::string> map_specs;
     app.add_option("files", files,
                    "EXAMPLE OUTPUT.vqt: an image (any format OpenImageIO reads) or an animation (a numbered "
@@ -405,6 +486,9 @@ int main(int argc, char** argv) {
         ->allow_extra_args(false);
     app.add_flag("--normal", normal,
                  "EXAMPLE is a tangent-space normal map (3 channels): stored as a set of one map named 'normal'");
+    app.add_flag("--data", data,
+                 "EXAMPLE holds values, not colour (height, roughness, a mask): stored as a set of one data map "
+                 "named 'data'; a float file's values are read as they are, not as linear light");
     auto* out_dir_opt = app.add_option("-o,--output-dir", out_dir,
                                        "batch: write OUTDIR/NAME[SUFFIX].vqt for every example (created if missing)");
     app.add_option("--suffix", suffix, "batch: text added to each output's name");
@@ -490,14 +574,20 @@ int main(int argc, char** argv) {
         s.shapes = shapes;
         s.atlas_asked = atlas;
         s.normal = normal;
+        s.data = data;
         s.quiet = quiet;
 
+        if (normal && data)
+            throw std::invalid_argument("--normal and --data say two kinds for one EXAMPLE: give one");
         if (!map_specs.empty() && normal)
             throw std::invalid_argument(
                 "--normal is for one image: in a set, give the normal map as --map normal=FILE");
+        if (!map_specs.empty() && data)
+            throw std::invalid_argument(
+                "--data is for one image: in a set, give the data map as --map NAME:data=FILE");
         // A material set is stored as an atlas; the trees have no maps.
-        if (!map_specs.empty() || normal) {
-            const std::string set_option = normal ? "--normal" : "--map";
+        if (!map_specs.empty() || normal || data) {
+            const std::string set_option = normal ? "--normal" : data ? "--data" : "--map";
             if (trees) throw std::invalid_argument(set_option + " stores an atlas: drop --trees");
             if (tree_options)
                 throw std::invalid_argument(set_option +

@@ -98,11 +98,16 @@ FileReport info_one(const std::string& input) {
                                  {"raw", info.sections[i].raw_bytes},
                                  {"stored", info.sections[i].stored_bytes}});
     j["header_and_checksum"] = overhead;
-    // A plain colour texture is one map, "texture": shown only for a set,
-    // or a normal or data map stored alone.
+    // A plain colour texture is one map, "texture": the text shows maps
+    // only for a set, a normal or data map stored alone, or a map of more
+    // than 8 bits; the JSON lists every atlas file's, and says the bits a
+    // sample of every file (trees and animations hold 8).
     const uint32_t map_count = std::min<uint32_t>(info.map_count, VQTEX_MAX_MAPS);
-    const bool show_maps = map_count > 1 || (map_count == 1 && info.maps[0].kind != VQTEX_MAP_COLOUR);
-    if (show_maps) {
+    uint32_t bits = 8;
+    for (uint32_t i = 0; i < map_count; ++i) bits = std::max(bits, info.maps[i].bits);
+    const bool show_maps = map_count > 1 || (map_count == 1 && (info.maps[0].kind != VQTEX_MAP_COLOUR || bits > 8));
+    j["bits"] = bits;
+    if (map_count > 0) {
         j["maps"] = nlohmann::ordered_json::array();
         for (uint32_t i = 0; i < map_count; ++i)
             j["maps"].push_back({{"name", info.maps[i].name},
