@@ -45,7 +45,7 @@ if [ "$which" = all ] || [ "$which" = tsan ]; then
   build="${VQTEX_TSAN_BUILD_DIR:-$root/build-tsan}"
   echo "sanitizers: TSan build in $build (concurrency tests)"
   cmake -S "$root" -B "$build" "${flags[@]}" -DVQTEX_SANITIZE=thread >/dev/null
-  cmake --build "$build" -j "$jobs" --target test_concurrency test_codec test_synthesis test_tsvq test_api
+  cmake --build "$build" -j "$jobs" --target test_concurrency test_codec test_synthesis test_tsvq test_api test_material
   export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$supp/tsan.supp"
   # Every test that runs threads: the concurrency suite, and the
   # same-bytes-for-any-thread-count tests of the other suites.
