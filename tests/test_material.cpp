@@ -65,7 +65,7 @@ Surface make_surface(int size, uint64_t seed) {
             };
             const double v = std::min(1.0, h(x, y));
             uint8_t* a = out.albedo.at(x, y);
-            const double noise = next() * 8;
+            const double noise = next() * 4;
             a[0] = uint8_t(60 + 150 * v + noise);
             a[1] = uint8_t(40 + 120 * v + noise);
             a[2] = uint8_t(30 + 60 * v);
