@@ -1,8 +1,9 @@
-// The images of vqtex-bench: crops, tiling, and the hand-over to and from
-// the library's C API.
+// The images of vqtex-bench: crops, tiling, reduction, and the hand-over
+// to and from the library's C API.
 #include "bench_images.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -27,6 +28,43 @@ Image tiled(const Image& img, int w, int h) {
         for (int x = 0; x < w; ++x)
             std::copy_n(img.pixels.data() + (std::size_t(y % img.height) * img.width + x % img.width) * img.channels,
                         img.channels, out.pixels.data() + (std::size_t(y) * w + x) * img.channels);
+    return out;
+}
+
+Image reduced(const Image& img, int w, int h) {
+    // Per output index along one axis, the input indices it covers and the
+    // share of each: input [o*s, (o+1)*s), s = from / to >= 1.
+    auto taps = [](int from, int to) {
+        std::vector<std::vector<std::pair<int, double>>> t(static_cast<std::size_t>(to));
+        const double s = double(from) / to;
+        for (int o = 0; o < to; ++o) {
+            const double a = o * s, b = (o + 1) * s;
+            for (int i = int(a); i < std::min(from, int(std::ceil(b))); ++i) {
+                const double covered = std::min(b, i + 1.0) - std::max(a, double(i));
+                if (covered > 0) t[std::size_t(o)].push_back({i, covered / s});
+            }
+        }
+        return t;
+    };
+    const auto tx = taps(img.width, w), ty = taps(img.height, h);
+    const int c = img.channels;
+    // Rows first (img.height x w), then columns.
+    std::vector<double> rows(std::size_t(img.height) * w * c, 0.0);
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < w; ++x)
+            for (const auto& [i, weight] : tx[std::size_t(x)])
+                for (int k = 0; k < c; ++k)
+                    rows[(std::size_t(y) * w + x) * c + k] +=
+                        weight * img.pixels[(std::size_t(y) * img.width + i) * c + k];
+    Image out{w, h, c, std::vector<uint8_t>(std::size_t(w) * h * c)};
+    std::vector<double> acc(std::size_t(w) * c);
+    for (int y = 0; y < h; ++y) {
+        std::fill(acc.begin(), acc.end(), 0.0);
+        for (const auto& [j, weight] : ty[std::size_t(y)])
+            for (std::size_t v = 0; v < acc.size(); ++v) acc[v] += weight * rows[std::size_t(j) * w * c + v];
+        for (std::size_t v = 0; v < acc.size(); ++v)
+            out.pixels[std::size_t(y) * w * c + v] = uint8_t(std::clamp(std::lround(acc[v]), 0L, 255L));
+    }
     return out;
 }
 

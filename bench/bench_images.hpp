@@ -1,6 +1,7 @@
 // The images of vqtex-bench: crops of a photograph, tiling to a larger
-// output, and the hand-over between the metrics' images and the library's
-// C API (docs/METRICS.md).
+// output, reduction (the materials protocol's --material-side), and the
+// hand-over between the metrics' images and the library's C API
+// (docs/METRICS.md).
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,11 @@ Image crop(const LoadedImage& img, uint32_t x0, uint32_t y0, uint32_t w, uint32_
 
 // `img` repeated to w x h.
 Image tiled(const Image& img, int w, int h);
+
+// `img` reduced to w x h (no larger than it): each output pixel is the mean
+// of the input area it covers, edge pixels weighed by the part covered, so
+// that a reduction by a non-integer factor keeps every input pixel's weight.
+Image reduced(const Image& img, int w, int h);
 
 // Takes the library's image (and releases it).
 Image from_c(vqtex_image& c);

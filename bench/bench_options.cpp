@@ -2,6 +2,7 @@
 #include "bench_options.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 #include <CLI/CLI.hpp>
 
@@ -18,7 +19,8 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
     app.add_flag("--atlas", o.atlas, "name the vqtex rows vqtex-atlas (atlas files, format 8, as without it)");
     app.add_option("--target-sizes", o.target_sizes,
                    "rate points as byte targets (vqtex-encode --target-size) instead of -q presets; "
-                   "the summary's q column then holds the target")
+                   "the summary's q column then holds the target. materials protocol: the whole set's targets, "
+                   "after the default quality (default 8000,16000,32000,64000)")
         ->delimiter(',');
     app.add_option("folder", o.folder, "folder of textures (each cut into exemplar and held-out crops)")
         ->capture_default_str();
@@ -32,15 +34,30 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
     app.add_flag("--no-times", o.no_times, "write 0 for times (for baselines reviewed as diffs)");
     app.add_option("--sheets", o.sheets, "write contact sheets into this folder (same: exemplar | held-out | vqtex | peers; "
                    "large: ... | each peer+synth | each peer+gmic; docs/METRICS.md)");
-    app.add_option("--protocols", o.protocols, "protocols to run, comma-separated: same, large, synth")
+    app.add_option("--protocols", o.protocols,
+                   "protocols to run, comma-separated: same, large, synth; or materials alone (a folder of "
+                   "material sets: one folder of maps each)")
         ->delimiter(',')
-        ->check(CLI::IsMember({"same", "large", "synth"}))
+        ->check(CLI::IsMember({"same", "large", "synth", "materials"}))
         ->capture_default_str();
+    app.add_option("--sets", o.sets, "materials protocol: only these sets (folder names), comma-separated")
+        ->delimiter(',');
+    app.add_option("--material-side", o.material_side,
+                   "materials protocol: reduce the maps to N x N before encoding (default: as they are)")
+        ->check(CLI::Range(16u, 16384u));
+    app.add_option("--material-output", o.material_output,
+                   "materials protocol: decode at N x N (default: the maps' side, after --material-side)")
+        ->check(CLI::Range(16u, 16384u));
     app.add_option("--synth-size", o.synth_size, "synth protocol: output side (default: 2x the exemplar's width and height)")
         ->check(CLI::Range(8u, 16384u));
     app.add_option("--synth-cache", o.synth_cache, "keep G'MIC's outputs here (synth protocol, large protocol's gmic rows), "
                    "by texture, size, seed and input pixels");
     CLI11_PARSE(app, argc, argv);
+    if (o.want("materials") && o.protocols.size() > 1) {
+        std::fprintf(stderr, "vqtex-bench: error: the materials protocol runs alone (its folder holds sets of maps, "
+                             "not photographs)\n");
+        return 1;
+    }
     if (o.quick) {
         o.limit = 2;
         o.qualities = {VQTEX_QUALITY_DEFAULT};

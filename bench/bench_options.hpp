@@ -18,10 +18,16 @@ struct BenchOptions {
     uint32_t synth_size = 0;
     bool atlas = false;
     std::vector<uint64_t> target_sizes;
+    // The materials protocol (material_protocol.hpp): the sets to run (all
+    // when empty), the side the maps are reduced to (0: as they are) and
+    // the decoded side (0: the maps' side after the reduction).
+    std::vector<std::string> sets;
+    uint32_t material_side = 0, material_output = 0;
 
     bool want(const std::string& protocol) const;
     // The rate points (encodes, peers, ASTC) serve only the same and large
-    // protocols.
+    // protocols. The materials protocol runs alone: its folder holds sets
+    // of maps, not photographs.
     bool rates() const { return want("same") || want("large"); }
 };
 

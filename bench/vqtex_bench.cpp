@@ -20,6 +20,10 @@
 // than codecs:
 //   synth: vqtex's engine and G'MIC's syntexturize_matchpatch each
 //          synthesise 2x2 the exemplar's area from the lossless exemplar.
+// A fourth runs alone, on a folder of material sets rather than
+// photographs, with a CSV of its own (material_protocol.cpp):
+//   materials: the maps of a surface stored in one file and decoded
+//          aligned, beside each map stored alone at the same bytes.
 //
 // This file holds the order of the work; the work itself is in
 // rate_protocols.cpp (same, large, ceilings), synth_protocol.cpp,
@@ -42,6 +46,7 @@
 #include "bench_rows.hpp"
 #include "image_io.hpp"
 #include "large_summary.hpp"
+#include "material_protocol.hpp"
 #include "rate_protocols.hpp"
 #include "rate_summary.hpp"
 #include "synth_protocol.hpp"
@@ -54,6 +59,7 @@ using namespace vqtex_tools;
 int main(int argc, char** argv) {
     BenchOptions o;
     if (const int status = parse_options(argc, argv, o); status >= 0) return status;
+    if (o.want("materials")) return run_material_protocol(o);
     // G'MIC serves the synth protocol and the large protocol's PEER+gmic and
     // ceiling rows; it is optional (its rows then say missing).
     const bool gmic_available = (o.want("synth") || o.want("large")) && !o.no_peers && tool_available("gmic");
