@@ -15,20 +15,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct ToolRun {
-    int status;
-    std::string output;
-};
+using vqtex_test::ToolRun;
 
-ToolRun fill_tool(const std::string& args) {
-    const std::string cmd = std::string(VQTEX_FILL_EXE) + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    std::string out;
-    char buf[512];
-    while (p && fgets(buf, sizeof buf, p)) out += buf;
-    const int st = p ? pclose(p) : -1;
-    return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
+ToolRun fill_tool(const std::string& args) { return vqtex_test::run_program(VQTEX_FILL_EXE, args); }
 
 fs::path scratch_dir() { return vqtex_test::scratch_dir("vqtex_fill_tool"); }
 

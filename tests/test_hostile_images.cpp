@@ -65,19 +65,7 @@ Encoded try_encode(uint32_t w, uint32_t h, uint32_t channels, const vqtex_encode
 
 fs::path scratch() { return vqtex_test::scratch_dir("vqtex_hostile"); }
 
-struct ToolRun {
-    int status;
-    std::string output;
-};
-
-ToolRun run(const std::string& exe, const std::string& args) {
-    FILE* p = popen((exe + " " + args + " 2>&1").c_str(), "r");
-    std::string out;
-    char buf[512];
-    while (p && fgets(buf, sizeof buf, p)) out += buf;
-    const int st = p ? pclose(p) : -1;
-    return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
+ToolRun run(const std::string& exe, const std::string& args) { return run_program(exe, args); }
 
 std::vector<uint8_t> read_file(const fs::path& p) {
     std::ifstream f(p, std::ios::binary);

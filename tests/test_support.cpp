@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <vector>
 #include <cstring>
@@ -13,6 +14,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "image_io.hpp"
@@ -146,6 +148,16 @@ vqtex::Image synthesize(const vqtex::Image& example, const vqtex_synth_params& p
     std::memcpy(img.pixels.data(), out.pixels, img.byte_count());
     vqtex_image_free(&out);
     return img;
+}
+
+ToolRun run_program(const std::string& exe, const std::string& args) {
+    const std::string cmd = exe + " " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    std::string out;
+    char buf[512];
+    while (p && fgets(buf, sizeof buf, p)) out += buf;
+    const int st = p ? pclose(p) : -1;
+    return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
 }
 
 }  // namespace vqtex_test

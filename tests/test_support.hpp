@@ -44,4 +44,12 @@ SeamStats seam_stats(const vqtex::Image& image);
 vqtex::Image synthesize(const vqtex::Image& example, const vqtex_synth_params& params);
 vqtex_synth_params default_params(int width, int height, uint64_t seed = 1);
 
+// A program's exit status and what it printed (stdout and stderr), from a
+// shell command line `exe args`.
+struct ToolRun {
+    int status;
+    std::string output;
+};
+ToolRun run_program(const std::string& exe, const std::string& args);
+
 }  // namespace vqtex_test

@@ -22,20 +22,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct ToolRun {
-    int status;
-    std::string output;
-};
-
-ToolRun run_program(const std::string& exe, const std::string& args) {
-    const std::string cmd = exe + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    std::string out;
-    char buf[512];
-    while (p && fgets(buf, sizeof buf, p)) out += buf;
-    const int st = p ? pclose(p) : -1;
-    return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
+using vqtex_test::run_program;
+using vqtex_test::ToolRun;
 
 ToolRun run_tool(const std::string& args) { return run_program(VQTEX_SYNTH_EXE, args); }
 ToolRun encode_tool(const std::string& args) { return run_program(VQTEX_ENCODE_EXE, args); }

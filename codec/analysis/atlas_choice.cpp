@@ -74,21 +74,9 @@ public:
         return files_.emplace(cq, encode_atlas_file(h, atlas_.width, atlas_.height, bits, sp)).first->second;
     }
 
-    // The finest level whose file fits the budget, or -1. Size falls as the
-    // level rises, so the search bisects.
+    // The finest level whose file fits the budget, or -1.
     int finest_fitting() {
-        if (file_at(63).size() > options_.budget) return -1;
-        int lo = 0, hi = 62, best = 63;  // the answer lies in [lo, hi + 1]
-        while (lo <= hi) {
-            const int mid = (lo + hi) / 2;
-            if (file_at(mid).size() <= options_.budget) {
-                best = mid;
-                hi = mid - 1;
-            } else {
-                lo = mid + 1;
-            }
-        }
-        return best;
+        return finest_fitting_level(options_.budget, [this](int cq) { return uint64_t(file_at(cq).size()); });
     }
 
     AtlasChoice choice(int cq) {

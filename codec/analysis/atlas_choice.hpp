@@ -29,6 +29,25 @@ struct AtlasChoice {
     uint32_t attempts = 0;      // AV1 encodes tried
 };
 
+// The finest AV1 level, 0..63, at which `size_at(level)` (a file's bytes)
+// fits `budget`, or -1 when even 63 does not. Sizes fall as the level
+// rises, so the search bisects: about 7 encodes.
+template <typename SizeAt>
+int finest_fitting_level(uint64_t budget, SizeAt&& size_at) {
+    if (size_at(63) > budget) return -1;
+    int lo = 0, hi = 62, best = 63;  // the answer lies in [lo, hi + 1]
+    while (lo <= hi) {
+        const int mid = (lo + hi) / 2;
+        if (size_at(mid) <= budget) {
+            best = mid;
+            hi = mid - 1;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    return best;
+}
+
 // The byte budget of a quality preset for an example of `pixels` pixels:
 // 1000 bytes per 128x128 at quality 0, doubling every 25 points (4 KB at
 // the default 50, 16 KB at 100), and never under 512 bytes, so that a tiny

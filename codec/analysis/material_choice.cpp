@@ -236,18 +236,8 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
             sp.example_tileable = options.example_tileable;
             return files.emplace(cq, encode_material_file(hd, w, h, coded, guide, sp)).first->second;
         };
-        // Size falls as the level rises, so the search bisects.
-        if (file_at(63).size() <= options.budget) {
-            int lo = 0, hi = 62, best = 63;
-            while (lo <= hi) {
-                const int mid = (lo + hi) / 2;
-                if (file_at(mid).size() <= options.budget) {
-                    best = mid;
-                    hi = mid - 1;
-                } else {
-                    lo = mid + 1;
-                }
-            }
+        const int best = finest_fitting_level(options.budget, [&](int cq) { return uint64_t(file_at(cq).size()); });
+        if (best >= 0) {
             MaterialChoice c;
             c.file = file_at(best);
             c.cq = best;

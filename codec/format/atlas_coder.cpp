@@ -117,6 +117,21 @@ PicturePtr decode_frame(const uint8_t* data, std::size_t size, int width, int he
     return picture;
 }
 
+// Where an atlas bitstream's colour frame lies: the whole bitstream, or
+// with alpha after its size varint, with the alpha frame after it.
+struct ColourPart {
+    std::size_t at = 0, size = 0;
+};
+ColourPart colour_part(const uint8_t* data, std::size_t size, bool alpha, const std::string& where) {
+    if (!alpha) return {0, size};
+    ByteReader r(data, size, where);
+    ColourPart part;
+    part.size = std::size_t(r.varint_in("colour bitstream size", 1, size));
+    part.at = r.position();
+    if (part.size >= size - part.at) r.corrupt("no room left for the alpha bitstream");
+    return part;
+}
+
 }  // namespace
 
 void atlas_rgb_to_ycbcr(const uint8_t* rgb, uint8_t& y, uint8_t& cb, uint8_t& cr) {
@@ -140,14 +155,8 @@ Image decode_atlas(const uint8_t* data, std::size_t size, int width, int height,
     if (channels < 1 || channels > 4) bad_bitstream(where, "an atlas has 1 to 4 channels");
     const bool alpha = channels == 2 || channels == 4;
     const int colour_channels = alpha ? channels - 1 : channels;
-    std::size_t colour_size = size;
-    std::size_t colour_at = 0;
-    if (alpha) {
-        ByteReader r(data, size, where);
-        colour_size = std::size_t(r.varint_in("colour bitstream size", 1, size));
-        colour_at = r.position();
-        if (colour_size >= size - colour_at) r.corrupt("no room left for the alpha bitstream");
-    }
+    const ColourPart part = colour_part(data, size, alpha, where);
+    const std::size_t colour_size = part.size, colour_at = part.at;
     Image out(width, height, channels);
     {
         const PicturePtr pic = decode_frame(data + colour_at, colour_size, width, height, where);
@@ -196,13 +205,8 @@ Image16 decode_atlas_high(const uint8_t* data, std::size_t size, int width, int 
     if (bits != 10 && bits != 12) bad_bitstream(where, "a high bit depth atlas has 10 or 12 bits");
     const bool alpha = channels == 2 || channels == 4;
     const int colour_channels = alpha ? channels - 1 : channels;
-    std::size_t colour_size = size, colour_at = 0;
-    if (alpha) {
-        ByteReader r(data, size, where);
-        colour_size = std::size_t(r.varint_in("colour bitstream size", 1, size));
-        colour_at = r.position();
-        if (colour_size >= size - colour_at) r.corrupt("no room left for the alpha bitstream");
-    }
+    const ColourPart part = colour_part(data, size, alpha, where);
+    const std::size_t colour_size = part.size, colour_at = part.at;
     Image16 out(width, height, channels);
     // The frame's planes as they are, one per channel from `first`: no
     // colour conversion at high bit depth (docs/FORMAT.md §3).
