@@ -38,7 +38,13 @@ if [ "$which" = all ] || [ "$which" = asan ]; then
   # with the system C compiler, which cannot link a sanitized static
   # library; it tests packaging, and the API calls it makes are covered by
   # test_codec and test_api.
-  (cd "$build" && ctest --output-on-failure -j "$jobs" -E '^install_and_build_example$')
+  # The tests that start the programs run apart: the programs read images
+  # with OpenImageIO, whose one known leak (lsan.supp) LeakSanitizer
+  # recognises only from a whole allocation stack, and the fast unwinder
+  # stops in libstdc++ before reaching it.
+  tools='^(FillTool|HostileImages|NothingLost|Tools|ToolsBatch|ToolsMaps)\.'
+  (cd "$build" && ctest --output-on-failure -j "$jobs" -E "^install_and_build_example\$|$tools")
+  (cd "$build" && ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0" ctest --output-on-failure -j "$jobs" -R "$tools")
 fi
 
 if [ "$which" = all ] || [ "$which" = tsan ]; then
