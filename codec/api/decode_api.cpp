@@ -191,8 +191,8 @@ std::vector<NamedMap> decode_atlas_maps(const vqtex_decode_params* p, const uint
 std::vector<Image> decode_atlas_texture(const vqtex_decode_params* p, const uint8_t* data, std::size_t size) {
     std::vector<NamedMap> maps = decode_atlas_maps(p, data, size);
     if (!maps[0].image16.empty())
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "the file's first map keeps 12 bits a sample, and a mip chain is made "
-                                           "of bytes: decode it with vqtex_decode_maps");
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "the file's first map keeps 12 bits a sample, more than vqtex_image "
+                                           "holds: decode it with vqtex_decode_maps");
     std::vector<Image> out;
     out.push_back(std::move(maps[0].image));
     return out;
@@ -245,17 +245,6 @@ vqtex_status vqtex_decode(const vqtex_decode_params* params, const uint8_t* data
     return guarded(error, [&] {
         if (!out) fail(VQTEX_ERROR_INVALID_ARGUMENT, "output image pointer is NULL");
         *out = vqtex_image{};
-        validate(params);
-        if (is_atlas_file(data, size)) {
-            // The first map.
-            std::vector<NamedMap> maps = decode_atlas_maps(params, data, size);
-            maps.resize(1);
-            if (!maps[0].image16.empty())
-                fail(VQTEX_ERROR_INVALID_ARGUMENT, "the file's first map keeps 12 bits a sample, more than "
-                                                   "vqtex_image holds: decode it with vqtex_decode_maps");
-            image_to_c(std::move(maps[0].image), out);
-            return;
-        }
         std::vector<Image> pyramid = decode_pyramid(params, data, size);
         // The coarser levels go before the copy to the caller's buffer: the
         // peak is then twice the output, not two and a third times.
