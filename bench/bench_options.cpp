@@ -20,7 +20,7 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
     app.add_option("--target-sizes", o.target_sizes,
                    "rate points as byte targets (vqtex-encode --target-size) instead of -q presets; "
                    "the summary's q column then holds the target. materials protocol: the whole set's targets, "
-                   "after the default quality (default 8000,16000,32000,64000)")
+                   "after the default quality (default 8000,16000,32000,64000; 0: the default quality alone)")
         ->delimiter(',');
     app.add_option("folder", o.folder, "folder of textures (each cut into exemplar and held-out crops)")
         ->capture_default_str();

@@ -519,7 +519,8 @@ int run_material_protocol(const BenchOptions& o) {
     const fs::path scratch = fs::temp_directory_path() / ("vqtex_bench_" + std::to_string(::getpid()));
     fs::create_directories(scratch);
     std::vector<RatePoint> rates{{VQTEX_QUALITY_DEFAULT, 0}};
-    for (uint64_t target : o.target_sizes.empty() ? kDefaultTargets : o.target_sizes) rates.push_back({-1, target});
+    for (uint64_t target : o.target_sizes.empty() ? kDefaultTargets : o.target_sizes)
+        if (target) rates.push_back({-1, target});  // 0: the default quality alone
     int status = 0;
     int sides[2] = {0, 0};  // the maps' and the outputs' side, for the summary
     for (const fs::path& folder : folders) {
