@@ -12,6 +12,8 @@
 namespace vqtex {
 namespace {
 
+using namespace seam_detail;
+
 // Lines of the map seen across and along a border: for vertical borders
 // (between columns) `across` is x and `along` is y; for horizontal ones the
 // reverse. `step_*` are the matching unit steps in the example.
@@ -29,36 +31,8 @@ struct Lines {
     int dy(int k) const { return vertical ? 0 : k; }
 };
 
-// The position `k` steps across from `p` (dx, dy per step) in the example,
-// or false past its edge when it does not wrap.
-bool extend(const Image& ex, bool wraps, uint32_t p, int dx, int dy, uint32_t& out) {
-    int x = position_x(p) + dx, y = position_y(p) + dy;
-    if (wraps) {
-        x = Image::wrap(x, ex.width);
-        y = Image::wrap(y, ex.height);
-    } else if (x < 0 || y < 0 || x >= ex.width || y >= ex.height) {
-        return false;
-    }
-    out = pack_position(x, y);
-    return true;
-}
-
-uint64_t colour_difference(const Image& ex, uint32_t a, uint32_t b) {
-    const uint8_t* pa = ex.at(position_x(a), position_y(a));
-    const uint8_t* pb = ex.at(position_x(b), position_y(b));
-    uint64_t sum = 0;
-    for (int c = 0; c < ex.channels; ++c) {
-        const int d = int(pa[c]) - int(pb[c]);
-        sum += uint64_t(d * d);
-    }
-    return sum;
-}
-
 // Pixels a cut gives another copy: (index in the map, position).
 using Writes = std::vector<std::pair<std::size_t, uint32_t>>;
-
-// What a border nobody can measure costs: the worst difference, twice.
-uint64_t unmeasured(const Image& ex) { return 2 * uint64_t(ex.channels) * 255 * 255; }
 
 // One run of a border at `a` (between across-indices a - 1 and a), rows
 // [u0, u1) along it: A the copy on the low side, B on the high side.
@@ -236,17 +210,6 @@ void cut_direction(const Image& ex, bool wraps, const Lines& lines, std::vector<
 }
 
 }  // namespace
-
-uint64_t border_cost(const Image& example, bool wraps, uint32_t a_at_first, uint32_t b_at_second, int dx, int dy) {
-    uint32_t a2, b1;
-    const bool first = extend(example, wraps, b_at_second, -dx, -dy, b1);
-    const bool second = extend(example, wraps, a_at_first, dx, dy, a2);
-    if (first && second)
-        return colour_difference(example, a_at_first, b1) + colour_difference(example, a2, b_at_second);
-    if (first) return 2 * colour_difference(example, a_at_first, b1);
-    if (second) return 2 * colour_difference(example, a2, b_at_second);
-    return unmeasured(example);
-}
 
 void cut_seams(const Image& example, bool wraps, int width, int height, std::vector<uint32_t>& positions,
                const CutRules& rules, int threads, int first_row, int torus_rows) {

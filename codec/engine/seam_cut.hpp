@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/image.hpp"
+#include "engine/coherent_positions.hpp"
 
 namespace vqtex {
 
@@ -54,11 +55,54 @@ void cut_seams(const Image& example, bool wraps, int width, int height, std::vec
 // block, and the horizontal runs whose bands and copies reach it.
 inline int cut_reach_rows(const CutRules& rules) { return rules.reach > 0 ? rules.block + 4 * rules.reach + 4 : 0; }
 
+namespace seam_detail {
+
+// The position `k` steps across from `p` (dx, dy per step) in the example,
+// or false past its edge when it does not wrap.
+inline bool extend(const Image& ex, bool wraps, uint32_t p, int dx, int dy, uint32_t& out) {
+    int x = position_x(p) + dx, y = position_y(p) + dy;
+    if (wraps) {
+        x = Image::wrap(x, ex.width);
+        y = Image::wrap(y, ex.height);
+    } else if (x < 0 || y < 0 || x >= ex.width || y >= ex.height) {
+        return false;
+    }
+    out = pack_position(x, y);
+    return true;
+}
+
+inline uint64_t colour_difference(const Image& ex, uint32_t a, uint32_t b) {
+    const uint8_t* pa = ex.at(position_x(a), position_y(a));
+    const uint8_t* pb = ex.at(position_x(b), position_y(b));
+    uint64_t sum = 0;
+    for (int c = 0; c < ex.channels; ++c) {
+        const int d = int(pa[c]) - int(pb[c]);
+        sum += uint64_t(d * d);
+    }
+    return sum;
+}
+
+// What a border nobody can measure costs: the worst difference, twice.
+inline uint64_t unmeasured(const Image& ex) { return 2 * uint64_t(ex.channels) * 255 * 255; }
+
+}  // namespace seam_detail
+
 // The cost of the border between two horizontally or vertically adjacent
 // output pixels holding copies A and B, as cut_seams counts it: the
 // squared colour difference of the two copies at both pixels (a copy that
 // cannot be extended to the other pixel counts its other term twice).
 // Exposed for tests.
-uint64_t border_cost(const Image& example, bool wraps, uint32_t a_at_first, uint32_t b_at_second, int dx, int dy);
+inline uint64_t border_cost(const Image& example, bool wraps, uint32_t a_at_first, uint32_t b_at_second, int dx, int dy) {
+    using namespace seam_detail;
+    uint32_t a2, b1;
+    const bool first = extend(example, wraps, b_at_second, -dx, -dy, b1);
+    const bool second = extend(example, wraps, a_at_first, dx, dy, a2);
+    if (first && second)
+        return colour_difference(example, a_at_first, b1) + colour_difference(example, a2, b_at_second);
+    if (first) return 2 * colour_difference(example, a_at_first, b1);
+    if (second) return 2 * colour_difference(example, a2, b_at_second);
+    return unmeasured(example);
+}
+
 
 }  // namespace vqtex
