@@ -154,10 +154,11 @@ int main(int argc, char** argv) {
             write(out / "decode" / (name + "_v3.vqt"), v3.data(), v3.size());
             ++files;
             if (f.parameter_bytes == 0)
-                for (uint8_t version : {uint8_t(4), uint8_t(5), uint8_t(6)}) {
-                    // Versions 4 to 6: the same bytes with the version and
+                for (uint8_t version : {uint8_t(4), uint8_t(5), uint8_t(6), uint8_t(7), uint8_t(8)}) {
+                    // Versions 4 to 8: the same bytes with the version and
                     // the checksum made again (their default parameters
-                    // have no blend, no relocation or no edge guard).
+                    // have no blend, no relocation, no edge guard, no cuts
+                    // or no covers).
                     std::vector<uint8_t> old(data, data + size);
                     old[8] = version;
                     const uint32_t crc = vqtex::crc32(old.data(), old.size() - 4);

@@ -96,12 +96,12 @@ std::size_t atlas_payload_offset(const std::vector<uint8_t>& file) {
     return 0;
 }
 
-// The atlas bitstream of a v8 file, and the same content as a v3 file
-// (the encoder writes v8; v3 must go on decoding), which has no blend, no
-// relocation, no edge guard and no cuts.
+// The atlas bitstream of a v10 file, and the same content as a v3 file
+// (the encoder writes v10; v3 must go on decoding), which has no blend, no
+// relocation, no edge guard, no cuts and no covers.
 std::vector<uint8_t> bitstream_of(const std::vector<uint8_t>& file) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(file.data(), file.size(), 1u << 30);
-    EXPECT_EQ(f.header.version, 8);
+    EXPECT_EQ(f.header.version, 10);
     return std::vector<uint8_t>(file.begin() + std::ptrdiff_t(f.bitstream_offset),
                                 file.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
 }
@@ -122,7 +122,7 @@ std::vector<uint8_t> varints(std::initializer_list<uint64_t> values) {
 // them (the bitstream), with a correct checksum: what a hostile writer can
 // make (docs/FORMAT.md §2.1-§2.2).
 std::vector<uint8_t> compact_file(uint8_t packed, const std::vector<uint8_t>& fields,
-                                  const std::vector<uint8_t>& tail, uint16_t version = 8) {
+                                  const std::vector<uint8_t>& tail, uint16_t version = 10) {
     vqtex::ByteWriter w;
     w.bytes(vqtex::kMagic, sizeof vqtex::kMagic);
     w.u16(version);
@@ -229,7 +229,7 @@ TEST(AtlasFile, RoundTripDecodesAtAnySizeAndInspects) {
     EXPECT_EQ(stats.bytes, file.size());
     EXPECT_EQ(stats.levels, 6u);
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
-    EXPECT_EQ(info.format_version, 8u);
+    EXPECT_EQ(info.format_version, 10u);
     EXPECT_EQ(info.exemplar_width, 128u);
     EXPECT_EQ(info.levels, 6u);
     EXPECT_EQ(info.atlas_width, 128u);
@@ -433,13 +433,13 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         uint32_t ew, eh;
         uint64_t seed;
         bool parameters;
-        std::size_t overhead;  // of the v8 file: everything but the bitstream
+        std::size_t overhead;  // of the v10 file: everything but the bitstream
     };
     const Case cases[] = {
         {3, 64, 64, 64, 64, 1, false, 18},  // 10 + packed + 64 + 64 + seed + CRC
         {1, 16, 16, 16, 16, 0, false, 18},
-        {2, 12, 16, 64, 64, 300, true, 33},               // + 64, 64; seed 2 bytes; parameters 12 (bias 300 takes 2)
-        {4, 40, 24, 64, 64, (1ull << 40) + 3, true, 37},  // seed of 41 bits: 6 bytes
+        {2, 12, 16, 64, 64, 300, true, 34},               // + 64, 64; seed 2 bytes; parameters 13 (bias 300 takes 2)
+        {4, 40, 24, 64, 64, (1ull << 40) + 3, true, 38},  // seed of 41 bits: 6 bytes
     };
     const vqtex::Image rgba = load_corpus("leaves_rgba_64.png");
     for (const Case& c : cases) {
@@ -465,6 +465,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
             sp.relocate = 0;
             sp.edge_guard = 0;
             sp.cut = 0;
+            sp.cover = 0;
         }
         const std::vector<uint8_t> v4 = vqtex::encode_atlas_file(h, c.aw, c.ah, bits, sp);
         const std::vector<uint8_t> v3 = vqtex::encode_atlas_file_v3(h, c.aw, c.ah, bits, sp);
@@ -474,7 +475,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         EXPECT_EQ(bitstream_of(v4), bits) << what;
         const vqtex::AtlasFile f4 = vqtex::decode_atlas_file(v4.data(), v4.size(), 1u << 30);
         const vqtex::AtlasFile f3 = vqtex::decode_atlas_file(v3.data(), v3.size(), 1u << 30);
-        EXPECT_EQ(f4.header.version, 8);
+        EXPECT_EQ(f4.header.version, 10);
         EXPECT_EQ(f3.header.version, 3);
         EXPECT_EQ(f4.params.blend, sp.blend) << what;
         EXPECT_EQ(f3.params.blend, 0) << what;
@@ -495,7 +496,7 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
         EXPECT_EQ(f4.params.coherence, sp.coherence) << what;
         EXPECT_EQ(f4.params.roll, sp.roll) << what;
         EXPECT_EQ(f4.params.jitter, sp.jitter) << what;
-        EXPECT_EQ(f4.parameter_bytes, c.parameters ? 12u : 0u) << what;
+        EXPECT_EQ(f4.parameter_bytes, c.parameters ? 13u : 0u) << what;
         EXPECT_EQ(f4.atlas.pixels, f3.atlas.pixels) << what;
         EXPECT_EQ(f4.atlas.pixels,
                   vqtex::decode_atlas(bits.data(), bits.size(), c.aw, c.ah, c.channels, "atlas").pixels);
@@ -517,14 +518,14 @@ TEST(AtlasFile, CompactFileDecodesAsVersion3FromTheSameBitstream) {
 TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
     const vqtex::Image ex = load_corpus("checks_p16_64.png");
     const std::vector<uint8_t> file = encode(ex, atlas_params(600));
-    ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 8u);
+    ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 10u);
     const vqtex_decode_params p = decode_params(24, 20);
     for (std::size_t n = 0; n < file.size(); ++n) {
         const std::vector<uint8_t> cut(file.begin(), file.begin() + std::ptrdiff_t(n));
         vqtex_status st = VQTEX_OK;
         decode(cut, p, &st);
         // Under 18 bytes (signature, version, packed byte, three one-byte
-        // varints, CRC) a file cannot be version 4 to 8; beyond, the last four
+        // varints, CRC) a file cannot be version 4 to 11; beyond, the last four
         // bytes are not the checksum of the rest.
         EXPECT_EQ(st, n < 18 ? VQTEX_ERROR_TRUNCATED : VQTEX_ERROR_CHECKSUM) << "prefix of " << n << " bytes";
     }
@@ -534,12 +535,15 @@ TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
             bad[i] ^= uint8_t(1 << bit);
             vqtex_status st = VQTEX_OK;
             decode(bad, p, &st);
-            // The version, 8, flips to 10, 12, 0, 24, ... (unknown) or
-            // to 9, another compact version, whose checksum then fails.
-            const bool to_nine = i == 8 && bit == 0;
-            const vqtex_status expected = i < 8                ? VQTEX_ERROR_BAD_MAGIC
-                                          : i < 10 && !to_nine ? VQTEX_ERROR_UNSUPPORTED_VERSION
-                                                               : VQTEX_ERROR_CHECKSUM;
+            // The version, 10, flips to 11 or 8, other compact versions,
+            // whose checksum then fails, to 2 (the animations' container,
+            // §D), or to 14, 26, 42, ... (unknown).
+            const bool known = i == 8 && (bit == 0 || bit == 1);
+            const bool animation = i == 8 && bit == 3;
+            const vqtex_status expected = i < 8 ? VQTEX_ERROR_BAD_MAGIC
+                                          : animation ? VQTEX_ERROR_CORRUPT
+                                          : i < 10 && !known ? VQTEX_ERROR_UNSUPPORTED_VERSION
+                                                             : VQTEX_ERROR_CHECKSUM;
             EXPECT_EQ(st, expected) << "byte " << i << " bit " << bit;
         }
 }
@@ -626,6 +630,21 @@ TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
     const auto v8_file = [&](const std::vector<uint8_t>& fields) {
         return compact_file(packed | 1 << 6, fields, bits, 8);
     };
+    // Version 10 with the covers' reach (default 8, at most 16).
+    const auto v10_file = [&](const std::vector<uint8_t>& fields) {
+        return compact_file(packed | 1 << 6, fields, bits, 10);
+    };
+    EXPECT_EQ(status_of(v10_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 8, 8}))), corrupt)
+        << "v10 defaults";
+    EXPECT_EQ(status_of(v10_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 8, 17}))), corrupt)
+        << "cover 17";
+    EXPECT_EQ(status_of(v10_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 8, 0}))), VQTEX_OK)
+        << "cover 0";
+    EXPECT_EQ(status_of(v10_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 8, 16}))), VQTEX_OK);
+    // A version 8 file with no parameters decodes without the covers: the
+    // pixels of a version 10 file that stores cover 0.
+    EXPECT_EQ(decode(compact_file(packed, varints({128, 128, 1}), bits, 8), p).pixels,
+              decode(v10_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 8, 0})), p).pixels);
     EXPECT_EQ(status_of(v8_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 8}))), corrupt) << "v8 defaults";
     EXPECT_EQ(status_of(v8_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 17}))), corrupt) << "cut 17";
     EXPECT_EQ(status_of(v8_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8}))), corrupt)
@@ -707,7 +726,8 @@ TEST(AtlasFile, GoldenCompactFileDecodesToKnownPixels) {
 // version's golden hash and differ from this one's by what the newer
 // version adds. Returns the file.
 std::vector<uint8_t> check_golden_compact(const char* name, unsigned version, uint64_t hash, uint64_t previous_hash,
-                                          uint32_t width = 96, uint32_t height = 80) {
+                                          uint32_t width = 96, uint32_t height = 80, unsigned previous_version = 0) {
+    if (previous_version == 0) previous_version = version - 1;
     const std::vector<uint8_t> bytes = read_file(std::string(VQTEX_GOLDEN_DIR) + "/" + name);
     EXPECT_EQ(bytes.size(), 1480u) << "tests/golden/" << name;
     if (bytes.size() < 16) return bytes;
@@ -716,10 +736,11 @@ std::vector<uint8_t> check_golden_compact(const char* name, unsigned version, ui
     const uint64_t got = fnv1a(img.pixels.data(), img.pixels.size());
     EXPECT_EQ(got, hash) << std::hex << name << " decoded hash 0x" << got;
     std::vector<uint8_t> previous = bytes;
-    previous[8] = uint8_t(version - 1);
+    previous[8] = uint8_t(previous_version);
     fix_crc(previous);
     const vqtex::Image before = decode(previous, decode_params(width, height, 5));
-    EXPECT_EQ(fnv1a(before.pixels.data(), before.pixels.size()), previous_hash) << "the v" << version - 1 << " golden's";
+    EXPECT_EQ(fnv1a(before.pixels.data(), before.pixels.size()), previous_hash)
+        << "the v" << previous_version << " golden's";
     // (Where the torus is cut open follows the final pixels, so the two
     // images may be turned against each other; other tests check the blend
     // and the relocation themselves.)
@@ -779,6 +800,20 @@ TEST(AtlasFile, GoldenSeamCutFileDecodesToKnownPixels) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
     EXPECT_EQ(f.params.edge_guard, 8);
     EXPECT_EQ(f.params.cut, 8);
+}
+
+// Pins format version 10 and its decoder, the covers included. The file is
+// cellular_v8.vqt with the version 10 (the encoder chose the same atlas;
+// version 9 is a set of maps), so the two decodes differ by the covers
+// alone, at the 256x256 where version 8's was pinned.
+TEST(AtlasFile, GoldenCoverFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes =
+        check_golden_compact("cellular_v10.vqt", 10, 0xb2e865cd77c28402ull, 0x4dca725584cf2811ull, 256, 256, 8);
+    if (bytes.empty()) return;
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
+    EXPECT_EQ(f.params.cut, 8);
+    EXPECT_EQ(f.params.cover, 8);
+    EXPECT_TRUE(f.maps.empty());
 }
 
 // Whether a params struct can ask for an atlas or a target size.

@@ -469,17 +469,19 @@ TEST(Coherent, GoldenHash) {
     // Without the blend, the relocation and the edge guard, the positions'
     // pixels as before either existed; with the blend alone, as before the
     // relocation; with the blend and the relocation, as before the edge
-    // guard; with those and the edge guard, as before the cuts; with the
-    // defaults, what the engine gives now.
+    // guard; with those and the edge guard, as before the cuts; with those
+    // and the cuts, as before the covers; with the defaults, what the
+    // engine gives now.
     const Image ex = brick_wall(96, 96, 7);
     const auto hash_of = [&](uint32_t blend, uint32_t relocate, uint32_t edge_guard = 0, uint32_t cut = 0,
-                             uint32_t margin = 0) {
+                             uint32_t margin = 0, uint32_t cover = 0) {
         vqtex_synth_params p = coherent_params(150, 110, 9);
         p.coherent.blend = blend;
         p.coherent.relocate = relocate;
         p.coherent.edge_guard = edge_guard;
         p.coherent.cut = cut;
         p.coherent.margin = margin;
+        p.coherent.cover = cover;
         uint64_t h = 0xcbf29ce484222325ull;
         for (uint8_t v : vqtex_test::synthesize(ex, p).pixels) h = (h ^ v) * 0x100000001b3ull;
         return h;
@@ -495,6 +497,9 @@ TEST(Coherent, GoldenHash) {
     EXPECT_EQ(hash_of(2, 64, 8, 8), 0xc43e8f3bdf8f3649ull) << std::hex << hash_of(2, 64, 8, 8);
     EXPECT_EQ(coherent_params(1, 1, 1).coherent.margin, 0u);
     EXPECT_EQ(hash_of(2, 64, 8, 8, 2), 0x5039d1d8e6aa8c0bull) << std::hex << hash_of(2, 64, 8, 8, 2);
+    EXPECT_EQ(coherent_params(1, 1, 1).coherent.cover, 8u);
+    EXPECT_EQ(hash_of(2, 64, 8, 8, 0, 8), 0x88c838726cbcbe1eull) << std::hex << hash_of(2, 64, 8, 8, 0, 8);
+    EXPECT_NE(hash_of(2, 64, 8, 8, 0, 8), hash_of(2, 64, 8, 8)) << "the covers changed nothing here";
 }
 
 // docs/FORMAT.md §4.12's blend, as written there, for pixel (x, y) of a map.
@@ -664,6 +669,7 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
         int edge_guard = 8;
         int cut = 0;
         int margin = 0;
+        int cover = 0;
     };
     // The last example has more than 65536 pixels: the coarser level's
     // positions are kept as 3-byte indices.
@@ -673,7 +679,11 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
                           {52, 90, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 0},
                           {40, 263, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 8, 8, 2},
                           {37, 290, 1, 2, 1, 0, 1, true, true, 2, 40, 36, 8, 16},
-                          {44, 270, 2, 2, 1, 0, 2, true, false, 1, 48, 40, 8, 6, 3}};
+                          {44, 270, 2, 2, 1, 0, 2, true, false, 1, 48, 40, 8, 6, 3},
+                          // The covers over long borders (whose blocks and
+                          // competing covers a band must hold whole too).
+                          {40, 600, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 8, 8, 0, 8},
+                          {37, 640, 1, 2, 1, 0, 1, true, true, 2, 40, 36, 8, 8, 0, 12}};
     for (const Case& c : cases) {
         const Image ex = textured(c.example_w, c.example_h, 3, c.channels);
         CoherentOptions options;
@@ -688,10 +698,18 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
         options.edge_guard = c.edge_guard;
         options.cut = c.cut;
         options.margin = c.margin;
+        options.cover = c.cover;
         const std::string what = std::to_string(c.w) + "x" + std::to_string(c.h) + "x" + std::to_string(c.channels) +
                                  " blend " + std::to_string(c.blend) + " edge guard " + std::to_string(c.edge_guard) +
-                                 " cut " + std::to_string(c.cut) + " margin " + std::to_string(c.margin);
+                                 " cut " + std::to_string(c.cut) + " margin " + std::to_string(c.margin) + " cover " +
+                                 std::to_string(c.cover);
         const Image whole = synthesize_coherent(ex, 4, c.tileable, c.coherence, options).image;
+        if (c.cover > 0) {
+            // (The covers must do something here, or the case shows nothing.)
+            options.cover = 0;
+            EXPECT_NE(synthesize_coherent(ex, 4, c.tileable, c.coherence, options).image, whole) << what;
+            options.cover = c.cover;
+        }
         for (int band : {1, 2, 7, 16}) {
             options.band_rows = band;
             options.threads = 1 + band % 3;

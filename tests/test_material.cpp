@@ -136,7 +136,7 @@ TEST(Material, MapsDecodeAlignedWithUnitNormals) {
     const Surface s = make_surface(64, 7);
     const std::vector<uint8_t>& file = surface_file();
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
-    EXPECT_EQ(info.format_version, 9u);
+    EXPECT_EQ(info.format_version, 11u);
     ASSERT_EQ(info.map_count, 3u);
     EXPECT_STREQ(info.maps[1].name, "normal");
     EXPECT_EQ(info.maps[1].kind, VQTEX_MAP_NORMAL);
@@ -368,7 +368,7 @@ TEST(Material, SixteenBitHeightsKeepTheirLevels) {
     p.quality = 75;
     const vqtex_cpp::Buffer file = vqtex_cpp::encode_maps(p, {map});
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
-    EXPECT_EQ(info.format_version, 9u);
+    EXPECT_EQ(info.format_version, 11u);
     ASSERT_EQ(info.map_count, 1u);
     EXPECT_EQ(info.maps[0].bits, 12u);
     const auto maps = vqtex_cpp::decode_maps(decode_params(256, 256, 2, 2), file.data(), file.size());

@@ -185,10 +185,10 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     r = info_tool(vqt);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("checksum OK"), std::string::npos) << r.output;
-    // A still texture is an atlas by default (format 7, whose parts inspect
+    // A still texture is an atlas by default (format 10, whose parts inspect
     // names as format 3's sections); --trees stores the paper's codebooks
     // (format 1).
-    EXPECT_NE(r.output.find("format 8"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("format 10"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("seams blended over 2 pixels, copies relocated (64 positions tried each), edge guard "
                             "8 pixels"),
               std::string::npos)
@@ -196,7 +196,7 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     EXPECT_NE(r.output.find("ATLS"), std::string::npos) << r.output;
     // (Which atlas, the whole example or a crop of it, the encoder chooses
     // by scoring decodes: docs/ATLAS.md.)
-    EXPECT_NE(r.output.find(", coded as AV1; compact header (format 8)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(", coded as AV1; compact header (format 10)"), std::string::npos) << r.output;
     const std::string trees = (dir / "t.vqt").string();
     ASSERT_EQ(encode_tool(corpus + "/cellular_128.png " + trees + " -q 10 --trees --quiet").status, 0);
     const ToolRun ti = info_tool(trees);
@@ -722,7 +722,9 @@ TEST(Tools, ColourUnderAnAlphaRampSurvivesEncodeAndDecode) {
         EXPECT_NEAR(mean, 127.5, 24.0) << ext;
         // Synthesis moves pixels, so alpha is compared as a distribution:
         // the decoded alpha values, sorted, against the example's, sorted
-        // (same size): apart only by the coding error.
+        // (same size): apart by the coding error and by which parts of the
+        // ramp the layout shows (the covers over long borders take rows
+        // from its middle over the seams between its ends: up to 6 levels).
         std::vector<int> decoded_alpha, example_alpha;
         for (std::size_t p = 3; p < img.pixels.size(); p += 4) decoded_alpha.push_back(img.pixels[p]);
         for (std::size_t p = 3; p < example.pixels.size(); p += 4) example_alpha.push_back(example.pixels[p]);
@@ -733,7 +735,7 @@ TEST(Tools, ColourUnderAnAlphaRampSurvivesEncodeAndDecode) {
         for (std::size_t i = 0; i < decoded_alpha.size(); ++i)
             alpha_error = std::max(alpha_error, std::abs(decoded_alpha[i] - example_alpha[i]));
         std::printf("%s: alpha quantiles within %d of the example's\n", ext, alpha_error);
-        EXPECT_LE(alpha_error, 3) << ext;
+        EXPECT_LE(alpha_error, 6) << ext;
     }
     // The PNG holds straight alpha: OpenImageIO, asked for the file's own
     // samples, finds the ramp's colour under faint pixels.

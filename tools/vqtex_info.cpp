@@ -87,6 +87,7 @@ FileReport info_one(const std::string& input) {
         j["relocate"] = info.relocate;
         j["edge_guard"] = info.edge_guard;
         j["cut"] = info.cut;
+        j["cover"] = info.cover;
     }
     j["codewords"] = nlohmann::ordered_json::array();
     for (uint32_t l = 0; l < info.levels; ++l) j["codewords"].push_back(info.codewords[l]);
@@ -142,8 +143,10 @@ FileReport info_one(const std::string& input) {
                                                   : std::string();
         const std::string cuts =
             info.cut ? ", borders cut within " + std::to_string(info.cut) + " pixels" : std::string();
-        add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s%s%s%s\n", info.levels,
-            info.codewords[0], seams.c_str(), copies.c_str(), edges.c_str(), cuts.c_str());
+        const std::string covers =
+            info.cover ? ", long borders covered within " + std::to_string(info.cover) + " pixels" : std::string();
+        add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s%s%s%s%s\n", info.levels,
+            info.codewords[0], seams.c_str(), copies.c_str(), edges.c_str(), cuts.c_str(), covers.c_str());
     } else
         add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
             info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",

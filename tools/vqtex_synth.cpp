@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
     bool exhaustive = false, tsvq = false, tileable = false, json = false, quiet = false, paper = false;
     std::string engine = "coherent";
     uint32_t coherence = 0, passes = 0, jitter = 0, blend = 0, relocate = 0, edge_guard = 0, cut = 0,
-             margin = 0;
+             margin = 0, cover = 0;
     app.add_option("files", files,
                    "EXAMPLE OUTPUT (any format OpenImageIO reads and writes, from the extension), or with -o: "
                    "examples and folders of them")
@@ -202,6 +202,11 @@ int main(int argc, char** argv) {
                                    "row by row, up to this many pixels to where the copies agree (minimum-error "
                                    "cuts); 0 (formats 3 to 7's borders) to 16 (default 8)")
                         ->check(CLI::Range(0, 16));
+    auto* cover_opt = app.add_option("--cover", cover,
+                                     "coherent engine, still textures: a third copy laid over each long border "
+                                     "between two copies, reaching up to this many pixels into each, cut in along "
+                                     "where it agrees with them; 0 (formats 3 to 9's borders) to 16 (default 8)")
+                          ->check(CLI::Range(0, 16));
     auto* margin_opt = app.add_option("--margin", margin,
                                       "coherent engine, still textures: copies are laid out inside the example "
                                       "less a frame of this many pixels, which the cuts then use: fewer "
@@ -241,7 +246,8 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     if (paper) engine = "paper";
     if (engine == "paper") {
-        for (const auto* o : {coherence_opt, passes_opt, jitter_opt, blend_opt, relocate_opt, edge_guard_opt, cut_opt, margin_opt})
+        for (const auto* o : {coherence_opt, passes_opt, jitter_opt, blend_opt, relocate_opt, edge_guard_opt, cut_opt,
+                              cover_opt, margin_opt})
             if (o->count()) {
                 std::fprintf(stderr, "vqtex-synth: error: %s applies to the coherent engine, not to --engine paper\n",
                              o->get_name().c_str());
@@ -272,6 +278,7 @@ int main(int argc, char** argv) {
         if (relocate_opt->count()) c.relocate = relocate;
         if (edge_guard_opt->count()) c.edge_guard = edge_guard;
         if (cut_opt->count()) c.cut = cut;
+        if (cover_opt->count()) c.cover = cover;
         if (margin_opt->count()) c.margin = margin;
         if (paper) {
             init = "noise";
@@ -310,6 +317,8 @@ int main(int argc, char** argv) {
                 throw std::invalid_argument("--edge-guard applies to still textures: animations keep their edges");
             if (animated && cut_opt->count())
                 throw std::invalid_argument("--cut applies to still textures: animations' borders are not cut");
+            if (animated && cover_opt->count())
+                throw std::invalid_argument("--cover applies to still textures: animations' borders are not covered");
             if (animated && margin_opt->count())
                 throw std::invalid_argument("--margin applies to still textures: animations' borders are not cut");
             ProgressBar bar(!quiet && !json);

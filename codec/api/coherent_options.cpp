@@ -21,6 +21,7 @@ CoherentOptions coherent_options(const AtlasSynthesisParams& params, int width, 
     opt.edge_guard = params.edge_guard;
     opt.clamp_children = clamps_children(params);
     opt.cut = params.cut;
+    opt.cover = params.cover;
     opt.blend_straight_alpha = params.blend_straight_alpha;
     return opt;
 }

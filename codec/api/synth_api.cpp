@@ -43,6 +43,7 @@ void synthesize_coherent_api(const vqtex_synth_params& params, const Image& exam
     engine.relocate = int(c.relocate);
     engine.edge_guard = int(c.edge_guard);
     engine.cut = int(c.cut);
+    engine.cover = int(c.cover);
     CoherentOptions opt = coherent_options(engine, int(params.width), int(params.height), params.seed);
     opt.margin = int(c.margin);
     opt.threads = threads;
@@ -163,6 +164,10 @@ void vqtex_synth_params_init(vqtex_synth_params* p) {
     // Straight borders between copies moved, row by row, to where the two
     // copies agree (docs/SYNTHESIS.md, cuts). The atlas files' default too.
     c.cut = kDefaultCutReach;
+    // A third copy over each long border that the cuts cannot move, where
+    // it agrees with both copies better than they agree with each other
+    // (docs/SYNTHESIS.md, covers). The atlas files' default too.
+    c.cover = kDefaultCoverReach;
     // No frame around the copies: one of 2 pixels cuts the straight-seam
     // measure by a sixth more but loses the example's outermost values
     // (an alpha ramp's ends) and costs 3% in SWD (docs/SYNTHESIS.md, cuts).

@@ -91,6 +91,7 @@ void validate(const vqtex_synth_params* p) {
     check_at_most(c.edge_guard, kMaxEdgeGuard, "edge_guard",
                   "example pixels kept free beside a copy cut off by the edge");
     check_at_most(c.cut, kMaxCutReach, "cut", "output pixels a border between copies may move");
+    check_at_most(c.cover, kMaxCoverReach, "cover", "output pixels a cover over a border may reach into each copy");
     check_at_most(c.margin, kMaxCopyMargin, "margin", "example pixels kept around the copies for the cuts");
     check_levels(p->levels);
     const vqtex_paper_params& paper = p->paper;

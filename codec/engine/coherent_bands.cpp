@@ -125,6 +125,8 @@ std::vector<ReadImage> synthesize_in_bands(const Image& example, const std::vect
         move_into_frame(part.positions, frame);
         cut_seams(example, space.wraps, w, part.height, part.positions, cut_rules(options), options.threads,
                   rows_of.first, h);
+        cover_seams(example, space.wraps, w, part.height, part.positions, cover_rules(options), options.threads,
+                    rows_of.first, h);
         // The band's own rows (blend 0 copies each pixel).
         for (std::size_t m = 0; m < readouts.size(); ++m)
             read_rows(readouts[m], space.wraps, options.blend,
@@ -171,6 +173,8 @@ std::vector<ReadImage> synthesize_pixels(const Image& example, int frame, const 
         PositionMap map = passes.levels_down_to(0);
         move_into_frame(map.positions, frame);
         cut_seams(example, space.wraps, map.width, map.height, map.positions, cut_rules(options), options.threads);
+        cover_seams(example, space.wraps, map.width, map.height, map.positions, cover_rules(options),
+                    options.threads);
         if (readouts.empty()) {
             out.emplace_back();
             out.back().image = read_positions(example, std::move(map), options.roll, options.threads, options.blend,

@@ -35,6 +35,7 @@ void LevelPasses::enter(int l) {
 
 int LevelPasses::band_margin() const {
     return 4 * (passes_at(0) + std::max(0, options.polish_passes)) + 2 + cut_reach_rows(cut_rules(options)) +
+           cover_reach_rows(cover_rules(options)) +
            std::clamp(options.blend, 0, kMaxBlendRadius);
 }
 

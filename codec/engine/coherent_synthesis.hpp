@@ -25,6 +25,7 @@
 #include "engine/coherence_sets.hpp"
 #include "engine/coherent_positions.hpp"
 #include "engine/coherent_run.hpp"
+#include "engine/seam_cover.hpp"
 #include "engine/seam_cut.hpp"
 #include "common/image.hpp"
 
@@ -60,6 +61,9 @@ struct CoherentOptions : CoherentRun {
     // How far, in output pixels, the minimum-error cuts may move a straight
     // border between two copies at the finest level (seam_cut.hpp); 0: none.
     int cut = 0;
+    // How far, in output pixels, a third copy laid over a long border
+    // between two copies may reach into each (seam_cover.hpp); 0: none.
+    int cover = 0;
     // Whether the blend weights colour by straight alpha (blend_rows; the
     // last channel of a 2- or 4-channel example).
     bool blend_straight_alpha = false;
@@ -83,6 +87,13 @@ struct CoherentOptions : CoherentRun {
 inline CutRules cut_rules(const CoherentOptions& options) {
     CutRules rules;
     rules.reach = options.cut;
+    return rules;
+}
+
+// The covers over long borders with these options.
+inline CoverRules cover_rules(const CoherentOptions& options) {
+    CoverRules rules;
+    rules.reach = options.cover;
     return rules;
 }
 

@@ -40,10 +40,14 @@ constexpr int default_edge_guard(uint16_t version) {
 // The cuts' reach when it is not stored: version 8's default, none before.
 constexpr int default_cut(uint16_t version) { return version >= kSeamCutAtlasFormatVersion ? kV8DefaultCut : 0; }
 
+// The covers' reach when it is not stored: version 10's default, none before.
+constexpr int default_cover(uint16_t version) { return version >= kCoverAtlasFormatVersion ? kV10DefaultCover : 0; }
+
 inline bool are_compact_defaults(const AtlasSynthesisParams& p, uint16_t version) {
     return p.passes == 2 && p.coarse_passes == 4 && p.polish_passes == 1 && p.coherence_bias == 256 &&
            p.coherence == 1 && p.roll && p.jitter == 0 && p.blend == default_blend(version) &&
-           p.relocate == default_relocation(version) && p.edge_guard == default_edge_guard(version) && p.cut == default_cut(version);
+           p.relocate == default_relocation(version) && p.edge_guard == default_edge_guard(version) &&
+           p.cut == default_cut(version) && p.cover == default_cover(version);
 }
 
 }  // namespace vqtex

@@ -53,6 +53,7 @@ AtlasSynthesisParams read_synthesis(const std::vector<uint8_t>& bytes) {
     p.relocate = 0;
     p.edge_guard = 0;
     p.cut = 0;
+    p.cover = 0;
     p.blend_straight_alpha = false;
     r.expect_end();
     return p;
@@ -82,7 +83,8 @@ int64_t zigzag(uint64_t v) { return int64_t(v >> 1) ^ -int64_t(v & 1); }
 // their atlases and the guide before dav1d runs.
 void read_maps(ByteReader& r, uint8_t packed, int aw, int ah, std::size_t size, std::size_t memory_limit,
                AtlasFile& f) {
-    if (packed & kPackedChannels) r.corrupt("packed bits 0-1 must be 0 in format version 9 (each map has its channels)");
+    if (packed & kPackedChannels)
+        r.corrupt("packed bits 0-1 must be 0 in a set of maps (format versions 9 and 11: each map has its channels)");
     const int count = int(r.varint_in("map count", 1, kMaxMaps));
     std::set<std::string> names;
     int channels = 0, memory_channels = 0;
@@ -198,6 +200,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
     p.relocate = default_relocation(version);
     p.edge_guard = default_edge_guard(version);
     p.cut = default_cut(version);
+    p.cover = default_cover(version);
     p.blend_straight_alpha = version >= kSeamCutAtlasFormatVersion;
     if (packed & kPackedParameters) {
         const std::size_t at = r.position();
@@ -213,11 +216,12 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
             p.relocate = int(r.varint_in("relocation", 0, kMaxRelocationPositions));
         if (version >= kEdgeGuardAtlasFormatVersion) p.edge_guard = int(r.varint_in("edge guard", 0, kMaxEdgeGuard));
         if (version >= kSeamCutAtlasFormatVersion) p.cut = int(r.varint_in("cut reach", 0, kMaxCutReach));
+        if (version >= kCoverAtlasFormatVersion) p.cover = int(r.varint_in("cover reach", 0, kMaxCoverReach));
         if (are_compact_defaults(p, version))
             r.corrupt("the parameters are stored but are the defaults (packed bit 6 must then be 0)");
         f.parameter_bytes = r.position() - at;
     }
-    if (version >= kMaterialAtlasFormatVersion) {
+    if (holds_maps(version)) {
         read_maps(r, packed, aw, ah, size, memory_limit, f);
         return f;
     }

@@ -55,6 +55,11 @@ inline constexpr int kV7DefaultEdgeGuard = 8;
 // and what the encoder writes; versions 3 to 7 have none (0). The stored
 // value is at most kMaxCutReach (seam_cut.hpp).
 inline constexpr int kV8DefaultCut = 8;
+// Format version 10's reach of the covers over long borders between
+// copies, in output pixels, when its parameters are not stored (docs/FORMAT.md
+// §2.2), and what the encoder writes; versions 3 to 9 have none (0). The
+// stored value is at most kMaxCoverReach (seam_cover.hpp).
+inline constexpr int kV10DefaultCover = 8;
 
 struct AtlasSynthesisParams {
     bool example_tileable = false;  // the atlas wraps (positions wrap instead of reflecting)
@@ -78,6 +83,9 @@ struct AtlasSynthesisParams {
     // Reach of the minimum-error cuts between copies, 0..kMaxCutReach
     // (version 8; files of versions 3 to 7: 0).
     int cut = kV8DefaultCut;
+    // Reach of the covers over long borders, 0..kMaxCoverReach (versions
+    // 10 and 11; files of versions 3 to 9: 0).
+    int cover = kV10DefaultCover;
     // Whether the blend weights colour by straight alpha (version 8; files
     // of versions 3 to 7 blend every channel alike).
     bool blend_straight_alpha = true;

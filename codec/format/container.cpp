@@ -31,7 +31,7 @@ uint16_t read_format_version(const uint8_t* data, std::size_t size) {
                  std::to_string(kFormatVersion) + " (still textures), " + std::to_string(kVolumeFormatVersion) +
                  " (animations), " + std::to_string(kAtlasFormatVersion) + ", " +
                  std::to_string(kCompactAtlasFormatVersion) + ", " + std::to_string(kBlendAtlasFormatVersion) +
-                 " to " + std::to_string(kMaterialAtlasFormatVersion) +
+                 " to " + std::to_string(kCoverMaterialFormatVersion) +
                  " (atlas textures): use a matching vqtex release");
     return version;
 }

@@ -49,11 +49,21 @@ inline constexpr uint16_t kSeamCutAtlasFormatVersion = 8;
 // a set of maps (a material's albedo, normals, gloss...) in place of the
 // one atlas, each coded alone at the same atlas positions and all read
 // through one synthesis, which matches a guide made from them. The encoder
-// writes it for map sets and for maps that are not colour; a single colour
-// image stays version 8.
+// writes version 11 in its place.
 inline constexpr uint16_t kMaterialAtlasFormatVersion = 9;
+// Versions 10 and 11 (docs/FORMAT.md §2, §4.13): versions 8 and 9, one
+// image and a set of maps, with one more parameter, the reach of the covers
+// over long borders between copies, which versions 3 to 9 decode without.
+// The encoder writes version 10 for one colour image and 11 for a set.
+inline constexpr uint16_t kCoverAtlasFormatVersion = 10;
+inline constexpr uint16_t kCoverMaterialFormatVersion = 11;
 inline bool is_compact_atlas_version(uint16_t version) {
-    return version >= kCompactAtlasFormatVersion && version <= kMaterialAtlasFormatVersion;
+    return version >= kCompactAtlasFormatVersion && version <= kCoverMaterialFormatVersion;
+}
+// Whether a compact version's file holds a set of maps (9 and 11) rather
+// than one atlas.
+inline bool holds_maps(uint16_t version) {
+    return version == kMaterialAtlasFormatVersion || version == kCoverMaterialFormatVersion;
 }
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;

@@ -1,6 +1,6 @@
-// atlas_writer.cpp - writing format versions 8 and 9 (docs/FORMAT.md §2),
+// atlas_writer.cpp - writing format versions 10 and 11 (docs/FORMAT.md §2),
 // the atlas files the encoder makes: the compact header, the parameters
-// only when they are not the defaults, the atlas bitstream (version 9: the
+// only when they are not the defaults, the atlas bitstream (version 11: the
 // maps, the guide's matrix and their bitstreams), CRC-32.
 // format/atlas_file.cpp reads them.
 #include "writer/atlas_writer.hpp"
@@ -23,12 +23,13 @@ void check_fields(const FileHeader& header, int atlas_width, int atlas_height, c
     if (header.levels < 1 || header.levels > 8 || atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide ||
         atlas_width > kMaxAtlasSide || atlas_height > kMaxAtlasSide || params.blend < 0 ||
         params.blend > kMaxBlendRadius || params.relocate < 0 || params.relocate > kMaxRelocationPositions ||
-        params.edge_guard < 0 || params.edge_guard > kMaxEdgeGuard || params.cut < 0 || params.cut > kMaxCutReach)
+        params.edge_guard < 0 || params.edge_guard > kMaxEdgeGuard || params.cut < 0 || params.cut > kMaxCutReach ||
+        params.cover < 0 || params.cover > kMaxCoverReach)
         fail(VQTEX_ERROR_INTERNAL,
              "encode_atlas_file: fields outside what format version " + std::to_string(version) + " can hold");
 }
 
-// Everything before the bitstreams that versions 8 and 9 share.
+// Everything before the bitstreams that versions 10 and 11 share.
 void write_header(ByteWriter& w, uint16_t version, uint8_t channel_bits, const FileHeader& header, int atlas_width,
                   int atlas_height, const AtlasSynthesisParams& params) {
     const bool exemplar_size =
@@ -57,6 +58,7 @@ void write_header(ByteWriter& w, uint16_t version, uint8_t channel_bits, const F
         w.varint(uint64_t(params.relocate));
         w.varint(uint64_t(params.edge_guard));
         w.varint(uint64_t(params.cut));
+        w.varint(uint64_t(params.cover));
     }
 }
 
@@ -66,11 +68,11 @@ uint64_t zigzag(int64_t v) { return (uint64_t(v) << 1) ^ uint64_t(v >> 63); }
 
 std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
                                        const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params) {
-    check_fields(header, atlas_width, atlas_height, params, kSeamCutAtlasFormatVersion);
+    check_fields(header, atlas_width, atlas_height, params, kCoverAtlasFormatVersion);
     if (header.channels < 1 || header.channels > 4 || atlas_bitstream.empty())
         fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: no bitstream, or channels outside 1..4");
     ByteWriter w;
-    write_header(w, kSeamCutAtlasFormatVersion, uint8_t(header.channels - 1), header, atlas_width, atlas_height,
+    write_header(w, kCoverAtlasFormatVersion, uint8_t(header.channels - 1), header, atlas_width, atlas_height,
                  params);
     w.bytes(atlas_bitstream);
     w.u32(crc32(w.data().data(), w.size()));
@@ -80,7 +82,7 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
 std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_width, int atlas_height,
                                           const std::vector<CodedMap>& maps, const GuideMatrix& guide,
                                           const AtlasSynthesisParams& params) {
-    check_fields(header, atlas_width, atlas_height, params, kMaterialAtlasFormatVersion);
+    check_fields(header, atlas_width, atlas_height, params, kCoverMaterialFormatVersion);
     int channels = 0;
     for (const CodedMap& m : maps) {
         if (!is_map_name(m.name) || m.channels < 1 || m.channels > 4 || m.bitstream.empty() ||
@@ -95,7 +97,7 @@ std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_wi
         guide.offsets.size() != std::size_t(guide.channels))
         fail(VQTEX_ERROR_INTERNAL, "encode_material_file: the maps or their guide cannot be stored");
     ByteWriter w;
-    write_header(w, kMaterialAtlasFormatVersion, 0, header, atlas_width, atlas_height, params);
+    write_header(w, kCoverMaterialFormatVersion, 0, header, atlas_width, atlas_height, params);
     w.varint(maps.size());
     for (const CodedMap& m : maps) {
         w.varint(m.name.size());

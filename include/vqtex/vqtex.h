@@ -232,6 +232,10 @@ typedef struct vqtex_coherent_params {
                                   of this many pixels, which the cuts then use (fewer straight seams;
                                   the frame's own values are rarer); 0 (none) to 16, default 0
                                   [--margin]. Not stored in files. */
+    uint32_t cover;            /* still textures: how far, in output pixels, a third copy laid over
+                                  a long border between two copies may reach into each, cut in
+                                  along where it agrees with them (fewer straight seams);
+                                  0 (none) to 16, default 8 [--cover] */
 } vqtex_coherent_params;
 
 /* The paper's engine's own parameters. */
@@ -495,6 +499,8 @@ typedef struct vqtex_file_info {
                                                       pixels (0: none); 0 otherwise */
     uint32_t cut;                                  /* atlas texture: the reach of the cuts between copies the
                                                       decoder uses, in output pixels (0: none); 0 otherwise */
+    uint32_t cover;                                /* atlas texture: the reach of the covers over long borders
+                                                      the decoder uses, in output pixels (0: none); 0 otherwise */
     uint32_t map_count;                            /* maps in the file: 1 but for a material set */
     struct {
         char name[VQTEX_MAX_MAP_NAME + 1];         /* "texture" for a file that is not a set */
