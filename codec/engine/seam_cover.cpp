@@ -343,7 +343,9 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
         // from it; side 1, the cover before it and B from it (the chain's
         // two ends are not covered).
         const auto content = [&](int side, int j, int v, int edge) {
-            if (j == 0 || j + 1 == n) return at(j, v);
+            // (Past the rectangle, where a path stepping at the chain's
+            // ends can look, the cover does not go: the copy is there.)
+            if (j == 0 || j + 1 == n || v < lo || v >= hi) return at(j, v);
             return (side == 0) == (v < edge) ? at(j, v) : c_at(j, v);
         };
         uint64_t total = 0;
