@@ -327,8 +327,14 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
     std::vector<int> paths[2], chosen_paths[2];
     uint32_t chosen_corner = 0;
     const int reach_of[2] = {reach, reach - 1};
-    std::vector<uint64_t> cost;
+    std::vector<uint64_t> cost, to_cover, from_cover;
     std::vector<int8_t> from;
+    // Between steps i - 1 and i the paths' edges lie within the reach of
+    // either step's border row: from first_row[i], `kept` rows at most.
+    std::vector<int> first_row(std::size_t(n), 0);
+    for (int i = 1; i < n; ++i)
+        first_row[std::size_t(i)] = std::min(chain.r[std::size_t(i)], chain.r[std::size_t(i - 1)]) - reach;
+    const int kept = 2 * reach + 2;
     int searched = 0;
     for (const Candidate& cd : best) {
         if (cd.same == 0 && searched++ >= kCutCandidates) continue;
@@ -342,11 +348,34 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
         // one side runs at `edge` there: side 0, A before it and the cover
         // from it; side 1, the cover before it and B from it (the chain's
         // two ends are not covered).
-        const auto content = [&](int side, int j, int v, int edge) {
-            // (Past the rectangle, where a path stepping at the chain's
-            // ends can look, the cover does not go: the copy is there.)
-            if (j == 0 || j + 1 == n || v < lo || v >= hi) return at(j, v);
-            return (side == 0) == (v < edge) ? at(j, v) : c_at(j, v);
+        // (Past the rectangle, where a path stepping at the chain's ends can
+        // look, the cover does not go: the copy is there.)
+        const auto cover_or_copy = [&](int j, int v) {
+            return j == 0 || j + 1 == n || v < lo || v >= hi ? at(j, v) : c_at(j, v);
+        };
+        // Where a path steps across between steps i - 1 and i, each row it
+        // passes has the copy on one side and the cover on the other: the
+        // copy before and the cover after (`to_cover`) or the reverse
+        // (`from_cover`), whichever the side and the direction of the step.
+        // Their prefix sums over the rows the paths can reach between the
+        // two steps (within the reach of either step's border row).
+        to_cover.assign(std::size_t(n) * std::size_t(kept + 1), 0);
+        from_cover.assign(std::size_t(n) * std::size_t(kept + 1), 0);
+        for (int i = 1; i < n; ++i) {
+            uint64_t* x = &to_cover[std::size_t(i) * std::size_t(kept + 1)];
+            uint64_t* y = &from_cover[std::size_t(i) * std::size_t(kept + 1)];
+            const int first = first_row[std::size_t(i)];
+            const int last = std::max(chain.r[std::size_t(i)], chain.r[std::size_t(i - 1)]) + reach;
+            for (int k = 0; first + k < last; ++k) {
+                const int v = first + k;
+                x[k + 1] = x[k] + seam_cost(ex, wraps, at(i - 1, v), cover_or_copy(i, v), lx, ly);
+                y[k + 1] = y[k] + seam_cost(ex, wraps, cover_or_copy(i - 1, v), at(i, v), lx, ly);
+            }
+        }
+        // The rows [a, b) of step i's sums.
+        const auto rows_of = [&](const std::vector<uint64_t>& sums, int i, int a, int b) {
+            const uint64_t* row = &sums[std::size_t(i) * std::size_t(kept + 1)];
+            return row[b - first_row[std::size_t(i)]] - row[a - first_row[std::size_t(i)]];
         };
         uint64_t total = 0;
         for (int side = 0; side < 2 && total != kNone; ++side) {
@@ -382,9 +411,11 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
                         // Where the path steps across between the two
                         // steps along, the pixels it passes are the cover
                         // on one side and the copy on the other.
+                        // (Side 0: the copy before its edge, the cover
+                        // from it; side 1 the reverse.)
                         const int e = side == 0 ? r - t : r + t, ep = side == 0 ? before - tt : before + tt;
-                        for (int w = std::min(e, ep); w < std::max(e, ep); ++w)
-                            v += seam_cost(ex, wraps, content(side, i - 1, w, ep), content(side, i, w, e), lx, ly);
+                        if (e < ep) v += rows_of(side == 0 ? to_cover : from_cover, i, e, ep);
+                        if (ep < e) v += rows_of(side == 0 ? from_cover : to_cover, i, ep, e);
                         if (v < b) {
                             b = v;
                             move = int8_t(d);
