@@ -683,7 +683,7 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
                           // The covers over long borders (whose blocks and
                           // competing covers a band must hold whole too).
                           {40, 600, 3, 2, 1, 0, 1, true, false, 2, 40, 36, 8, 8, 0, 8},
-                          {37, 640, 1, 2, 1, 0, 1, true, true, 2, 40, 36, 8, 8, 0, 12}};
+                          {37, 700, 1, 2, 1, 0, 1, true, true, 2, 40, 36, 8, 8, 0, 12}};
     for (const Case& c : cases) {
         const Image ex = textured(c.example_w, c.example_h, 3, c.channels);
         CoherentOptions options;
@@ -711,6 +711,10 @@ TEST(Coherent, BandsGiveTheBytesOfTheWholeLevel) {
             options.cover = c.cover;
         }
         for (int band : {1, 2, 7, 16}) {
+            // (The covers' cases are 600 rows and more, each band with
+            // about 280 rows of margin on either side: bands of 1 and 2
+            // rows would run the whole level a few hundred times over.)
+            if (c.cover > 0 && band < 7) continue;
             options.band_rows = band;
             options.threads = 1 + band % 3;
             EXPECT_EQ(synthesize_coherent(ex, 4, c.tileable, c.coherence, options).image, whole) << what << " band " << band;
