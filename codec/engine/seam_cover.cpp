@@ -128,15 +128,10 @@ std::vector<Chain> find_chains(const Axes& axes, const std::vector<uint32_t>& po
     };
     // Chains are pieces within aligned blocks of steps, so that a band of
     // rows finds the pieces of the whole.
-    int place = axes.origin % axes.period, in_block = place % rules.block;
+    seam_detail::BlockSteps blocks(axes.origin, axes.period, rules.block);
     for (int u = 0; u < U; ++u) {
-        if (u > 0) {
-            ++place;
-            ++in_block;
-            if (place == axes.period) place = in_block = 0;
-            if (in_block == rules.block) in_block = 0;
-        }
-        if (in_block == 0) {
+        if (u > 0) blocks.next();
+        if (blocks.starts()) {
             for (Open& o : open) close(o);
             open.clear();
         }
@@ -288,13 +283,13 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
                                 cd);
                 }
         };
-        const int coarse = kCoarseStep;
-        // Coarse to fine: corners on a grid of `coarse` pixels, then each
-        // level's best searched around at half the step, down to 1.
+        // Coarse to fine: corners on a grid of kCoarseStep pixels, then
+        // each level's best searched around at half the step, down to 1.
+        static_assert(kCoarseStep >= 4, "the first ranking uses the sparse samples");
         const std::vector<Sample> sparse = sample(4), dense = sample(2);
         std::vector<Candidate> found;
-        rank(coarse >= 4 ? sparse : dense, 0, ex.width, 0, ex.height, coarse, found);
-        for (int step = coarse / 2; step >= 1; step /= 2) {
+        rank(sparse, 0, ex.width, 0, ex.height, kCoarseStep, found);
+        for (int step = kCoarseStep / 2; step >= 1; step /= 2) {
             std::vector<Candidate> finer;
             for (const Candidate& cd : found)
                 rank(step >= 4 ? sparse : dense, position_x(cd.corner) - step, position_x(cd.corner) + step,
@@ -397,7 +392,7 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
                 const int t0 = side == 0 && inside ? std::min(1, maxa[std::size_t(i)]) : 0;
                 const int t1 = inside ? (side == 0 ? maxa[std::size_t(i)] : maxb[std::size_t(i)]) : 0;
                 for (int t = t0; t <= t1; ++t) {
-                    uint64_t here = inside && cd.same != side + 1 ? seam_price : 0;
+                    uint64_t here = inside ? seam_price : 0;
                     if (inside)
                         here += side == 0 ? seam_cost(ex, wraps, at(i, r - t - 1), c_at(i, r - t), ax, ay)
                                          : seam_cost(ex, wraps, c_at(i, r + t - 1), at(i, r + t), ax, ay);
@@ -469,22 +464,31 @@ void cover_direction(const Image& ex, bool wraps, const Axes& axes, std::vector<
     });
     // Where covers overlap, the one that gains most is written and the
     // others not (on a tie, none): decided pixel by pixel, so that it does
-    // not depend on which covers a band of rows sees first.
-    std::vector<uint64_t> claim(pos.size(), 0);
-    std::vector<uint8_t> tied(pos.size(), 0);
+    // not depend on which covers a band of rows sees first. The claims are
+    // kept per written pixel, sorted, not in a map of the output: a few
+    // covers' worth of memory instead of 9 bytes an output pixel.
+    struct Claim {
+        std::size_t pixel;
+        uint64_t gain;
+        uint32_t cover;
+    };
+    std::vector<Claim> claims;
     for (std::size_t c = 0; c < chains.size(); ++c)
-        for (const auto& [i, p] : writes[c]) {
-            if (gains[c] > claim[i]) {
-                claim[i] = gains[c];
-                tied[i] = 0;
-            } else if (gains[c] == claim[i]) {
-                tied[i] = 1;
-            }
-        }
+        for (const auto& [i, p] : writes[c]) claims.push_back({i, gains[c], uint32_t(c)});
+    std::sort(claims.begin(), claims.end(), [](const Claim& a, const Claim& b) {
+        return a.pixel != b.pixel ? a.pixel < b.pixel : a.gain > b.gain;
+    });
+    std::vector<uint8_t> loses(chains.size(), 0);
+    for (std::size_t k = 0; k < claims.size();) {
+        std::size_t end = k + 1;
+        while (end < claims.size() && claims[end].pixel == claims[k].pixel) ++end;
+        // claims[k] gains most at this pixel; it loses too on a tie.
+        const bool tie = end > k + 1 && claims[k + 1].gain == claims[k].gain;
+        for (std::size_t j = tie ? k : k + 1; j < end; ++j) loses[claims[j].cover] = 1;
+        k = end;
+    }
     for (std::size_t c = 0; c < chains.size(); ++c) {
-        bool wins = !writes[c].empty();
-        for (const auto& [i, p] : writes[c]) wins = wins && claim[i] == gains[c] && !tied[i];
-        if (!wins) continue;
+        if (loses[c]) continue;
         for (const auto& [i, p] : writes[c]) pos[i] = p;
     }
 }

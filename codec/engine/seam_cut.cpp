@@ -183,17 +183,9 @@ void cut_direction(const Image& ex, bool wraps, const Lines& lines, std::vector<
                 if (start >= 0 && end - start >= rules.min_run) cut_run(ex, wraps, lines, pos, links, across, out, a, start, end, rules);
                 start = -1;
             };
-            // Where u lies on the torus and in its block, kept step by step
-            // (a division per pixel cost more than the scan).
-            int at = lines.origin % lines.period, in_block = at % rules.block;
+            BlockSteps blocks(lines.origin, lines.period, rules.block);
             for (int u = 0; u < U; ++u) {
-                if (u > 0) {
-                    ++at;
-                    ++in_block;
-                    if (at == lines.period) at = in_block = 0;
-                    if (in_block == rules.block) in_block = 0;
-                    if (in_block == 0) finish(u);
-                }
+                if (u > 0 && blocks.next()) finish(u);
                 const uint8_t here = links[lines.index(a, u)];
                 if (here & across) {
                     finish(u);

@@ -57,6 +57,25 @@ inline int cut_reach_rows(const CutRules& rules) { return rules.reach > 0 ? rule
 
 namespace seam_detail {
 
+// Steps along a torus `period` entries long from entry `origin`, telling
+// where aligned blocks of `block` entries start, so that a band of rows
+// finds the blocks of the whole. Kept step by step: a division per pixel
+// cost more than the scans that use it.
+struct BlockSteps {
+    int place, in_block, period, block;
+    BlockSteps(int origin, int period_, int block_)
+        : place(origin % period_), in_block(place % block_), period(period_), block(block_) {}
+    // One step on; true when a block starts there.
+    bool next() {
+        ++place;
+        ++in_block;
+        if (place == period) place = in_block = 0;
+        if (in_block == block) in_block = 0;
+        return in_block == 0;
+    }
+    bool starts() const { return in_block == 0; }
+};
+
 // The position `k` steps across from `p` (dx, dy per step) in the example,
 // or false past its edge when it does not wrap.
 inline bool extend(const Image& ex, bool wraps, uint32_t p, int dx, int dy, uint32_t& out) {
