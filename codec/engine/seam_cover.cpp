@@ -58,6 +58,59 @@ struct Axes {
 // belong to one copy when their positions differ as their places do.
 uint32_t packed_step(int dx, int dy) { return uint32_t(dy) * 0x10000u + uint32_t(dx); }
 
+// The example's colours as the covers read them, `kChannels` a pixel (0:
+// as many as the example has), so that the loops over the channels, where
+// the covers spend most of their time, unroll.
+template <int kChannels>
+struct Colours {
+    const uint8_t* pixels;
+    int width, height, channels;
+    bool wraps;
+    Colours(const Image& ex, bool wraps_)
+        : pixels(ex.pixels.data()), width(ex.width), height(ex.height), channels(ex.channels), wraps(wraps_) {}
+    int count() const { return kChannels > 0 ? kChannels : channels; }
+    const uint8_t* at(int x, int y) const {
+        return pixels + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * std::size_t(count());
+    }
+    uint64_t difference(const uint8_t* a, const uint8_t* b) const {
+        uint64_t sum = 0;
+        for (int c = 0; c < count(); ++c) {
+            const int d = int(a[c]) - int(b[c]);
+            sum += uint64_t(d * d);
+        }
+        return sum;
+    }
+    // seam_detail::extend for a step of at most one pixel from a position
+    // in the example: a comparison in place of a division.
+    bool extend(int& x, int& y) const {
+        if (wraps) {
+            x = x < 0 ? x + width : x >= width ? x - width : x;
+            y = y < 0 ? y + height : y >= height ? y - height : y;
+            return true;
+        }
+        return x >= 0 && y >= 0 && x < width && y < height;
+    }
+    // What the border between adjacent pixels holding copies A (at the
+    // first) and B costs, (dx, dy) from the first to the second: Kwatra et
+    // al. 2003's seam cost as border_cost counts it, the two copies compared
+    // at both pixels, except where only one copy goes on into the other's
+    // pixel: the missing comparison is then the two pixels themselves, not
+    // the other one counted twice (which would let a copy's last row meet
+    // anything the other copy's extension happens to match). A border
+    // neither copy goes on across costs the worst, as border_cost says.
+    uint64_t seam(uint32_t a, uint32_t b, int dx, int dy) const {
+        int b1x = position_x(b) - dx, b1y = position_y(b) - dy;
+        int a2x = position_x(a) + dx, a2y = position_y(a) + dy;
+        const bool first = extend(b1x, b1y), second = extend(a2x, a2y);
+        const uint8_t* pa = at(position_x(a), position_y(a));
+        const uint8_t* pb = at(position_x(b), position_y(b));
+        if (first && second) return difference(pa, at(b1x, b1y)) + difference(at(a2x, a2y), pb);
+        if (first) return difference(pa, at(b1x, b1y)) + difference(pa, pb);
+        if (second) return difference(at(a2x, a2y), pb) + difference(pa, pb);
+        return 2 * uint64_t(count()) * 255 * 255;
+    }
+};
+
 // One border to cover: `n` steps along from `u0`; the border lies before
 // across-index r[i] (the upper copy A at r[i] - 1, the lower B at r[i]).
 struct Chain {
@@ -65,43 +118,45 @@ struct Chain {
     std::vector<int> r;
 };
 
-// What the border between adjacent pixels holding copies A (at the first)
-// and B costs: Kwatra et al. 2003's seam cost as border_cost counts it,
-// the two copies compared at both pixels, except where only one copy goes
-// on into the other's pixel: the missing comparison is then the two pixels
-// themselves, not the other one counted twice (which would let a copy's
-// last row meet anything the other copy's extension happens to match). A
-// border neither copy goes on across costs the worst, as border_cost says.
-uint64_t seam_cost(const Image& ex, bool wraps, uint32_t a, uint32_t b, int dx, int dy) {
-    using namespace seam_detail;
-    uint32_t a2, b1;
-    const bool first = extend(ex, wraps, b, -dx, -dy, b1), second = extend(ex, wraps, a, dx, dy, a2);
-    if (first && second) return colour_difference(ex, a, b1) + colour_difference(ex, a2, b);
-    if (first) return colour_difference(ex, a, b1) + colour_difference(ex, a, b);
-    if (second) return colour_difference(ex, a2, b) + colour_difference(ex, a, b);
-    return unmeasured(ex);
-}
-
 // Pixels a cover gives the third copy: (index in the map, position).
 using Writes = std::vector<std::pair<std::size_t, uint32_t>>;
 
-// The chains of one direction's borders, in the order they end.
-std::vector<Chain> find_chains(const Axes& axes, const std::vector<uint32_t>& pos, const CoverRules& rules) {
-    const int U = axes.along_size(), V = axes.across_size(), w = axes.width, h = axes.height;
+// Where aligned blocks of steps along start (chains are pieces within
+// them, so that a band of rows finds the pieces of the whole), from step 0,
+// and the end: the chains of each block are found, covered and written on
+// their own, each block's pixels being its own.
+std::vector<int> block_starts(const Axes& axes, const CoverRules& rules) {
+    const int U = axes.along_size();
+    std::vector<int> starts{0};
+    seam_detail::BlockSteps blocks(axes.origin, axes.period, rules.block);
+    for (int u = 1; u < U; ++u)
+        if (blocks.next()) starts.push_back(u);
+    starts.push_back(U);
+    return starts;
+}
+
+// The chains of one direction's borders over steps [u_begin, u_end) along
+// (within one block), in the order they end.
+std::vector<Chain> find_chains(const Axes& axes, const std::vector<uint32_t>& pos, const CoverRules& rules,
+                               int u_begin, int u_end) {
+    const int V = axes.across_size(), w = axes.width, h = axes.height;
     // Where the copy changes across the borders, per step along, in order
     // across: a pixel is in its neighbour's copy when its position goes on
     // from the neighbour's by one step (found in the map's memory order).
-    std::vector<std::vector<int>> events(static_cast<std::size_t>(U));
-    for (int y = 0; y < h; ++y) {
-        const uint32_t* row = pos.data() + std::size_t(y) * std::size_t(w);
-        const uint32_t* up = pos.data() + std::size_t(Image::wrap(y - 1, h)) * std::size_t(w);
-        if (axes.vertical) {
-            std::vector<int>& e = events[std::size_t(y)];
+    std::vector<std::vector<int>> events(static_cast<std::size_t>(u_end - u_begin));
+    if (axes.vertical) {
+        for (int y = u_begin; y < u_end; ++y) {
+            const uint32_t* row = pos.data() + std::size_t(y) * std::size_t(w);
+            std::vector<int>& e = events[std::size_t(y - u_begin)];
             for (int x = 0; x < w; ++x)
                 if (row[x] - row[x == 0 ? w - 1 : x - 1] != 1u) e.push_back(x);
-        } else {
-            for (int x = 0; x < w; ++x)
-                if (row[x] - up[x] != 0x10000u) events[std::size_t(x)].push_back(y);
+        }
+    } else {
+        for (int y = 0; y < h; ++y) {
+            const uint32_t* row = pos.data() + std::size_t(y) * std::size_t(w);
+            const uint32_t* up = pos.data() + std::size_t(Image::wrap(y - 1, h)) * std::size_t(w);
+            for (int x = u_begin; x < u_end; ++x)
+                if (row[x] - up[x] != 0x10000u) events[std::size_t(x - u_begin)].push_back(y);
         }
     }
     const auto at = [&](int u, int v) { return pos[axes.index(u, v)]; };
@@ -126,18 +181,10 @@ std::vector<Chain> find_chains(const Axes& axes, const std::vector<uint32_t>& po
         if (d < -V / 2) d += V;
         return d;
     };
-    // Chains are pieces within aligned blocks of steps, so that a band of
-    // rows finds the pieces of the whole.
-    seam_detail::BlockSteps blocks(axes.origin, axes.period, rules.block);
-    for (int u = 0; u < U; ++u) {
-        if (u > 0) blocks.next();
-        if (blocks.starts()) {
-            for (Open& o : open) close(o);
-            open.clear();
-        }
+    for (int u = u_begin; u < u_end; ++u) {
         for (Open& o : open) o.extended = false;
         next.clear();
-        for (int v : events[std::size_t(u)]) {
+        for (int v : events[std::size_t(u - u_begin)]) {
             const uint32_t a = at(u, v - 1), b = at(u, v);
             // The open chain whose two copies this border's go on from, its
             // last border nearest (within 2 across; the first of equals).
@@ -179,12 +226,51 @@ std::vector<Chain> find_chains(const Axes& axes, const std::vector<uint32_t>& po
     return done;
 }
 
+// The map around one chain, unwrapped: steps 0..n-1 along from the chain's
+// first, across-indices [low, low + width), which holds every pixel the
+// chain's cover reads (2 reach + 2 across from its border on either side).
+// Read once, so that the candidates' paths, which read it at every step
+// they try, need no wrapping divisions.
+struct Strip {
+    int low = 0, width = 0;
+    std::vector<uint32_t> positions;
+    // Where each across-index and each step is in the map (index = their sum).
+    std::vector<std::size_t> across_index, along_index;
+    uint32_t at(int i, int v) const { return positions[std::size_t(i) * std::size_t(width) + std::size_t(v - low)]; }
+    std::size_t index(int i, int v) const { return along_index[std::size_t(i)] + across_index[std::size_t(v - low)]; }
+    void read(const Axes& axes, const std::vector<uint32_t>& pos, const Chain& chain, int reach) {
+        const int n = int(chain.r.size());
+        const auto [lowest, highest] = std::minmax_element(chain.r.begin(), chain.r.end());
+        low = *lowest - 2 * reach - 2;
+        width = *highest + 2 * reach + 3 - low;
+        across_index.resize(std::size_t(width));
+        along_index.resize(std::size_t(n));
+        const std::size_t w = std::size_t(axes.width);
+        for (int k = 0; k < width; ++k) {
+            const int v = Image::wrap(low + k, axes.across_size());
+            across_index[std::size_t(k)] = axes.vertical ? std::size_t(v) : std::size_t(v) * w;
+        }
+        for (int i = 0; i < n; ++i) {
+            const int u = Image::wrap(chain.u0 + i, axes.along_size());
+            along_index[std::size_t(i)] = axes.vertical ? std::size_t(u) * w : std::size_t(u);
+        }
+        positions.resize(std::size_t(n) * std::size_t(width));
+        for (int i = 0; i < n; ++i) {
+            uint32_t* row = &positions[std::size_t(i) * std::size_t(width)];
+            const uint32_t* from = pos.data() + along_index[std::size_t(i)];
+            for (int k = 0; k < width; ++k) row[k] = from[across_index[std::size_t(k)]];
+        }
+    }
+};
+
 // The cover of one chain, or nothing where none costs less than the border.
-uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::vector<uint32_t>& pos, const Chain& chain,
-                     int reach, Writes& out) {
+template <int kChannels>
+uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const std::vector<uint32_t>& pos,
+                     const Chain& chain, int reach, Strip& strip, Writes& out) {
     const int n = int(chain.r.size());
-    const int u0 = chain.u0;
-    const auto at = [&](int i, int v) { return pos[axes.index(u0 + i, v)]; };
+    strip.read(axes, pos, chain, reach);
+    const auto at = [&](int i, int v) { return strip.at(i, v); };
+    const auto seam_cost = [&](uint32_t a, uint32_t b, int dx, int dy) { return colours.seam(a, b, dx, dy); };
     // Whether the pixel at v goes on from the one before it across.
     const uint32_t across = packed_step(axes.ax(), axes.ay());
     const auto goes_on = [&](int i, int v) { return at(i, v) - at(i, v - 1) == across; };
@@ -211,8 +297,8 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
     const int ext_along = n, ext_across = hi - lo;
     const int ax = axes.ax(), ay = axes.ay(), lx = axes.lx(), ly = axes.ly();
     const int ext_x = ax * ext_across + lx * ext_along, ext_y = ay * ext_across + ly * ext_along;
-    if (ext_x > ex.width || ext_y > ex.height || ext_across <= 0) return 0;
-    const int ch = ex.channels;
+    if (ext_x > colours.width || ext_y > colours.height || ext_across <= 0) return 0;
+    const int ch = colours.count();
     const uint64_t seam_price = uint64_t(kSeamPrice) * uint64_t(ch);
     // The border as it is, over the chain's inside.
     // (Across it on every step inside, and along it where it steps from
@@ -220,9 +306,9 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
     uint64_t original = 0;
     for (int i = 1; i < n; ++i) {
         const int r = chain.r[std::size_t(i)], before = chain.r[std::size_t(i - 1)];
-        if (i + 1 < n) original += seam_cost(ex, wraps, at(i, r - 1), at(i, r), ax, ay) + seam_price;
+        if (i + 1 < n) original += seam_cost(at(i, r - 1), at(i, r), ax, ay) + seam_price;
         for (int v = std::min(r, before); v < std::max(r, before); ++v)
-            original += seam_cost(ex, wraps, at(i - 1, v), at(i, v), lx, ly);
+            original += seam_cost(at(i - 1, v), at(i, v), lx, ly);
     }
     struct Candidate {
         uint64_t cost;
@@ -235,12 +321,14 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
     if (original > seam_price * uint64_t(n - 2)) {
         // The output's colours where the cover may go, and a pixel beyond on
         // either side, every `step` pixels: what a cover has to agree with.
-        struct Sample {
-            std::size_t offset;  // from the rectangle's corner, in the example's samples
-            const uint8_t* colour;
+        // Offsets from the rectangle's corner, in the example's samples, and
+        // the colours one after the other.
+        struct Samples {
+            std::vector<std::size_t> offsets;
+            std::vector<uint8_t> colours;
         };
         const auto sample = [&](int step) {
-            std::vector<Sample> found;
+            Samples found;
             for (int i = 1; i + 1 < n; i += step) {
                 const int r = chain.r[std::size_t(i)];
                 for (int v = r - maxa[std::size_t(i)] - 1; v <= r + maxb[std::size_t(i)]; v += step) {
@@ -248,32 +336,51 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
                     if (c < 0 || c >= ext_across) continue;
                     const uint32_t p = at(i, v);
                     const std::size_t dx = std::size_t(ax * c + lx * i), dy = std::size_t(ay * c + ly * i);
-                    found.push_back({(dy * std::size_t(ex.width) + dx) * std::size_t(ch),
-                                     ex.at(position_x(p), position_y(p))});
+                    found.offsets.push_back((dy * std::size_t(colours.width) + dx) * std::size_t(ch));
+                    const uint8_t* colour = colours.at(position_x(p), position_y(p));
+                    found.colours.insert(found.colours.end(), colour, colour + ch);
                 }
             }
             return found;
         };
         // Corners ranked by the squared difference over the samples, the
-        // best kCandidates kept (ties to the earlier corner).
-        const auto rank = [&](const std::vector<Sample>& samples, int x0, int x1, int y0, int y1, int step,
+        // best kCandidates kept (ties to the earlier corner). A corner met
+        // again within one level is not measured again: it is either kept
+        // already, or was worse than the kept list's last, which only gets
+        // better, so it would be turned down again.
+        std::vector<uint32_t> measured;
+        const auto rank = [&](const Samples& samples, int x0, int x1, int y0, int y1, int step,
                               std::vector<Candidate>& into) {
-            for (int by = std::max(0, y0); by <= std::min(y1, ex.height - ext_y); by += step)
-                for (int bx = std::max(0, x0); bx <= std::min(x1, ex.width - ext_x); bx += step) {
+            const std::size_t count = samples.offsets.size();
+            const std::size_t* offsets = samples.offsets.data();
+            const uint8_t* wanted = samples.colours.data();
+            // (The channels as a constant where the template gives one: the
+            // lambda's captured count would be read at every sample.)
+            const int channels = kChannels > 0 ? kChannels : ch;
+            for (int by = std::max(0, y0); by <= std::min(y1, colours.height - ext_y); by += step)
+                for (int bx = std::max(0, x0); bx <= std::min(x1, colours.width - ext_x); bx += step) {
                     const uint32_t corner = pack_position(bx, by);
-                    bool seen = false;
-                    for (const Candidate& cd : into) seen = seen || cd.corner == corner;
-                    if (seen) continue;
+                    if (step < kCoarseStep) {
+                        if (std::find(measured.begin(), measured.end(), corner) != measured.end()) continue;
+                        measured.push_back(corner);
+                    }
                     uint64_t cost = 0;
                     const uint64_t bound = int(into.size()) == kCandidates ? into.back().cost : kNone;
-                    const uint8_t* corner_at = ex.at(bx, by);
-                    for (const Sample& smp : samples) {
-                        const uint8_t* c = corner_at + smp.offset;
-                        for (int q = 0; q < ch; ++q) {
-                            const int d = int(c[q]) - int(smp.colour[q]);
-                            cost += uint64_t(d * d);
+                    const uint8_t* corner_at = colours.at(bx, by);
+                    // In runs of 8 samples between looks at the bound (a
+                    // partial sum already at it only grows).
+                    for (std::size_t s = 0; s < count && cost < bound;) {
+                        const std::size_t end = std::min(count, s + 8);
+                        uint32_t run = 0;
+                        for (; s < end; ++s) {
+                            const uint8_t* c = corner_at + offsets[s];
+                            const uint8_t* o = wanted + s * std::size_t(channels);
+                            for (int q = 0; q < channels; ++q) {
+                                const int d = int(c[q]) - int(o[q]);
+                                run += uint32_t(d * d);
+                            }
                         }
-                        if (cost >= bound) break;
+                        cost += run;
                     }
                     if (cost >= bound) continue;
                     const Candidate cd{cost, corner, 0};
@@ -286,11 +393,12 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
         // Coarse to fine: corners on a grid of kCoarseStep pixels, then
         // each level's best searched around at half the step, down to 1.
         static_assert(kCoarseStep >= 4, "the first ranking uses the sparse samples");
-        const std::vector<Sample> sparse = sample(4), dense = sample(2);
+        const Samples sparse = sample(4), dense = sample(2);
         std::vector<Candidate> found;
-        rank(sparse, 0, ex.width, 0, ex.height, kCoarseStep, found);
+        rank(sparse, 0, colours.width, 0, colours.height, kCoarseStep, found);
         for (int step = kCoarseStep / 2; step >= 1; step /= 2) {
             std::vector<Candidate> finer;
+            measured.clear();
             for (const Candidate& cd : found)
                 rank(step >= 4 ? sparse : dense, position_x(cd.corner) - step, position_x(cd.corner) + step,
                      position_y(cd.corner) - step, position_y(cd.corner) + step, step, finer);
@@ -307,7 +415,7 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
             const uint32_t p = at(mid, v);
             const int c = v - lo;
             const int bx = position_x(p) - ax * c - lx * mid, by = position_y(p) - ay * c - ly * mid;
-            if (bx < 0 || by < 0 || bx + ext_x > ex.width || by + ext_y > ex.height) continue;
+            if (bx < 0 || by < 0 || bx + ext_x > colours.width || by + ext_y > colours.height) continue;
             const uint32_t corner = pack_position(bx, by);
             bool listed = false;
             for (Candidate& cd : best)
@@ -330,6 +438,8 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
     for (int i = 1; i < n; ++i)
         first_row[std::size_t(i)] = std::min(chain.r[std::size_t(i)], chain.r[std::size_t(i - 1)]) - reach;
     const int kept = 2 * reach + 2;
+    const uint32_t along = packed_step(lx, ly);
+    std::vector<uint32_t> differences(std::size_t(n) * std::size_t(ext_across));
     int searched = 0;
     for (const Candidate& cd : best) {
         if (cd.same == 0 && searched++ >= kCutCandidates) continue;
@@ -339,14 +449,39 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
             const int c = v - lo;
             return pack_position(bx + ax * c + lx * i, by + ay * c + ly * i);
         };
-        // What the map shows at step j, across-index v, once the path of
-        // one side runs at `edge` there: side 0, A before it and the cover
-        // from it; side 1, the cover before it and B from it (the chain's
-        // two ends are not covered).
+        // Whether the map shows the cover at step j, across-index v, once
+        // the path of one side runs at `edge` there (else the copy): side 0,
+        // A before it and the cover from it; side 1, the cover before it and
+        // B from it (the chain's two ends are not covered).
         // (Past the rectangle, where a path stepping at the chain's ends can
         // look, the cover does not go: the copy is there.)
-        const auto cover_or_copy = [&](int j, int v) {
-            return j == 0 || j + 1 == n || v < lo || v >= hi ? at(j, v) : c_at(j, v);
+        const auto covered = [&](int j, int v) { return j > 0 && j + 1 < n && v >= lo && v < hi; };
+        // The colour difference between the copy and the cover at each
+        // pixel of the rectangle. A border between the two, where the copy
+        // goes on across it, compares them at its two pixels (the cover
+        // always goes on, within its rectangle): two of these, looked up
+        // instead of measured again at every path step that crosses it.
+        for (int j = 0; j < n; ++j) {
+            uint32_t* row = &differences[std::size_t(j) * std::size_t(ext_across)];
+            const uint8_t* cover = colours.at(bx + lx * j, by + ly * j);
+            const std::size_t next = std::size_t(ax + ay * colours.width) * std::size_t(ch);
+            for (int c = 0; c < ext_across; ++c, cover += next) {
+                const uint32_t p = at(j, lo + c);
+                row[c] = uint32_t(colours.difference(colours.at(position_x(p), position_y(p)), cover));
+            }
+        }
+        const auto difference = [&](int j, int v) {
+            return uint64_t(differences[std::size_t(j) * std::size_t(ext_across) + std::size_t(v - lo)]);
+        };
+        // The border along between steps i - 1 and i at v, the copy on one
+        // side and the map as the cover leaves it (copy or cover) on the
+        // other: `cover_first`, the cover at step i - 1, else at step i.
+        const auto along_border = [&](int i, int v, bool cover_first) {
+            const int j = cover_first ? i - 1 : i;
+            if (!covered(j, v)) return seam_cost(at(i - 1, v), at(i, v), lx, ly);
+            if (at(i, v) - at(i - 1, v) == along) return difference(i - 1, v) + difference(i, v);
+            return cover_first ? seam_cost(c_at(i - 1, v), at(i, v), lx, ly)
+                               : seam_cost(at(i - 1, v), c_at(i, v), lx, ly);
         };
         // Where a path steps across between steps i - 1 and i, each row it
         // passes has the copy on one side and the cover on the other: the
@@ -363,8 +498,8 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
             const int last = std::max(chain.r[std::size_t(i)], chain.r[std::size_t(i - 1)]) + reach;
             for (int k = 0; first + k < last; ++k) {
                 const int v = first + k;
-                x[k + 1] = x[k] + seam_cost(ex, wraps, at(i - 1, v), cover_or_copy(i, v), lx, ly);
-                y[k + 1] = y[k] + seam_cost(ex, wraps, cover_or_copy(i - 1, v), at(i, v), lx, ly);
+                x[k + 1] = x[k] + along_border(i, v, false);
+                y[k + 1] = y[k] + along_border(i, v, true);
             }
         }
         // The rows [a, b) of step i's sums.
@@ -393,9 +528,16 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
                 const int t1 = inside ? (side == 0 ? maxa[std::size_t(i)] : maxb[std::size_t(i)]) : 0;
                 for (int t = t0; t <= t1; ++t) {
                     uint64_t here = inside ? seam_price : 0;
-                    if (inside)
-                        here += side == 0 ? seam_cost(ex, wraps, at(i, r - t - 1), c_at(i, r - t), ax, ay)
-                                         : seam_cost(ex, wraps, c_at(i, r + t - 1), at(i, r + t), ax, ay);
+                    // (The cover's pixel beyond the edge may be past its
+                    // rectangle, where its colour was not compared.)
+                    if (inside) {
+                        const int e = side == 0 ? r - t : r + t;
+                        if (goes_on(i, e) && e > lo && e < hi)
+                            here += difference(i, e - 1) + difference(i, e);
+                        else
+                            here += side == 0 ? seam_cost(at(i, e - 1), c_at(i, e), ax, ay)
+                                              : seam_cost(c_at(i, e - 1), at(i, e), ax, ay);
+                    }
                     uint64_t b = kNone;
                     int8_t move = 0;
                     for (int d : {0, -1, 1}) {
@@ -447,50 +589,84 @@ uint64_t cover_chain(const Image& ex, bool wraps, const Axes& axes, const std::v
         const int r = chain.r[std::size_t(i)];
         for (int v = r - chosen_paths[0][std::size_t(i)]; v < r + chosen_paths[1][std::size_t(i)]; ++v) {
             const int c = v - lo;
-            out.emplace_back(axes.index(u0 + i, v), pack_position(bx + ax * c + lx * i, by + ay * c + ly * i));
+            out.emplace_back(strip.index(i, v), pack_position(bx + ax * c + lx * i, by + ay * c + ly * i));
         }
     }
     return original - chosen;
 }
 
+// cover_chain for the example's channel count.
+uint64_t cover_with(const Image& ex, bool wraps, const Axes& axes, const std::vector<uint32_t>& pos,
+                    const Chain& chain, int reach, Strip& strip, Writes& out) {
+    switch (ex.channels) {
+    case 1: return cover_chain(Colours<1>(ex, wraps), axes, pos, chain, reach, strip, out);
+    case 2: return cover_chain(Colours<2>(ex, wraps), axes, pos, chain, reach, strip, out);
+    case 3: return cover_chain(Colours<3>(ex, wraps), axes, pos, chain, reach, strip, out);
+    case 4: return cover_chain(Colours<4>(ex, wraps), axes, pos, chain, reach, strip, out);
+    default: return cover_chain(Colours<0>(ex, wraps), axes, pos, chain, reach, strip, out);
+    }
+}
+
 void cover_direction(const Image& ex, bool wraps, const Axes& axes, std::vector<uint32_t>& pos,
                      const CoverRules& rules, int threads) {
-    const std::vector<Chain> chains = find_chains(axes, pos, rules);
+    const std::vector<int> starts = block_starts(axes, rules);
+    const std::size_t blocks = starts.size() - 1;
+    std::vector<std::vector<Chain>> found(blocks);
+    parallel_for(threads, blocks, 1, [&](std::size_t b0, std::size_t b1) {
+        for (std::size_t b = b0; b < b1; ++b)
+            found[b] = find_chains(axes, pos, rules, starts[b], starts[b + 1]);
+    });
+    // The chains one after the other, block by block (block b's from
+    // first[b]).
+    std::vector<Chain> chains;
+    std::vector<std::size_t> first(blocks + 1, 0);
+    for (std::size_t b = 0; b < blocks; ++b) {
+        first[b + 1] = first[b] + found[b].size();
+        for (Chain& c : found[b]) chains.push_back(std::move(c));
+    }
     std::vector<Writes> writes(chains.size());
     std::vector<uint64_t> gains(chains.size(), 0);
     parallel_for(threads, chains.size(), 1, [&](std::size_t c0, std::size_t c1) {
+        Strip strip;
         for (std::size_t c = c0; c < c1; ++c)
-            gains[c] = cover_chain(ex, wraps, axes, pos, chains[c], rules.reach, writes[c]);
+            gains[c] = cover_with(ex, wraps, axes, pos, chains[c], rules.reach, strip, writes[c]);
     });
     // Where covers overlap, the one that gains most is written and the
     // others not (on a tie, none): decided pixel by pixel, so that it does
     // not depend on which covers a band of rows sees first. The claims are
     // kept per written pixel, sorted, not in a map of the output: a few
-    // covers' worth of memory instead of 9 bytes an output pixel.
-    struct Claim {
-        std::size_t pixel;
-        uint64_t gain;
-        uint32_t cover;
-    };
-    std::vector<Claim> claims;
-    for (std::size_t c = 0; c < chains.size(); ++c)
-        for (const auto& [i, p] : writes[c]) claims.push_back({i, gains[c], uint32_t(c)});
-    std::sort(claims.begin(), claims.end(), [](const Claim& a, const Claim& b) {
-        return a.pixel != b.pixel ? a.pixel < b.pixel : a.gain > b.gain;
-    });
+    // covers' worth of memory instead of 9 bytes an output pixel. Covers of
+    // different blocks write different pixels, so each block's are decided
+    // and written on their own.
     std::vector<uint8_t> loses(chains.size(), 0);
-    for (std::size_t k = 0; k < claims.size();) {
-        std::size_t end = k + 1;
-        while (end < claims.size() && claims[end].pixel == claims[k].pixel) ++end;
-        // claims[k] gains most at this pixel; it loses too on a tie.
-        const bool tie = end > k + 1 && claims[k + 1].gain == claims[k].gain;
-        for (std::size_t j = tie ? k : k + 1; j < end; ++j) loses[claims[j].cover] = 1;
-        k = end;
-    }
-    for (std::size_t c = 0; c < chains.size(); ++c) {
-        if (loses[c]) continue;
-        for (const auto& [i, p] : writes[c]) pos[i] = p;
-    }
+    parallel_for(threads, blocks, 1, [&](std::size_t b0, std::size_t b1) {
+        struct Claim {
+            std::size_t pixel;
+            uint64_t gain;
+            uint32_t cover;
+        };
+        std::vector<Claim> claims;
+        for (std::size_t b = b0; b < b1; ++b) {
+            claims.clear();
+            for (std::size_t c = first[b]; c < first[b + 1]; ++c)
+                for (const auto& [i, p] : writes[c]) claims.push_back({i, gains[c], uint32_t(c)});
+            std::sort(claims.begin(), claims.end(), [](const Claim& l, const Claim& r) {
+                return l.pixel != r.pixel ? l.pixel < r.pixel : l.gain > r.gain;
+            });
+            for (std::size_t k = 0; k < claims.size();) {
+                std::size_t end = k + 1;
+                while (end < claims.size() && claims[end].pixel == claims[k].pixel) ++end;
+                // claims[k] gains most at this pixel; it loses too on a tie.
+                const bool tie = end > k + 1 && claims[k + 1].gain == claims[k].gain;
+                for (std::size_t j = tie ? k : k + 1; j < end; ++j) loses[claims[j].cover] = 1;
+                k = end;
+            }
+            for (std::size_t c = first[b]; c < first[b + 1]; ++c) {
+                if (loses[c]) continue;
+                for (const auto& [i, p] : writes[c]) pos[i] = p;
+            }
+        }
+    });
 }
 
 }  // namespace
