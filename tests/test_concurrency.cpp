@@ -5,6 +5,8 @@
 // test-sanitizers.sh runs this suite under ThreadSanitizer, which also
 // reports any data race between the calls.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -198,6 +200,33 @@ TEST(Concurrency, LoopsFromManyThreadsAndInsideLoopsRunEveryItemOnce) {
         });
     for (auto& t : callers) t.join();
     for (std::size_t i = 0; i < visits.size(); ++i) ASSERT_EQ(visits[i].load(), 1) << "item " << i;
+}
+
+// A process that forks after its loops ran (a benchmark measuring each
+// encode in a child, a server's worker processes) has, in the child, the
+// kept threads' state but not the threads: the child's loops still run, on
+// threads of their own, instead of waiting for ever.
+TEST(Concurrency, AChildForkedAfterLoopsRanRunsItsOwnLoops) {
+    std::atomic<int> sum{0};
+    vqtex::parallel_for(3, 300, 1, [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) sum.fetch_add(1);
+    });
+    ASSERT_EQ(sum.load(), 300);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        ::alarm(60);  // a child that hangs dies of SIGALRM, and the test fails
+        std::atomic<int> n{0};
+        vqtex::parallel_for(3, 300, 1, [&](std::size_t b, std::size_t e) {
+            for (std::size_t i = b; i < e; ++i) n.fetch_add(1);
+        });
+        ::_exit(n.load() == 300 ? 0 : 1);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFEXITED(status)) << "the child hung or crashed (signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0)
+                                   << ")";
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0);
 }
 
 // An exception thrown inside a loop reaches its caller once every thread is

@@ -10,6 +10,9 @@
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
+#if defined(__unix__)
+#include <unistd.h>
+#endif
 
 namespace vqtex::detail {
 namespace {
@@ -119,6 +122,13 @@ bool run_on_kept_threads(int workers, const std::function<void(int)>& job) {
     // Never destroyed: the workers sleep until the process ends, and no
     // destructor has to race a job started from another static's destructor.
     static KeptThreads* const kept = new KeptThreads;
+#if defined(__unix__)
+    // A child forked after the threads started has their state but not the
+    // threads (fork copies only the calling thread): it would wait for them
+    // for ever, so it runs on threads of its own.
+    static const pid_t owner = ::getpid();
+    if (::getpid() != owner) return false;
+#endif
     return kept->run(workers, job);
 }
 
