@@ -78,7 +78,9 @@ class PatchIndex {
   static constexpr int kLeaf = 64;                // windows per k-d leaf
   static constexpr int kMaxWindows = 262144;
 
-  PatchIndex(const Rgb8& img, int patch);
+  // At most `max_windows` windows are indexed (the stride grows until they
+  // fit).
+  PatchIndex(const Rgb8& img, int patch, int max_windows = kMaxWindows);
   PatchIndex(const PatchIndex&) = delete;
   PatchIndex& operator=(const PatchIndex&) = delete;
 

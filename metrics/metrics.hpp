@@ -116,10 +116,12 @@ void srgb_to_lab(uint8_t r, uint8_t g, uint8_t b, double lab[3]);
 //   patches to their nearest output patch. "Is everything in the reference
 //   found in the output?" LOWER IS BETTER. Range [0, 255]. Penalises blur,
 //   missing features and lost variety.
+// `max_windows` caps the candidate windows (262144 unless told: the
+// encoder's proxy takes fewer, for memory).
 double coherence(const Image& output, const Image& exemplar, int patch = 7,
-                 int max_queries = 256, uint64_t seed = kDefaultSeed);
+                 int max_queries = 256, uint64_t seed = kDefaultSeed, int max_windows = 262144);
 double completeness(const Image& reference, const Image& output, int patch = 7,
-                    int max_queries = 256, uint64_t seed = kDefaultSeed);
+                    int max_queries = 256, uint64_t seed = kDefaultSeed, int max_windows = 262144);
 
 // ---------------------------------------------------------------------------
 // 4. Verbatim copying and variety.

@@ -30,8 +30,9 @@ void require_fits(const Rgb8& im, int p, const char* what) {
 
 }  // namespace
 
-PatchIndex::PatchIndex(const Rgb8& img, int patch) : img_(&img), p_(patch) {
+PatchIndex::PatchIndex(const Rgb8& img, int patch, int max_windows) : img_(&img), p_(patch) {
   if (patch < 1 || patch > 64) throw std::invalid_argument("vqtex_metrics: patch must be in 1..64");
+  if (max_windows < 1) throw std::invalid_argument("vqtex_metrics: max_windows must be >= 1");
   require_fits(img, patch, "image");
   dims_ = p_ * p_ * 3;
   padded_ = (dims_ + 15) / 16 * 16;
@@ -63,13 +64,13 @@ PatchIndex::PatchIndex(const Rgb8& img, int patch) : img_(&img), p_(patch) {
               colour[t.colour][c] * dct(t.u, x) * dct(t.v, y);
   }
 
-  // Window grid: stride 1 unless that gives more than kMaxWindows windows.
+  // Window grid: stride 1 unless that gives more than max_windows windows.
   const int nx0 = img.w - p_ + 1, ny0 = img.h - p_ + 1;
   int stride = 1;
   auto count = [&](int s) {
     return static_cast<long long>((nx0 + s - 1) / s) * static_cast<long long>((ny0 + s - 1) / s);
   };
-  while (count(stride) > kMaxWindows) ++stride;
+  while (count(stride) > max_windows) ++stride;
   n_ = static_cast<int>(count(stride));
 
   std::vector<uint8_t> vecs(static_cast<size_t>(n_) * padded_);
@@ -365,17 +366,19 @@ CopyStats copy_stats_indexed(const Rgb8& output, const PatchIndex& index, int st
 
 }  // namespace detail
 
-double coherence(const Image& output, const Image& exemplar, int patch, int max_queries, uint64_t seed) {
+double coherence(const Image& output, const Image& exemplar, int patch, int max_queries, uint64_t seed,
+                 int max_windows) {
   const detail::Rgb8 out = detail::to_rgb8(output, "output");
   const detail::Rgb8 ex = detail::to_rgb8(exemplar, "exemplar");
-  const detail::PatchIndex index(ex, patch);
+  const detail::PatchIndex index(ex, patch, max_windows);
   return detail::mean_nn_rms(out, index, max_queries, detail::derive_seed(seed, 4000));
 }
 
-double completeness(const Image& reference, const Image& output, int patch, int max_queries, uint64_t seed) {
+double completeness(const Image& reference, const Image& output, int patch, int max_queries, uint64_t seed,
+                    int max_windows) {
   const detail::Rgb8 ref = detail::to_rgb8(reference, "reference");
   const detail::Rgb8 out = detail::to_rgb8(output, "output");
-  const detail::PatchIndex index(out, patch);
+  const detail::PatchIndex index(out, patch, max_windows);
   return detail::mean_nn_rms(ref, index, max_queries, detail::derive_seed(seed, 4001));
 }
 
