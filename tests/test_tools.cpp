@@ -176,6 +176,10 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     EXPECT_NE(r.output.find("\"quality\":10,"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bytes\":"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bpp\":"), std::string::npos) << r.output;
+    // What the atlas is: at -q 10, a crop of 96x96 at the corner.
+    EXPECT_NE(r.output.find("\"atlas\":{\"width\":96,\"height\":96,\"x\":0,\"y\":0,\"kind\":\"part\"}"),
+              std::string::npos)
+        << r.output;
     r = decode_tool(vqt + " " + png + " --size 200x120 --seed 3 --json");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("\"decode_seconds\":"), std::string::npos) << r.output;
@@ -196,7 +200,10 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     EXPECT_NE(r.output.find("ATLS"), std::string::npos) << r.output;
     // (Which atlas, the whole example or a crop of it, the encoder chooses
     // by scoring decodes: docs/ATLAS.md.)
-    EXPECT_NE(r.output.find(", coded as AV1; compact header (format 10)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("atlas     96x96 (a part of the example, 56% of its area), coded as AV1; compact header "
+                            "(format 10)"),
+              std::string::npos)
+        << r.output;
     const std::string trees = (dir / "t.vqt").string();
     ASSERT_EQ(encode_tool(corpus + "/cellular_128.png " + trees + " -q 10 --trees --quiet").status, 0);
     const ToolRun ti = info_tool(trees);

@@ -442,6 +442,13 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
               {"encode_seconds", seconds},
               {"codewords", std::vector<uint32_t>(stats.codewords, stats.codewords + stats.levels)},
               {"entries", std::vector<uint32_t>(stats.entries, stats.entries + stats.levels)}};
+    static const char* const kAtlasKinds[] = {"whole", "part", "tile"};
+    if (stats.atlas_width)
+        r.json["atlas"] = {{"width", stats.atlas_width},
+                           {"height", stats.atlas_height},
+                           {"x", stats.atlas_x},
+                           {"y", stats.atlas_y},
+                           {"kind", kAtlasKinds[std::min(stats.atlas_kind, 2u)]}};
     if (!notices.empty()) r.json["notices"] = notices;
     std::snprintf(line, sizeof line, "%s (%ux%u, %u channels) -> %s\n", input.c_str(), example.width,
                   example.height, example.channels, output.c_str());
@@ -453,6 +460,13 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
         std::snprintf(line, sizeof line, "%zu bytes, %.3f bits per example pixel, quality %d%s, %.3f s\n", size,
                       8.0 * double(size) / pixels, quality, p.target_size ? " (target-size search)" : "", seconds);
     r.text += line;
+    if (stats.atlas_width && stats.atlas_kind != 0) {
+        std::snprintf(line, sizeof line, "atlas %ux%u: %s\n", stats.atlas_width, stats.atlas_height,
+                      stats.atlas_kind == 2 ? "the tile the example repeats"
+                                            : ("the part at (" + std::to_string(stats.atlas_x) + ", " +
+                                               std::to_string(stats.atlas_y) + ")").c_str());
+        r.text += line;
+    }
     return r;
 }
 

@@ -88,6 +88,9 @@ FileReport info_one(const std::string& input) {
         j["edge_guard"] = info.edge_guard;
         j["cut"] = info.cut;
         j["cover"] = info.cover;
+        j["atlas_wraps"] = info.atlas_wraps != 0;
+        j["atlas_share"] = double(info.atlas_width) * info.atlas_height /
+                           (double(info.exemplar_width) * info.exemplar_height);
     }
     j["codewords"] = nlohmann::ordered_json::array();
     for (uint32_t l = 0; l < info.levels; ++l) j["codewords"].push_back(info.codewords[l]);
@@ -133,7 +136,13 @@ FileReport info_one(const std::string& input) {
     if (atlas) {
         const std::string header =
             compact ? "; compact header (format " + std::to_string(info.format_version) + ")" : std::string();
-        add(t, "atlas     %ux%u, coded as AV1%s\n", info.atlas_width, info.atlas_height, header.c_str());
+        const bool whole = info.atlas_width == info.exemplar_width && info.atlas_height == info.exemplar_height;
+        const double share = 100.0 * double(info.atlas_width) * info.atlas_height /
+                             (double(info.exemplar_width) * info.exemplar_height);
+        const std::string part =
+            whole ? " (the whole example" : " (a part of the example, " + std::to_string(int(share + 0.5)) + "% of its area";
+        add(t, "atlas     %ux%u%s%s), coded as AV1%s\n", info.atlas_width, info.atlas_height, part.c_str(),
+            info.atlas_wraps ? ", wrapping" : "", header.c_str());
         const std::string seams =
             info.blend ? "seams blended over " + std::to_string(info.blend) + " pixels" : "seams not blended";
         const std::string copies = info.relocate ? ", copies relocated (" + std::to_string(info.relocate) +

@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 
+#include "analysis/example_period.hpp"
 #include "common/error.hpp"
 #include "common/parallel.hpp"
 #include "engine/coherent_synthesis.hpp"
@@ -46,11 +47,15 @@ Image top_left_crop(const Image& example, int scale) {
     return crop(example, 0, 0, std::min(w, example.width), std::min(h, example.height));
 }
 
-// The files of one atlas at the levels tried so far.
+// The files of one atlas at the levels tried so far. The header names the
+// example's size (what a decode makes by default), whatever part of it the
+// atlas holds.
 class LevelSearch {
 public:
-    LevelSearch(const Image& example, Image atlas, const AtlasChoiceOptions& o, uint32_t* attempts)
-        : example_(example), atlas_(std::move(atlas)), options_(o), attempts_(attempts) {
+    LevelSearch(const Image& example, Image atlas, bool wraps, const AtlasChoiceOptions& o, uint32_t* attempts,
+                int speed = AtlasEncodeOptions{}.speed)
+        : example_(example), atlas_(std::move(atlas)), wraps_(wraps), options_(o), attempts_(attempts),
+          speed_(speed) {
         const int deepest = coherent_levels(atlas_.width, atlas_.height);
         levels_ = o.levels ? std::min(o.levels, deepest) : deepest;
     }
@@ -60,6 +65,7 @@ public:
         if (it != files_.end()) return it->second;
         AtlasEncodeOptions ao;
         ao.cq_level = cq;
+        ao.speed = speed_;
         const std::vector<uint8_t> bits = encode_atlas(atlas_, ao);
         ++*attempts_;
         FileHeader h;
@@ -70,13 +76,27 @@ public:
         h.seed = options_.seed;
         // The engine's defaults, as vqtex_synthesize runs it (synth_api.cpp).
         AtlasSynthesisParams sp;
-        sp.example_tileable = options_.example_tileable;
+        sp.example_tileable = wraps_;
         return files_.emplace(cq, encode_atlas_file(h, atlas_.width, atlas_.height, bits, sp)).first->second;
     }
 
     // The finest level whose file fits the budget, or -1.
     int finest_fitting() {
         return finest_fitting_level(options_.budget, [this](int cq) { return uint64_t(file_at(cq).size()); });
+    }
+
+    // The finest fitting level, found near `guess` (a level that fitted at
+    // a faster speed, whose sizes are within a few percent of these): a few
+    // encodes instead of a bisection's seven.
+    int finest_fitting_near(int guess) {
+        auto fits = [this](int cq) { return uint64_t(file_at(cq).size()) <= options_.budget; };
+        int cq = std::clamp(guess, 0, 63);
+        if (!fits(cq)) {
+            while (cq < 63 && !fits(cq)) ++cq;
+            return fits(cq) ? cq : -1;
+        }
+        while (cq > 0 && fits(cq - 1)) --cq;
+        return cq;
     }
 
     AtlasChoice choice(int cq) {
@@ -86,14 +106,17 @@ public:
         c.levels = levels_;
         c.atlas = atlas_;
         c.attempts = *attempts_;
+        c.wraps = wraps_;
         return c;
     }
 
 private:
     const Image& example_;
     Image atlas_;
+    bool wraps_ = false;
     AtlasChoiceOptions options_;
     uint32_t* attempts_;
+    int speed_ = 4;
     int levels_ = 0;
     std::map<int, std::vector<uint8_t>> files_;
 };
@@ -106,11 +129,12 @@ struct ProxyScores {
     double completeness = 0, swd = 0, coherence = 0;
 };
 
-ProxyScores proxy_scores(const Image& example, const std::vector<uint8_t>& file) {
+ProxyScores proxy_scores(const Image& example, const std::vector<uint8_t>& file, int width, int height,
+                         int max_windows = 262144) {
     vqtex_decode_params p;
     vqtex_decode_params_init(&p);
-    p.width = uint32_t(2 * example.width);
-    p.height = uint32_t(2 * example.height);
+    p.width = uint32_t(width);
+    p.height = uint32_t(height);
     p.seed = 2;
     p.threads = 1;  // the candidates run on the threads
     vqtex_image out{};
@@ -122,9 +146,9 @@ ProxyScores proxy_scores(const Image& example, const std::vector<uint8_t>& file)
     vqtex_image_free(&out);
     const vqtex_metrics::Image reference = as_metrics_image(example);
     ProxyScores s;
-    s.completeness = vqtex_metrics::completeness(reference, texture);
+    s.completeness = vqtex_metrics::completeness(reference, texture, 7, 256, vqtex_metrics::kDefaultSeed, max_windows);
     s.swd = vqtex_metrics::sliced_wasserstein(texture, reference).mean;
-    s.coherence = vqtex_metrics::coherence(texture, reference);
+    s.coherence = vqtex_metrics::coherence(texture, reference, 7, 256, vqtex_metrics::kDefaultSeed, max_windows);
     return s;
 }
 
@@ -132,22 +156,20 @@ ProxyScores proxy_scores(const Image& example, const std::vector<uint8_t>& file)
 // 128x128) also try crops: above it, no crop was ever chosen (docs/ATLAS.md).
 constexpr double kCropBytesPerPixel = 0.13;
 
-}  // namespace
-
-AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options) {
-    if (example.width < kMinAtlasSide || example.height < kMinAtlasSide)
-        fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "an atlas needs an example of at least " + std::to_string(kMinAtlasSide) +
-                                              "x" + std::to_string(kMinAtlasSide) + " pixels");
+// An example up to kLargeExamplePixels (`source`: the example, or the tile
+// it repeats): the whole of it, or at small budgets a crop of it.
+AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, bool wraps,
+                                 const AtlasChoiceOptions& options) {
     uint32_t attempts = 0;
     AtlasChoice whole;
     {
-        LevelSearch search(example, example, options, &attempts);
+        LevelSearch search(example, source, wraps, options, &attempts);
         const int cq = search.finest_fitting();
         if (cq >= 0) whole = search.choice(cq);
     }
     if (!whole.file.empty()) {
-        if (double(options.budget) > kCropBytesPerPixel * double(example.pixel_count()) ||
-            std::min(example.width, example.height) < 4 * kMinAtlasSide)
+        if (double(options.budget) > kCropBytesPerPixel * double(source.pixel_count()) ||
+            std::min(source.width, source.height) < 4 * kMinAtlasSide)
             return whole;
         // A smaller part of the example coded more finely is sharper but
         // has less variety (docs/ATLAS.md "Which atlas"). The encoder keeps
@@ -155,27 +177,30 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
         // whole example's does (completeness), and among them takes the one
         // whose texture looks most like the example (SWD and coherence, each
         // relative to the whole example's).
-        const int side = std::min(example.width, example.height);
+        const int side = std::min(source.width, source.height);
         std::vector<std::array<int, 3>> regions;  // x, y, side
         for (int s : {side * 3 / 4, side / 2}) {
             regions.push_back({0, 0, s});
-            regions.push_back({(example.width - s) / 2, (example.height - s) / 2, s});
+            regions.push_back({(source.width - s) / 2, (source.height - s) / 2, s});
         }
         std::vector<AtlasChoice> crops(regions.size());
         std::vector<ProxyScores> scores(regions.size() + 1);
         std::vector<uint32_t> crop_attempts(regions.size(), 0);
+        const int w2 = 2 * source.width, h2 = 2 * source.height;
         parallel_for(options.threads, regions.size() + 1, 1, [&](std::size_t begin, std::size_t end) {
             for (std::size_t i = begin; i < end; ++i) {
                 if (i == regions.size()) {
-                    scores[i] = proxy_scores(example, whole.file);
+                    scores[i] = proxy_scores(source, whole.file, w2, h2);
                     continue;
                 }
                 const auto [x, y, s] = regions[i];
-                LevelSearch search(example, crop(example, x, y, s, s), options, &crop_attempts[i]);
+                LevelSearch search(example, crop(source, x, y, s, s), false, options, &crop_attempts[i]);
                 const int cq = search.finest_fitting();
                 if (cq < 0) continue;
                 crops[i] = search.choice(cq);
-                scores[i] = proxy_scores(example, crops[i].file);
+                crops[i].x = x;
+                crops[i].y = y;
+                scores[i] = proxy_scores(source, crops[i].file, w2, h2);
             }
         });
         const ProxyScores& w = scores.back();
@@ -195,15 +220,161 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
         return chosen;
     }
     for (int scale = 12; scale >= 1; scale = scale * 3 / 4) {
-        Image atlas = top_left_crop(example, scale);
+        Image atlas = top_left_crop(source, scale);
         const bool smallest = (atlas.width == kMinAtlasSide && atlas.height == kMinAtlasSide) || scale == 1;
-        LevelSearch search(example, std::move(atlas), options, &attempts);
+        LevelSearch search(example, std::move(atlas), false, options, &attempts);
         const int cq = search.finest_fitting();
         if (cq >= 0) return search.choice(cq);
         if (smallest) break;
     }
     fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no atlas fits in " + std::to_string(options.budget) +
                                          " bytes (the smallest needs more): raise --target-size or --quality");
+}
+
+// Per-channel mean and spread of `img` over a w x h window at (x, y), on
+// every second row and column.
+std::array<double, 8> colour_moments(const Image& img, int x0, int y0, int w, int h) {
+    std::array<double, 8> sum{}, sq{};
+    double n = 0;
+    for (int y = y0; y < y0 + h; y += 2)
+        for (int x = x0; x < x0 + w; x += 2) {
+            const uint8_t* p = img.at(x, y);
+            for (int c = 0; c < img.channels; ++c) {
+                sum[c] += p[c];
+                sq[c] += double(p[c]) * p[c];
+            }
+            n += 1;
+        }
+    std::array<double, 8> m{};
+    for (int c = 0; c < img.channels; ++c) {
+        m[c] = sum[c] / n;
+        m[4 + c] = std::sqrt(std::max(0.0, sq[c] / n - m[c] * m[c]));
+    }
+    return m;
+}
+
+// libaom's speeds on the large path: sizes at the fast one are within a
+// few percent of the fine one's at the same level, at a tenth of the time,
+// so the bisection runs fast and a few fine encodes settle the level
+// (docs/ATLAS.md "Large examples" has the measurements).
+constexpr int kSearchSpeed = 8;
+constexpr int kFinalSpeed = 6;
+
+// The proxy's output side on the large path: enough for the example's
+// windows to recur, far less than the example; and the windows its nearest
+// neighbours are sought among (every second or fourth of a large
+// example's), which keeps each index near 10 MB.
+constexpr int kLargeProxySide = 512;
+constexpr int kLargeProxyWindows = 65536;
+
+// An example above kLargeExamplePixels: square parts of `source` at
+// sides the budget sets, coded at their finest fitting level, compete on
+// the proxy's scores, each relative to the best candidate's.
+AtlasChoice choose_part(const Image& example, const Image& source, bool source_wraps,
+                        const AtlasChoiceOptions& options) {
+    const int limit = std::min({source.width, source.height, kMaxAtlasSide});
+    std::vector<int> sides;
+    for (double per_128x128 : {4000.0, 2000.0, 1000.0}) {
+        int s = int(std::lround(128.0 * std::sqrt(double(options.budget) / per_128x128) / 8.0)) * 8;
+        s = std::clamp(s, 4 * kMinAtlasSide, limit);
+        if (std::find(sides.begin(), sides.end(), s) == sides.end()) sides.push_back(s);
+    }
+    std::vector<AtlasChoice> candidates(sides.size());
+    std::vector<ProxyScores> scores(sides.size());
+    std::vector<uint32_t> attempts(sides.size(), 0);
+    parallel_for(options.threads, sides.size(), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const int s = sides[i];
+            // The whole source when the side reaches it (a square tile),
+            // which then keeps its wrap.
+            const bool whole = s == source.width && s == source.height;
+            const std::array<int, 2> at = whole ? std::array<int, 2>{0, 0} : representative_place(source, s);
+            const Image part = crop(source, at[0], at[1], s, s);
+            const bool wraps = whole && source_wraps;
+            LevelSearch fast(example, part, wraps, options, &attempts[i], kSearchSpeed);
+            const int guess = fast.finest_fitting();
+            LevelSearch fine(example, part, wraps, options, &attempts[i], kFinalSpeed);
+            const int cq = fine.finest_fitting_near(guess < 0 ? 63 : guess);
+            if (cq < 0) continue;
+            candidates[i] = fine.choice(cq);
+            candidates[i].x = at[0];
+            candidates[i].y = at[1];
+            const int side = std::min(kLargeProxySide, 2 * s);
+            scores[i] = proxy_scores(source, candidates[i].file, side, side, kLargeProxyWindows);
+        }
+    });
+    ProxyScores least{1e300, 1e300, 1e300};
+    for (std::size_t i = 0; i < sides.size(); ++i) {
+        if (candidates[i].file.empty()) continue;
+        least.completeness = std::min(least.completeness, scores[i].completeness);
+        least.swd = std::min(least.swd, scores[i].swd);
+        least.coherence = std::min(least.coherence, scores[i].coherence);
+    }
+    int best = -1;
+    double best_score = 1e300;
+    uint32_t total_attempts = 0;
+    for (std::size_t i = 0; i < sides.size(); ++i) {
+        total_attempts += attempts[i];
+        if (candidates[i].file.empty()) continue;
+        const double score = scores[i].completeness / std::max(least.completeness, 1e-9) +
+                             scores[i].swd / std::max(least.swd, 1e-9) +
+                             scores[i].coherence / std::max(least.coherence, 1e-9);
+        if (score < best_score) {
+            best_score = score;
+            best = int(i);
+        }
+    }
+    if (best < 0)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no atlas fits in " + std::to_string(options.budget) +
+                                             " bytes (the smallest needs more): raise --target-size or --quality");
+    AtlasChoice chosen = std::move(candidates[std::size_t(best)]);
+    chosen.attempts = total_attempts;
+    return chosen;
+}
+
+}  // namespace
+
+std::array<int, 2> representative_place(const Image& source, int s) {
+    const std::array<double, 8> whole = colour_moments(source, 0, 0, source.width, source.height);
+    std::array<int, 2> best{(source.width - s) / 2, (source.height - s) / 2};
+    double best_d = 1e300;
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) {
+            const int x = (source.width - s) * i / 2, y = (source.height - s) * j / 2;
+            const std::array<double, 8> m = colour_moments(source, x, y, s, s);
+            double d = 0;
+            for (std::size_t k = 0; k < m.size(); ++k) d += (m[k] - whole[k]) * (m[k] - whole[k]);
+            // Ties go to the centre, then in reading order.
+            const bool centre = i == 1 && j == 1;
+            if (d < best_d || (d == best_d && centre)) {
+                best_d = d;
+                best = {x, y};
+            }
+        }
+    return best;
+}
+
+AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options) {
+    if (example.width < kMinAtlasSide || example.height < kMinAtlasSide)
+        fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "an atlas needs an example of at least " + std::to_string(kMinAtlasSide) +
+                                              "x" + std::to_string(kMinAtlasSide) + " pixels");
+    // A large example that repeats holds nothing but its tile, which wraps
+    // when it repeats both ways. (A small one is coded whole: its budget
+    // follows its area, and a tile one row of features tall, say, gives the
+    // engine too little to place.)
+    const ExamplePeriod period = options.compaction && example.pixel_count() > kBudgetedPixels
+                                     ? find_example_period(example)
+                                     : ExamplePeriod{};
+    const Image source = period.repeats() ? crop(example, 0, 0, period.width, period.height) : example;
+    const bool wraps = period.repeats() ? period.wraps() : options.example_tileable;
+    AtlasChoiceOptions o = options;
+    if (o.budget == 0)
+        o.budget = atlas_budget_of_quality(o.quality, std::min<uint64_t>(source.pixel_count(), kBudgetedPixels));
+    AtlasChoice c = options.compaction && source.pixel_count() > kLargeExamplePixels
+                        ? choose_part(example, source, wraps, o)
+                        : choose_whole_or_crop(example, source, wraps, o);
+    c.tile = period.repeats() && c.atlas.width == source.width && c.atlas.height == source.height;
+    return c;
 }
 
 }  // namespace vqtex

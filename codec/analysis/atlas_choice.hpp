@@ -6,6 +6,7 @@
 // is taken.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -14,11 +15,16 @@
 namespace vqtex {
 
 struct AtlasChoiceOptions {
-    uint64_t budget = 0;            // bytes the whole file may take
+    uint64_t budget = 0;            // bytes the whole file may take; 0: the quality's
+    int quality = 50;               // the preset whose budget applies when budget is 0
     int levels = 0;                 // the engine's stack depth; 0 = the deepest the atlas allows
     bool example_tileable = false;  // the example wraps
     uint64_t seed = 1;              // the file's default decoding seed
     int threads = 1;                // the file does not depend on it
+    // false: the rule before large examples and periods, the whole example
+    // or its largest top-left crop that fits (what vqtex-bench's compact
+    // protocol compares with).
+    bool compaction = true;
 };
 
 struct AtlasChoice {
@@ -27,6 +33,9 @@ struct AtlasChoice {
     int levels = 0;
     Image atlas;                // what was coded (before coding)
     uint32_t attempts = 0;      // AV1 encodes tried
+    int x = 0, y = 0;           // where the atlas lies in the example
+    bool tile = false;          // the atlas is the tile the example repeats
+    bool wraps = false;         // the file's atlas wraps
 };
 
 // The finest AV1 level, 0..63, at which `size_at(level)` (a file's bytes)
@@ -54,7 +63,24 @@ int finest_fitting_level(uint64_t budget, SizeAt&& size_at) {
 // example still gets an atlas worth decoding.
 uint64_t atlas_budget_of_quality(int quality, uint64_t pixels);
 
-// The finest AV1 level of the whole example whose file fits the budget.
+// The most example pixels a quality's budget pays for: a larger example
+// gets the budget of a 256x256 one (16 KB at the default), since a
+// stationary texture's variety does not grow with the photograph's area
+// (docs/ATLAS.md "Large examples").
+inline constexpr uint64_t kBudgetedPixels = 256 * 256;
+
+// Examples above this many pixels (after their period, if they repeat)
+// take the large examples' path: parts of them compete at the budget.
+inline constexpr uint64_t kLargeExamplePixels = 2 * 256 * 256;
+
+// An example above kBudgetedPixels that repeats is first reduced to its
+// tile (example_period.hpp), which wraps when it repeats both ways. Budgets from a quality count at most kBudgetedPixels.
+// Examples above kLargeExamplePixels: square parts of the tile or example,
+// of sides set by the budget (about 4, 2 and 1 KB per 128x128), each where
+// its colours' mean and spread are closest to the whole's, compete as the
+// crops below do, libaom's level searched at a fast speed and set at a
+// finer one (docs/ATLAS.md "Large examples"). Otherwise:
+// the finest AV1 level of the whole example whose file fits the budget.
 // At budgets of at most 0.13 bytes per example pixel, crops of 3/4 and 1/2
 // of the side (top-left and centre), each at its finest fitting level,
 // compete with it: each file is decoded and its texture scored against the
@@ -64,5 +90,11 @@ uint64_t atlas_budget_of_quality(int quality, uint64_t pixels);
 // LIMIT_EXCEEDED when nothing fits. The bytes do not depend on the thread
 // count (libaom runs on one thread; the metrics are seeded).
 AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options);
+
+// Where an s x s part of `source` looks most like the whole: of nine
+// places (corners, edge middles, centre), the one whose colours' mean and
+// spread are nearest the whole's. On a stationary texture any place would
+// do; on a lit or graded one this keeps the middle of its range.
+std::array<int, 2> representative_place(const Image& source, int s);
 
 }  // namespace vqtex

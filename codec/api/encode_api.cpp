@@ -59,7 +59,8 @@ void encode_atlas(const vqtex_encode_params& p, const Image& ex, int threads, co
     const auto t0 = std::chrono::steady_clock::now();
     if (progress && !progress(0, 1)) fail(VQTEX_ERROR_CANCELLED, "encoding cancelled by the progress callback");
     AtlasChoiceOptions o;
-    o.budget = p.target_size ? p.target_size : atlas_budget_of_quality(int(p.quality), ex.pixel_count());
+    o.budget = p.target_size;
+    o.quality = int(p.quality);
     o.levels = int(p.levels);
     o.example_tileable = p.example_tileable != 0;
     o.seed = p.seed;
@@ -75,6 +76,11 @@ void encode_atlas(const vqtex_encode_params& p, const Image& ex, int threads, co
         stats->quality = p.target_size ? 0u : p.quality;
         stats->attempts = r.attempts;
         stats->seconds = seconds_since(t0, std::chrono::steady_clock::now());
+        stats->atlas_width = uint32_t(r.atlas.width);
+        stats->atlas_height = uint32_t(r.atlas.height);
+        stats->atlas_x = uint32_t(r.x);
+        stats->atlas_y = uint32_t(r.y);
+        stats->atlas_kind = r.tile ? 2u : (r.atlas.width == ex.width && r.atlas.height == ex.height) ? 0u : 1u;
     }
 }
 

@@ -359,6 +359,12 @@ typedef struct vqtex_encode_stats {
     uint32_t entries[VQTEX_MAX_LEVELS];
     double seconds;
     uint32_t attempts;       /* encodes tried by the target-size search */
+    /* An atlas file's atlas: its size and where it lies in the example;
+     * atlas_kind 0 = the whole example, 1 = a part of it (a crop), 2 = the
+     * tile a repeating example is made of (docs/ATLAS.md "Large examples").
+     * All 0 for trees files and animations. */
+    uint32_t atlas_width, atlas_height, atlas_x, atlas_y;
+    uint32_t atlas_kind;
 } vqtex_encode_stats;
 
 /* Encodes an example into a new buffer (*data, *size), freed with
@@ -501,6 +507,8 @@ typedef struct vqtex_file_info {
                                                       decoder uses, in output pixels (0: none); 0 otherwise */
     uint32_t cover;                                /* atlas texture: the reach of the covers over long borders
                                                       the decoder uses, in output pixels (0: none); 0 otherwise */
+    uint32_t atlas_wraps;                          /* atlas texture: 1 when the atlas wraps (a tileable example,
+                                                      or the tile a repeating example is made of) */
     uint32_t map_count;                            /* maps in the file: 1 but for a material set */
     struct {
         char name[VQTEX_MAX_MAP_NAME + 1];         /* "texture" for a file that is not a set */
