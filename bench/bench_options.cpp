@@ -36,9 +36,10 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
                    "large: ... | each peer+synth | each peer+gmic; docs/METRICS.md)");
     app.add_option("--protocols", o.protocols,
                    "protocols to run, comma-separated: same, large, synth; or materials alone (a folder of "
-                   "material sets: one folder of maps each)")
+                   "material sets: one folder of maps each); or compact alone (each image the whole example, "
+                   "decoded at its size)")
         ->delimiter(',')
-        ->check(CLI::IsMember({"same", "large", "synth", "materials"}))
+        ->check(CLI::IsMember({"same", "large", "synth", "materials", "compact"}))
         ->capture_default_str();
     app.add_option("--sets", o.sets, "materials protocol: only these sets (folder names), comma-separated")
         ->delimiter(',');
@@ -48,6 +49,9 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
     app.add_option("--material-output", o.material_output,
                    "materials protocol: decode at N x N (default: the maps' side, after --material-side)")
         ->check(CLI::Range(16u, 16384u));
+    app.add_flag("--compact-parts", o.compact_parts,
+                 "compact protocol: also rows synthesised from lossless square parts of 256, 362 and 512 pixels "
+                 "(the ceiling of an atlas that is a part of the input)");
     app.add_option("--synth-size", o.synth_size, "synth protocol: output side (default: 2x the exemplar's width and height)")
         ->check(CLI::Range(8u, 16384u));
     app.add_option("--synth-cache", o.synth_cache, "keep G'MIC's outputs here (synth protocol, large protocol's gmic rows), "
@@ -56,6 +60,11 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
     if (o.want("materials") && o.protocols.size() > 1) {
         std::fprintf(stderr, "vqtex-bench: error: the materials protocol runs alone (its folder holds sets of maps, "
                              "not photographs)\n");
+        return 1;
+    }
+    if (o.want("compact") && o.protocols.size() > 1) {
+        std::fprintf(stderr, "vqtex-bench: error: the compact protocol runs alone (its images are whole examples, "
+                             "not cut into exemplar and held-out crops)\n");
         return 1;
     }
     if (o.quick) {

@@ -23,6 +23,9 @@ struct BenchOptions {
     // the decoded side (0: the maps' side after the reduction).
     std::vector<std::string> sets;
     uint32_t material_side = 0, material_output = 0;
+    // The compact protocol: also synthesise from lossless parts of the
+    // input (the ceiling of any atlas that is a part of it).
+    bool compact_parts = false;
 
     bool want(const std::string& protocol) const;
     // The rate points (encodes, peers, ASTC) serve only the same and large

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -97,7 +98,10 @@ int run_measured(const std::string& command, long* peak_kib, double* seconds) {
 bool tool_available(const std::string& name) { return run("command -v " + name); }
 
 std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar, std::size_t budget,
-                                           const std::string& dir) {
+                                           const std::string& dir, const std::vector<std::string>& only) {
+    auto wanted = [&](const std::string& codec) {
+        return only.empty() || std::find(only.begin(), only.end(), codec) != only.end();
+    };
     const vqtex_metrics::Image img = opaque(exemplar);
     const std::string png = dir + "/exemplar.png";
     const std::string pnm = dir + (img.channels == 1 ? "/exemplar.pgm" : "/exemplar.ppm");
@@ -115,6 +119,7 @@ std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar,
                         int lo, int hi, bool higher_is_better, const std::string& out, const std::string& dec,
                         const std::function<std::string(int)>& encode_command, const std::string& decode_command,
                         const std::function<std::string(int)>& setting_label) {
+        if (!wanted(codec)) return;
         PeerResult r;
         r.codec = codec;
         r.available = tool_available(encoder) && tool_available(decoder);
@@ -142,7 +147,7 @@ std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar,
              [&](int quality) { return "cjpeg -quality " + std::to_string(quality) + " -outfile " + q(jpg) + " " + q(pnm); },
              "djpeg -pnm -outfile " + q(jpg_dec) + " " + q(jpg),
              [](int quality) { return "-quality " + std::to_string(quality); });
-    {  // WebP: cwebp's own size targeting, then checked.
+    if (wanted("webp")) {  // WebP: cwebp's own size targeting, then checked.
         PeerResult r;
         r.codec = "webp";
         r.available = tool_available("cwebp") && tool_available("dwebp");

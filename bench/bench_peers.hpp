@@ -29,9 +29,10 @@ struct PeerResult {
 // the peak resident memory (KiB) and wall time of the process tree it ran.
 int run_measured(const std::string& command, long* peak_kib = nullptr, double* seconds = nullptr);
 
-// Every budgeted peer at `budget` bytes; temporary files go into `dir`.
+// Every budgeted peer at `budget` bytes (or those named in `only`);
+// temporary files go into `dir`.
 std::vector<PeerResult> run_budgeted_peers(const vqtex_metrics::Image& exemplar, std::size_t budget,
-                                           const std::string& dir);
+                                           const std::string& dir, const std::vector<std::string>& only = {});
 
 // ASTC at its fixed rates (block sizes 4x4 to 12x12: 8 to 0.89 bits per pixel).
 std::vector<PeerResult> run_astc(const vqtex_metrics::Image& exemplar, const std::string& dir);

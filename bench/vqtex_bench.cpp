@@ -44,6 +44,7 @@
 #include "bench_options.hpp"
 #include "bench_peers.hpp"
 #include "bench_rows.hpp"
+#include "compact_protocol.hpp"
 #include "image_io.hpp"
 #include "large_summary.hpp"
 #include "material_protocol.hpp"
@@ -60,6 +61,7 @@ int main(int argc, char** argv) {
     BenchOptions o;
     if (const int status = parse_options(argc, argv, o); status >= 0) return status;
     if (o.want("materials")) return run_material_protocol(o);
+    if (o.want("compact")) return run_compact_protocol(o);
     // G'MIC serves the synth protocol and the large protocol's PEER+gmic and
     // ceiling rows; it is optional (its rows then say missing).
     const bool gmic_available = (o.want("synth") || o.want("large")) && !o.no_peers && tool_available("gmic");
