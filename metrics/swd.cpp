@@ -17,14 +17,6 @@ struct FloatRgb {
   std::vector<float> v;  // w*h*3
 };
 
-FloatRgb to_float(const Rgb8& im) {
-  FloatRgb f;
-  f.w = im.w;
-  f.h = im.h;
-  f.v.assign(im.v.begin(), im.v.end());
-  return f;
-}
-
 // Mirror an index into [0, n) without repeating the edge sample.
 inline int mirror(int i, int n) {
   if (n == 1) return 0;
@@ -32,8 +24,11 @@ inline int mirror(int i, int n) {
   return i;
 }
 
-// Binomial [1 4 6 4 1]/16 blur, keeping pixels at even coordinates.
-FloatRgb reduce(const FloatRgb& in) {
+// Binomial [1 4 6 4 1]/16 blur, keeping pixels at even coordinates. The
+// finest level is read as the bytes it is (each converts to the same float
+// it would have been), so a large image is never held as floats whole.
+template <typename Levels>
+FloatRgb reduce(const Levels& in) {
   static constexpr float k[5] = {1.f / 16, 4.f / 16, 6.f / 16, 4.f / 16, 1.f / 16};
   const int w2 = (in.w + 1) / 2, h2 = (in.h + 1) / 2;
   std::vector<float> tmp(static_cast<size_t>(w2) * static_cast<size_t>(in.h) * 3);
@@ -61,7 +56,8 @@ FloatRgb reduce(const FloatRgb& in) {
 }
 
 // Mean-removed patch vectors (n x dims) at seeded positions.
-std::vector<float> patch_vectors(const FloatRgb& im, int p, int max_patches, uint64_t seed, int* n_out) {
+template <typename Levels>
+std::vector<float> patch_vectors(const Levels& im, int p, int max_patches, uint64_t seed, int* n_out) {
   const int nx = im.w - p + 1, ny = im.h - p + 1;
   SplitMix64 rng(seed);
   const std::vector<int> idx = detail::sample_indices(nx * ny, max_patches, rng);
@@ -72,7 +68,7 @@ std::vector<float> patch_vectors(const FloatRgb& im, int p, int max_patches, uin
     float* dst = &out[i * static_cast<size_t>(dims)];
     double mean[3] = {0, 0, 0};
     for (int y = 0; y < p; ++y) {
-      const float* row = &im.v[(static_cast<size_t>(y0 + y) * im.w + x0) * 3];
+      const auto* row = &im.v[(static_cast<size_t>(y0 + y) * im.w + x0) * 3];
       for (int j = 0; j < 3 * p; ++j) {
         dst[y * 3 * p + j] = row[j];
         mean[j % 3] += row[j];
@@ -130,18 +126,23 @@ SwdResult sliced_wasserstein(const Image& a, const Image& b, int levels, int pat
   if (levels < 1) throw std::invalid_argument("vqtex_metrics: levels must be >= 1");
   if (patch < 1) throw std::invalid_argument("vqtex_metrics: patch must be >= 1");
   if (projections < 1) throw std::invalid_argument("vqtex_metrics: projections must be >= 1");
-  FloatRgb fa = to_float(detail::to_rgb8(a, "first image"));
-  FloatRgb fb = to_float(detail::to_rgb8(b, "second image"));
-  if (std::min({fa.w, fa.h, fb.w, fb.h}) < patch)
+  const Rgb8 ra = detail::to_rgb8(a, "first image");
+  const Rgb8 rb = detail::to_rgb8(b, "second image");
+  if (std::min({ra.w, ra.h, rb.w, rb.h}) < patch)
     throw std::invalid_argument("vqtex_metrics: image smaller than the SWD patch size");
   const int dims = patch * patch * 3;
   SwdResult res;
+  FloatRgb fa, fb;  // the level below the finest, and so on
   for (int level = 0; level < levels; ++level) {
-    if (level > 0) {
+    if (level == 1) {
+      fa = reduce(ra);
+      fb = reduce(rb);
+    } else if (level > 1) {
       fa = reduce(fa);
       fb = reduce(fb);
     }
-    if (std::min({fa.w, fa.h, fb.w, fb.h}) < patch) break;
+    const int aw = level ? fa.w : ra.w, ah = level ? fa.h : ra.h, bw = level ? fb.w : rb.w, bh = level ? fb.h : rb.h;
+    if (std::min({aw, ah, bw, bh}) < patch) break;
 
     // Random unit directions, the same for both images.
     SplitMix64 drng(detail::derive_seed(seed, 1000 + static_cast<uint64_t>(level)));
@@ -163,8 +164,10 @@ SwdResult sliced_wasserstein(const Image& a, const Image& b, int levels, int pat
     // The same position seed for both images: identical images give 0.
     const uint64_t pseed = detail::derive_seed(seed, 2000 + static_cast<uint64_t>(level));
     int na = 0, nb = 0;
-    const std::vector<float> va = patch_vectors(fa, patch, max_patches, pseed, &na);
-    const std::vector<float> vb = patch_vectors(fb, patch, max_patches, pseed, &nb);
+    const std::vector<float> va =
+        level ? patch_vectors(fa, patch, max_patches, pseed, &na) : patch_vectors(ra, patch, max_patches, pseed, &na);
+    const std::vector<float> vb =
+        level ? patch_vectors(fb, patch, max_patches, pseed, &nb) : patch_vectors(rb, patch, max_patches, pseed, &nb);
     const std::vector<float> pa = project(va, na, dirs_t, projections, dims);
     const std::vector<float> pb = project(vb, nb, dirs_t, projections, dims);
 

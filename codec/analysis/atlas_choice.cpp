@@ -129,14 +129,14 @@ struct ProxyScores {
     double completeness = 0, swd = 0, coherence = 0;
 };
 
-ProxyScores proxy_scores(const Image& example, const std::vector<uint8_t>& file, int width, int height,
-                         int max_windows = 262144) {
+ProxyScores proxy_scores(const vqtex_metrics::Image& reference, const std::vector<uint8_t>& file, int width,
+                         int height, int max_windows = 262144, int threads = 1) {
     vqtex_decode_params p;
     vqtex_decode_params_init(&p);
     p.width = uint32_t(width);
     p.height = uint32_t(height);
     p.seed = 2;
-    p.threads = 1;  // the candidates run on the threads
+    p.threads = uint32_t(threads);
     vqtex_image out{};
     vqtex_error err{};
     if (vqtex_decode(&p, file.data(), file.size(), &out, &err) != VQTEX_OK)
@@ -144,13 +144,16 @@ ProxyScores proxy_scores(const Image& example, const std::vector<uint8_t>& file,
     vqtex_metrics::Image texture{int(out.width), int(out.height), int(out.channels),
                                  std::vector<uint8_t>(out.pixels, out.pixels + std::size_t(out.width) * out.height * out.channels)};
     vqtex_image_free(&out);
-    const vqtex_metrics::Image reference = as_metrics_image(example);
     ProxyScores s;
     s.completeness = vqtex_metrics::completeness(reference, texture, 7, 256, vqtex_metrics::kDefaultSeed, max_windows);
     s.swd = vqtex_metrics::sliced_wasserstein(texture, reference).mean;
     s.coherence = vqtex_metrics::coherence(texture, reference, 7, 256, vqtex_metrics::kDefaultSeed, max_windows);
     return s;
 }
+
+}  // namespace
+
+namespace {
 
 // Budgets up to this many bytes per example pixel (about 2 KB for
 // 128x128) also try crops: above it, no crop was ever chosen (docs/ATLAS.md).
@@ -187,10 +190,11 @@ AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, bool
         std::vector<ProxyScores> scores(regions.size() + 1);
         std::vector<uint32_t> crop_attempts(regions.size(), 0);
         const int w2 = 2 * source.width, h2 = 2 * source.height;
+        const vqtex_metrics::Image reference = as_metrics_image(source);
         parallel_for(options.threads, regions.size() + 1, 1, [&](std::size_t begin, std::size_t end) {
             for (std::size_t i = begin; i < end; ++i) {
                 if (i == regions.size()) {
-                    scores[i] = proxy_scores(source, whole.file, w2, h2);
+                    scores[i] = proxy_scores(reference, whole.file, w2, h2);
                     continue;
                 }
                 const auto [x, y, s] = regions[i];
@@ -200,7 +204,7 @@ AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, bool
                 crops[i] = search.choice(cq);
                 crops[i].x = x;
                 crops[i].y = y;
-                scores[i] = proxy_scores(source, crops[i].file, w2, h2);
+                scores[i] = proxy_scores(reference, crops[i].file, w2, h2);
             }
         });
         const ProxyScores& w = scores.back();
@@ -299,10 +303,17 @@ AtlasChoice choose_part(const Image& example, const Image& source, bool source_w
             candidates[i] = fine.choice(cq);
             candidates[i].x = at[0];
             candidates[i].y = at[1];
-            const int side = std::min(kLargeProxySide, 2 * s);
-            scores[i] = proxy_scores(source, candidates[i].file, side, side, kLargeProxyWindows);
         }
     });
+    // The proxies one at a time, each decode on the threads: their metrics
+    // index a large example, and two at once would double the encoder's
+    // peak memory for little time.
+    const vqtex_metrics::Image reference = as_metrics_image(source);
+    for (std::size_t i = 0; i < sides.size(); ++i) {
+        if (candidates[i].file.empty()) continue;
+        const int side = std::min(kLargeProxySide, 2 * sides[i]);
+        scores[i] = proxy_scores(reference, candidates[i].file, side, side, kLargeProxyWindows, options.threads);
+    }
     ProxyScores least{1e300, 1e300, 1e300};
     for (std::size_t i = 0; i < sides.size(); ++i) {
         if (candidates[i].file.empty()) continue;
