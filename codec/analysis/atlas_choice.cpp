@@ -270,6 +270,7 @@ constexpr int kFinalSpeed = 6;
 // example's), which keeps each index near 10 MB.
 constexpr int kLargeProxySide = 512;
 constexpr int kLargeProxyWindows = 65536;
+constexpr std::size_t kProxiesTogetherPixels = 1024 * 1024;
 
 // An example above kLargeExamplePixels: square parts of `source` at
 // sides the budget sets, coded at their finest fitting level, compete on
@@ -305,15 +306,20 @@ AtlasChoice choose_part(const Image& example, const Image& source, bool source_w
             candidates[i].y = at[1];
         }
     });
-    // The proxies one at a time, each decode on the threads: their metrics
-    // index a large example, and two at once would double the encoder's
-    // peak memory for little time.
+    // The proxies' metrics hold copies of the example at several scales:
+    // up to 1024x1024 they run on the threads, above it one at a time (each
+    // decode on the threads), which keeps the encoder within four times the
+    // example plus 64 MB.
     const vqtex_metrics::Image reference = as_metrics_image(source);
-    for (std::size_t i = 0; i < sides.size(); ++i) {
-        if (candidates[i].file.empty()) continue;
-        const int side = std::min(kLargeProxySide, 2 * sides[i]);
-        scores[i] = proxy_scores(reference, candidates[i].file, side, side, kLargeProxyWindows, options.threads);
-    }
+    const bool together = source.pixel_count() <= kProxiesTogetherPixels;
+    parallel_for(together ? options.threads : 1, sides.size(), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            if (candidates[i].file.empty()) continue;
+            const int side = std::min(kLargeProxySide, 2 * sides[i]);
+            scores[i] = proxy_scores(reference, candidates[i].file, side, side, kLargeProxyWindows,
+                                     together ? 1 : options.threads);
+        }
+    });
     ProxyScores least{1e300, 1e300, 1e300};
     for (std::size_t i = 0; i < sides.size(); ++i) {
         if (candidates[i].file.empty()) continue;
