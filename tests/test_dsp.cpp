@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/rng.hpp"
@@ -235,6 +237,63 @@ TEST(Dsp, DescentFollowsTheNearerChildAndQueuesTheOtherOnEveryKernelSet) {
                     expected_lowest = std::min(expected_lowest, expected_pending[i]);
                 }
                 EXPECT_EQ(lowest, expected_lowest) << kernels.name << " seed " << seed;
+            }
+        }
+    }
+}
+
+// The seam covers' comparisons of packed pixels (a channel a byte, zeros
+// after the channels): the sum of squared byte differences, exact below the
+// bound and at or above it otherwise, and the differences one by one, the
+// same on every kernel set.
+TEST(Dsp, PackedPixelComparisonsEqualTheirDefinitionsOnEveryKernelSet) {
+    constexpr std::size_t kWidth = 37, kHeight = 23;
+    for (int channels = 1; channels <= 4; ++channels) {
+        for (std::size_t n : {1u, 3u, 4u, 7u, 8u, 9u, 16u, 17u, 63u, 200u}) {
+            Rng rng(uint64_t(channels) * 1000 + n);
+            const uint32_t mask = channels == 4 ? 0xFFFFFFFFu : (1u << (8 * channels)) - 1u;
+            std::vector<uint32_t> pixels(kWidth * kHeight), wanted(n), cover(n * 3), out(n);
+            for (uint32_t& p : pixels) p = uint32_t(rng.below(uint64_t(1) << 32)) & mask;
+            for (uint32_t& p : wanted) p = uint32_t(rng.below(uint64_t(1) << 32)) & mask;
+            for (uint32_t& p : cover) p = uint32_t(rng.below(uint64_t(1) << 32)) & mask;
+            std::vector<int32_t> offsets(n);
+            std::vector<uint32_t> positions(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                const uint32_t x = uint32_t(rng.below(kWidth)), y = uint32_t(rng.below(kHeight));
+                offsets[i] = int32_t(y * kWidth + x);
+                positions[i] = y << 16 | x;
+            }
+            auto difference = [](uint32_t a, uint32_t b) {
+                uint64_t sum = 0;
+                for (int q = 0; q < 32; q += 8) {
+                    const int64_t d = int64_t((a >> q) & 0xFF) - int64_t((b >> q) & 0xFF);
+                    sum += uint64_t(d * d);
+                }
+                return sum;
+            };
+            uint64_t exact = 0;
+            std::vector<uint32_t> expected(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                exact += difference(pixels[std::size_t(offsets[i])], wanted[i]);
+                expected[i] = uint32_t(difference(pixels[std::size_t(positions[i] >> 16) * kWidth + (positions[i] & 0xFFFF)],
+                                                  cover[i * 3]));
+            }
+            for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+                const dsp::Kernels& kernels = dsp::available_kernels(k);
+                const std::string where = std::string(kernels.name) + " channels=" + std::to_string(channels) +
+                                          " n=" + std::to_string(n);
+                EXPECT_EQ(kernels.packed_ssd(pixels.data(), offsets.data(), wanted.data(), n, UINT64_MAX), exact)
+                    << where;
+                EXPECT_EQ(kernels.packed_ssd(pixels.data(), offsets.data(), wanted.data(), n, exact + 1), exact)
+                    << where;
+                for (uint64_t bound : {exact / 2, exact / 4 + 1, exact}) {
+                    if (bound == 0) continue;
+                    EXPECT_GE(kernels.packed_ssd(pixels.data(), offsets.data(), wanted.data(), n, bound), bound)
+                        << where << " bound " << bound;
+                }
+                std::fill(out.begin(), out.end(), 0xDEADu);
+                kernels.packed_differences(pixels.data(), kWidth, positions.data(), cover.data(), 3, n, out.data());
+                EXPECT_EQ(out, expected) << where;
             }
         }
     }

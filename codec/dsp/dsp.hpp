@@ -135,6 +135,20 @@ struct Kernels {
     void (*axpy2_i16)(int32_t* acc, const int16_t* x0, const int16_t* x1, int16_t w0, int16_t w1, std::size_t n);
     // sum of the 64-bit products a[i] * b[i] modulo 2^64 (power iteration).
     int64_t (*dot_i32)(const int32_t* a, const int32_t* b, std::size_t n);
+    // The seam covers' colour comparisons (engine/seam_cover.cpp,
+    // packed_pixels.hpp) on pixels of 32 bits, a channel a byte and zeros
+    // after the channels:
+    // the sum over s < count of the squared differences of the bytes of
+    // pixels[offsets[s]] and wanted[s], exact where below `bound`; at or
+    // above it, any sum at or above it (a caller comparing with the bound
+    // gets the same answer from every set);
+    uint64_t (*packed_ssd)(const uint32_t* pixels, const int32_t* offsets, const uint32_t* wanted, std::size_t count,
+                           uint64_t bound);
+    // out[c] = the squared difference of the bytes of the pixel at
+    // positions[c] (y << 16 | x, rows of `width` pixels) and of cover[c *
+    // step], for c < count.
+    void (*packed_differences)(const uint32_t* pixels, std::size_t width, const uint32_t* positions,
+                               const uint32_t* cover, std::size_t step, std::size_t count, uint32_t* out);
 };
 
 // The kernels chosen for this CPU, once. The environment variable

@@ -6,6 +6,7 @@
 #include "dsp/linear_kernels.hpp"
 
 #if defined(__AVX512BW__) && defined(__AVX512DQ__) && !defined(VQTEX_SCALAR_ONLY)
+#include "dsp/packed_pixels_sse2.hpp"
 #include "dsp/window_ssd.hpp"
 // GCC 12's own AVX-512 reduction helpers trip its uninitialised-value
 // warnings (they start from _mm256_undefined); the code is correct.
@@ -178,6 +179,8 @@ const Kernels kAvx512 = {
     detail::axpy_i16_portable,
     detail::axpy2_i16_portable,
     detail::dot_i32_portable,
+    detail::packed_ssd_sse2,
+    detail::packed_differences_sse2,
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "dsp/descent.hpp"
 #include "dsp/dsp.hpp"
 #include "dsp/linear_kernels.hpp"
+#include "dsp/packed_pixels.hpp"
 
 namespace vqtex::dsp {
 namespace {
@@ -88,6 +89,8 @@ const Kernels kScalar = {
     detail::axpy_i16_portable,
     detail::axpy2_i16_portable,
     detail::dot_i32_portable,
+    detail::packed_ssd_portable,
+    detail::packed_differences_portable,
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "dsp/linear_kernels.hpp"
 
 #if defined(__SSE2__) && !defined(VQTEX_SCALAR_ONLY)
+#include "dsp/packed_pixels_sse2.hpp"
 #include "dsp/window_ssd.hpp"
 #include <emmintrin.h>
 
@@ -106,6 +107,8 @@ const Kernels kSse2 = {
     detail::axpy_i16_portable,
     detail::axpy2_i16_portable,
     detail::dot_i32_portable,
+    detail::packed_ssd_sse2,
+    detail::packed_differences_sse2,
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/parallel.hpp"
+#include "dsp/dsp.hpp"
 #include "engine/coherent_positions.hpp"
 #include "engine/seam_cut.hpp"
 
@@ -66,8 +67,14 @@ struct Colours {
     const uint8_t* pixels;
     int width, height, channels;
     bool wraps;
-    Colours(const Image& ex, bool wraps_)
-        : pixels(ex.pixels.data()), width(ex.width), height(ex.height), channels(ex.channels), wraps(wraps_) {}
+    // The example as 4 bytes a pixel (zeros after its channels), where it
+    // has at most 4 channels, else null: the covers' colour comparisons
+    // then take a load a pixel, and the kernels compare 4 pixels at once.
+    const uint32_t* packed;
+    const dsp::Kernels& kernels;
+    Colours(const Image& ex, bool wraps_, const uint32_t* packed_)
+        : pixels(ex.pixels.data()), width(ex.width), height(ex.height), channels(ex.channels), wraps(wraps_),
+          packed(packed_), kernels(dsp::kernels()) {}
     int count() const { return kChannels > 0 ? kChannels : channels; }
     const uint8_t* at(int x, int y) const {
         return pixels + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * std::size_t(count());
@@ -159,7 +166,12 @@ std::vector<Chain> find_chains(const Axes& axes, const std::vector<uint32_t>& po
                 if (row[x] - up[x] != 0x10000u) events[std::size_t(x - u_begin)].push_back(y);
         }
     }
-    const auto at = [&](int u, int v) { return pos[axes.index(u, v)]; };
+    // (u and v within the map, or v one before it: no division.)
+    const auto at = [&](int u, int v) {
+        v = v < 0 ? v + V : v;
+        return pos[axes.vertical ? std::size_t(u) * std::size_t(w) + std::size_t(v)
+                                 : std::size_t(v) * std::size_t(w) + std::size_t(u)];
+    };
     // One step along, and k across.
     const auto moved = [&](int k) {
         return axes.vertical ? packed_step(k, 1) : packed_step(1, k);
@@ -169,37 +181,66 @@ std::vector<Chain> find_chains(const Axes& axes, const std::vector<uint32_t>& po
         Chain chain;
         bool extended;
         int low, high;  // the least and greatest r
+        int last;       // the last r on the torus (0..V-1)
     };
     std::vector<Open> open, next, opened;
     std::vector<Chain> done;
     const auto close = [&](Open& o) {
         if (int(o.chain.r.size()) >= rules.min_length) done.push_back(std::move(o.chain));
     };
-    const auto step = [&](int from, int to) {  // to - from on the torus, -V/2..V/2
-        int d = to - Image::wrap(from, V);
+    const auto step = [&](int from, int to) {  // to - from on the torus, -V/2..V/2 (from wrapped)
+        int d = to - from;
         if (d > V / 2) d -= V;
         if (d < -V / 2) d += V;
         return d;
     };
+    // The open chains by their last r (a list from slot[r], in their order,
+    // through later[]), so that a border looks at those within 2 across
+    // instead of at every one. (Where the torus is under 5 across, the
+    // window of 5 would meet a slot twice: there every chain is looked at.)
+    const bool slotted = V >= 5;
+    std::vector<int> slot(slotted ? std::size_t(V) : 0, -1), later, placed;
     for (int u = u_begin; u < u_end; ++u) {
         for (Open& o : open) o.extended = false;
         next.clear();
+        if (slotted) {
+            later.assign(open.size(), -1);
+            placed.resize(open.size());
+            for (int k = int(open.size()) - 1; k >= 0; --k) {
+                const int r = open[std::size_t(k)].last;
+                placed[std::size_t(k)] = r;
+                later[std::size_t(k)] = slot[std::size_t(r)];
+                slot[std::size_t(r)] = k;
+            }
+        }
         for (int v : events[std::size_t(u - u_begin)]) {
             const uint32_t a = at(u, v - 1), b = at(u, v);
             // The open chain whose two copies this border's go on from, its
             // last border nearest (within 2 across; the first of equals).
             Open* best = nullptr;
-            int best_d = 3;
-            for (Open& o : open) {
-                if (o.extended) continue;
-                const int k = step(o.chain.r.back(), v);
-                if (std::abs(k) >= best_d || a - o.a != moved(k) || b - o.b != moved(k)) continue;
-                best_d = std::abs(k);
+            int best_d = 3, best_k = 0;
+            const auto consider = [&](int k) {
+                Open& o = open[std::size_t(k)];
+                if (o.extended) return;
+                const int d = step(o.last, v);
+                if (std::abs(d) > 2 || std::abs(d) > best_d || (std::abs(d) == best_d && k > best_k) ||
+                    a - o.a != moved(d) || b - o.b != moved(d))
+                    return;
+                best_d = std::abs(d);
+                best_k = k;
                 best = &o;
+            };
+            if (slotted) {
+                for (int dv = -2; dv <= 2; ++dv) {
+                    const int r = v + dv < 0 ? v + dv + V : v + dv >= V ? v + dv - V : v + dv;
+                    for (int k = slot[std::size_t(r)]; k >= 0; k = later[std::size_t(k)]) consider(k);
+                }
+            } else {
+                for (int k = 0; k < int(open.size()); ++k) consider(k);
             }
             // Unwrapped, so that r moves by at most 2 a step; a chain that
             // would stray more than `span` across ends there.
-            const int r = best ? best->chain.r.back() + step(best->chain.r.back(), v) : 0;
+            const int r = best ? best->chain.r.back() + step(best->last, v) : 0;
             if (best && std::abs(r - best->low) <= rules.span && std::abs(r - best->high) <= rules.span) {
                 best->chain.r.push_back(r);
                 best->low = std::min(best->low, r);
@@ -207,10 +248,13 @@ std::vector<Chain> find_chains(const Axes& axes, const std::vector<uint32_t>& po
                 best->a = a;
                 best->b = b;
                 best->extended = true;
+                best->last = v;
             } else {
-                opened.push_back({a, b, Chain{u, {v}}, true, v, v});
+                opened.push_back({a, b, Chain{u, {v}}, true, v, v, v});
             }
         }
+        if (slotted)
+            for (int r : placed) slot[std::size_t(r)] = -1;
         // The chains that went on, in their order, then those opened here.
         for (Open& o : open) {
             if (o.extended)
@@ -236,7 +280,8 @@ struct Strip {
     std::vector<uint32_t> positions;
     // Where each across-index and each step is in the map (index = their sum).
     std::vector<std::size_t> across_index, along_index;
-    uint32_t at(int i, int v) const { return positions[std::size_t(i) * std::size_t(width) + std::size_t(v - low)]; }
+    uint32_t at(int i, int v) const { return positions[index_of(i, v)]; }
+    std::size_t index_of(int i, int v) const { return std::size_t(i) * std::size_t(width) + std::size_t(v - low); }
     std::size_t index(int i, int v) const { return along_index[std::size_t(i)] + across_index[std::size_t(v - low)]; }
     void read(const Axes& axes, const std::vector<uint32_t>& pos, const Chain& chain, int reach) {
         const int n = int(chain.r.size());
@@ -318,7 +363,8 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
     std::vector<Candidate> best;
     // A third copy has two borders to pay for: where the one it replaces
     // costs less than one border's price, only A or B extended can do.
-    if (original > seam_price * uint64_t(n - 2)) {
+    const bool searches = original > seam_price * uint64_t(n - 2);
+    const auto search = [&]() {
         // The output's colours where the cover may go, and a pixel beyond on
         // either side, every `step` pixels: what a cover has to agree with.
         // Offsets from the rectangle's corner, in the example's samples, and
@@ -326,6 +372,9 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
         struct Samples {
             std::vector<std::size_t> offsets;
             std::vector<uint8_t> colours;
+            // The same as pixels of the packed example, when there is one.
+            std::vector<int32_t> pixel_offsets;
+            std::vector<uint32_t> packed;
         };
         const auto sample = [&](int step) {
             Samples found;
@@ -336,6 +385,12 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
                     if (c < 0 || c >= ext_across) continue;
                     const uint32_t p = at(i, v);
                     const std::size_t dx = std::size_t(ax * c + lx * i), dy = std::size_t(ay * c + ly * i);
+                    if (colours.packed) {
+                        found.pixel_offsets.push_back(int32_t(dy * std::size_t(colours.width) + dx));
+                        found.packed.push_back(colours.packed[std::size_t(position_y(p)) * std::size_t(colours.width) +
+                                                              std::size_t(position_x(p))]);
+                        continue;
+                    }
                     found.offsets.push_back((dy * std::size_t(colours.width) + dx) * std::size_t(ch));
                     const uint8_t* colour = colours.at(position_x(p), position_y(p));
                     found.colours.insert(found.colours.end(), colour, colour + ch);
@@ -343,20 +398,49 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
             }
             return found;
         };
-        // Corners ranked by the squared difference over the samples, the
-        // best kCandidates kept (ties to the earlier corner). A corner met
-        // again within one level is not measured again: it is either kept
-        // already, or was worse than the kept list's last, which only gets
-        // better, so it would be turned down again.
-        std::vector<uint32_t> measured;
-        const auto rank = [&](const Samples& samples, int x0, int x1, int y0, int y1, int step,
-                              std::vector<Candidate>& into) {
+        // The squared difference over the samples at corner (bx, by), or
+        // any sum at or above `bound` once it is clear it gets there.
+        const auto measure_corner = [&](const Samples& samples, int bx, int by, uint64_t bound) {
+            if (colours.packed)
+                return colours.kernels.packed_ssd(
+                    colours.packed + std::size_t(by) * std::size_t(colours.width) + std::size_t(bx),
+                    samples.pixel_offsets.data(), samples.packed.data(), samples.packed.size(), bound);
             const std::size_t count = samples.offsets.size();
             const std::size_t* offsets = samples.offsets.data();
             const uint8_t* wanted = samples.colours.data();
             // (The channels as a constant where the template gives one: the
             // lambda's captured count would be read at every sample.)
             const int channels = kChannels > 0 ? kChannels : ch;
+            const uint8_t* corner_at = colours.at(bx, by);
+            uint64_t cost = 0;
+            // In runs of 8 samples between looks at the bound (a partial
+            // sum already at it only grows).
+            for (std::size_t s = 0; s < count && cost < bound;) {
+                const std::size_t end = std::min(count, s + 8);
+                uint32_t run = 0;
+                for (; s < end; ++s) {
+                    const uint8_t* c = corner_at + offsets[s];
+                    const uint8_t* o = wanted + s * std::size_t(channels);
+                    for (int q = 0; q < channels; ++q) {
+                        const int d = int(c[q]) - int(o[q]);
+                        run += uint32_t(d * d);
+                    }
+                }
+                cost += run;
+            }
+            return cost;
+        };
+        // Corners ranked by the squared difference over the samples, the
+        // best kCandidates kept (ties to the earlier corner). A corner met
+        // again within one level is not measured again: it is either kept
+        // already, or was worse than the kept list's last, which only gets
+        // better, so it would be turned down again.
+        std::vector<uint32_t> measured;
+        // (`known`: corners whose cost over these samples is known already;
+        // `ceiling`: corners costing that or more cannot be kept, at least
+        // kCandidates of this level's corners being known to cost less.)
+        const auto rank = [&](const Samples& samples, int x0, int x1, int y0, int y1, int step,
+                              std::vector<Candidate>& into, const std::vector<Candidate>& known, uint64_t ceiling) {
             for (int by = std::max(0, y0); by <= std::min(y1, colours.height - ext_y); by += step)
                 for (int bx = std::max(0, x0); bx <= std::min(x1, colours.width - ext_x); bx += step) {
                     const uint32_t corner = pack_position(bx, by);
@@ -364,24 +448,11 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
                         if (std::find(measured.begin(), measured.end(), corner) != measured.end()) continue;
                         measured.push_back(corner);
                     }
-                    uint64_t cost = 0;
-                    const uint64_t bound = int(into.size()) == kCandidates ? into.back().cost : kNone;
-                    const uint8_t* corner_at = colours.at(bx, by);
-                    // In runs of 8 samples between looks at the bound (a
-                    // partial sum already at it only grows).
-                    for (std::size_t s = 0; s < count && cost < bound;) {
-                        const std::size_t end = std::min(count, s + 8);
-                        uint32_t run = 0;
-                        for (; s < end; ++s) {
-                            const uint8_t* c = corner_at + offsets[s];
-                            const uint8_t* o = wanted + s * std::size_t(channels);
-                            for (int q = 0; q < channels; ++q) {
-                                const int d = int(c[q]) - int(o[q]);
-                                run += uint32_t(d * d);
-                            }
-                        }
-                        cost += run;
-                    }
+                    const uint64_t bound =
+                        std::min(int(into.size()) == kCandidates ? into.back().cost : kNone, ceiling);
+                    const auto seen = std::find_if(known.begin(), known.end(),
+                                                   [&](const Candidate& k) { return k.corner == corner; });
+                    const uint64_t cost = seen != known.end() ? seen->cost : measure_corner(samples, bx, by, bound);
                     if (cost >= bound) continue;
                     const Candidate cd{cost, corner, 0};
                     if (int(into.size()) == kCandidates) into.pop_back();
@@ -395,20 +466,47 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
         static_assert(kCoarseStep >= 4, "the first ranking uses the sparse samples");
         const Samples sparse = sample(4), dense = sample(2);
         std::vector<Candidate> found;
-        rank(sparse, 0, colours.width, 0, colours.height, kCoarseStep, found);
+        const std::vector<Candidate> none;
+        rank(sparse, 0, colours.width, 0, colours.height, kCoarseStep, found, none, kNone);
+        std::vector<Candidate> known;
         for (int step = kCoarseStep / 2; step >= 1; step /= 2) {
+            const Samples& samples = step >= 4 ? sparse : dense;
+            // The last level's kept corners are met again (but one less
+            // than `step` from the example's edge and not on it): their
+            // costs are known where the samples are the last level's, and
+            // measured first where not. The level then keeps none costing
+            // more than the greatest of them.
+            bool met = int(found.size()) == kCandidates;
+            for (const Candidate& cd : found) {
+                const int x = position_x(cd.corner), y = position_y(cd.corner);
+                met = met && (x >= step || x == 0) && (y >= step || y == 0);
+            }
+            known.clear();
+            uint64_t ceiling = kNone;
+            if (met) {
+                const bool same_samples = (step >= 4) == (2 * step >= 4);
+                uint64_t most = 0;
+                for (const Candidate& cd : found) {
+                    const uint64_t cost = same_samples ? cd.cost
+                                                       : measure_corner(samples, position_x(cd.corner),
+                                                                        position_y(cd.corner), kNone);
+                    known.push_back({cost, cd.corner, 0});
+                    most = std::max(most, cost);
+                }
+                ceiling = most + 1;
+            }
             std::vector<Candidate> finer;
             measured.clear();
             for (const Candidate& cd : found)
-                rank(step >= 4 ? sparse : dense, position_x(cd.corner) - step, position_x(cd.corner) + step,
-                     position_y(cd.corner) - step, position_y(cd.corner) + step, step, finer);
+                rank(samples, position_x(cd.corner) - step, position_x(cd.corner) + step,
+                     position_y(cd.corner) - step, position_y(cd.corner) + step, step, finer, known, ceiling);
             found = std::move(finer);
         }
         best = std::move(found);
-    }
+    };
     // A's and B's own translations, where they cover the rectangle: the
     // cover is then one copy extended into the other, a single cut.
-    {
+    const auto list_own = [&](std::vector<Candidate>& list) {
         const int mid = n / 2, r = chain.r[std::size_t(mid)];
         for (int side = 0; side < 2; ++side) {
             const int v = side == 0 ? r - 1 : r;
@@ -418,17 +516,14 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
             if (bx < 0 || by < 0 || bx + ext_x > colours.width || by + ext_y > colours.height) continue;
             const uint32_t corner = pack_position(bx, by);
             bool listed = false;
-            for (Candidate& cd : best)
+            for (Candidate& cd : list)
                 if (cd.corner == corner) {
                     cd.same = side + 1;
                     listed = true;
                 }
-            if (!listed) best.push_back({0, corner, side + 1});
+            if (!listed) list.push_back({0, corner, side + 1});
         }
-    }
-    uint64_t chosen = original;
-    std::vector<int> paths[2], chosen_paths[2];
-    uint32_t chosen_corner = 0;
+    };
     const int reach_of[2] = {reach, reach - 1};
     std::vector<uint64_t> cost, to_cover, from_cover;
     std::vector<int8_t> from;
@@ -440,9 +535,25 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
     const int kept = 2 * reach + 2;
     const uint32_t along = packed_step(lx, ly);
     std::vector<uint32_t> differences(std::size_t(n) * std::size_t(ext_across));
-    int searched = 0;
-    for (const Candidate& cd : best) {
-        if (cd.same == 0 && searched++ >= kCutCandidates) continue;
+    // The border along between steps i - 1 and i at each of those rows
+    // where the cover leaves the copy on both sides of it, the same for
+    // every cover: the rows outside the rectangle and those of the
+    // chain's two ends (which are not covered).
+    std::vector<uint64_t> copy_seams(std::size_t(n) * std::size_t(kept), 0);
+    for (int i = 1; i < n; ++i) {
+        const int first = first_row[std::size_t(i)];
+        const int last = std::max(chain.r[std::size_t(i)], chain.r[std::size_t(i - 1)]) + reach;
+        for (int v = first; v < last; ++v)
+            if (i == 1 || i + 1 == n || v < lo || v >= hi)
+                copy_seams[std::size_t(i) * std::size_t(kept) + std::size_t(v - first)] =
+                    seam_cost(at(i - 1, v), at(i, v), lx, ly);
+    }
+    // The cost of the map with candidate cd's cover, and the paths of its
+    // two sides (kNone: no path).
+    // (`limit`: a cover costing more is not wanted, and may be left
+    // unmeasured: kNone then.)
+    std::vector<uint64_t> edges[2];
+    const auto measure = [&](const Candidate& cd, std::vector<int> (&paths)[2], uint64_t limit) {
         const int bx = position_x(cd.corner), by = position_y(cd.corner);
         // The cover's position at step i, across-index v.
         const auto c_at = [&](int i, int v) {
@@ -461,13 +572,23 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
         // goes on across it, compares them at its two pixels (the cover
         // always goes on, within its rectangle): two of these, looked up
         // instead of measured again at every path step that crosses it.
-        for (int j = 0; j < n; ++j) {
-            uint32_t* row = &differences[std::size_t(j) * std::size_t(ext_across)];
-            const uint8_t* cover = colours.at(bx + lx * j, by + ly * j);
-            const std::size_t next = std::size_t(ax + ay * colours.width) * std::size_t(ch);
-            for (int c = 0; c < ext_across; ++c, cover += next) {
-                const uint32_t p = at(j, lo + c);
-                row[c] = uint32_t(colours.difference(colours.at(position_x(p), position_y(p)), cover));
+        if (colours.packed) {
+            const std::size_t w = std::size_t(colours.width);
+            for (int j = 0; j < n; ++j)
+                colours.kernels.packed_differences(
+                    colours.packed, w, &strip.positions[strip.index_of(j, lo)],
+                    colours.packed + std::size_t(by + ly * j) * w + std::size_t(bx + lx * j),
+                    std::size_t(ax + ay * colours.width), std::size_t(ext_across),
+                    &differences[std::size_t(j) * std::size_t(ext_across)]);
+        } else {
+            for (int j = 0; j < n; ++j) {
+                uint32_t* row = &differences[std::size_t(j) * std::size_t(ext_across)];
+                const uint8_t* cover = colours.at(bx + lx * j, by + ly * j);
+                const std::size_t next = std::size_t(ax + ay * colours.width) * std::size_t(ch);
+                for (int c = 0; c < ext_across; ++c, cover += next) {
+                    const uint32_t p = at(j, lo + c);
+                    row[c] = uint32_t(colours.difference(colours.at(position_x(p), position_y(p)), cover));
+                }
             }
         }
         const auto difference = [&](int j, int v) {
@@ -478,11 +599,44 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
         // other: `cover_first`, the cover at step i - 1, else at step i.
         const auto along_border = [&](int i, int v, bool cover_first) {
             const int j = cover_first ? i - 1 : i;
-            if (!covered(j, v)) return seam_cost(at(i - 1, v), at(i, v), lx, ly);
+            if (!covered(j, v))
+                return copy_seams[std::size_t(i) * std::size_t(kept) + std::size_t(v - first_row[std::size_t(i)])];
             if (at(i, v) - at(i - 1, v) == along) return difference(i - 1, v) + difference(i, v);
             return cover_first ? seam_cost(c_at(i - 1, v), at(i, v), lx, ly)
                                : seam_cost(at(i - 1, v), c_at(i, v), lx, ly);
         };
+        // What each side's edge costs at each step inside and each row it
+        // may take there: the price and the colours across it. Each of a
+        // side's paths pays at least the cheapest at every step, so a cover
+        // whose sides together cannot cost `limit` or less is never chosen
+        // and measured no further.
+        uint64_t least_paths = 0;
+        for (int side = 0; side < 2; ++side) {
+            if (cd.same == side + 1) continue;
+            const int span = reach_of[side] + 1;
+            edges[side].resize(std::size_t(n) * std::size_t(span));
+            for (int i = 1; i + 1 < n; ++i) {
+                const int r = chain.r[std::size_t(i)];
+                const int t0 = side == 0 ? std::min(1, maxa[std::size_t(i)]) : 0;
+                const int t1 = side == 0 ? maxa[std::size_t(i)] : maxb[std::size_t(i)];
+                uint64_t cheapest = kNone;
+                for (int t = t0; t <= t1; ++t) {
+                    uint64_t here = seam_price;
+                    // (The cover's pixel beyond the edge may be past its
+                    // rectangle, where its colour was not compared.)
+                    const int e = side == 0 ? r - t : r + t;
+                    if (goes_on(i, e) && e > lo && e < hi)
+                        here += difference(i, e - 1) + difference(i, e);
+                    else
+                        here += side == 0 ? seam_cost(at(i, e - 1), c_at(i, e), ax, ay)
+                                          : seam_cost(c_at(i, e - 1), at(i, e), ax, ay);
+                    edges[side][std::size_t(i) * std::size_t(span) + std::size_t(t)] = here;
+                    cheapest = std::min(cheapest, here);
+                }
+                least_paths += cheapest;
+            }
+        }
+        if (least_paths > limit) return kNone;
         // Where a path steps across between steps i - 1 and i, each row it
         // passes has the copy on one side and the cover on the other: the
         // copy before and the cover after (`to_cover`) or the reverse
@@ -491,22 +645,21 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
         // two steps (within the reach of either step's border row).
         to_cover.assign(std::size_t(n) * std::size_t(kept + 1), 0);
         from_cover.assign(std::size_t(n) * std::size_t(kept + 1), 0);
+        // (Only over the rows the sides measured reach: B's side for A's
+        // own translation, A's for B's.)
         for (int i = 1; i < n; ++i) {
             uint64_t* x = &to_cover[std::size_t(i) * std::size_t(kept + 1)];
             uint64_t* y = &from_cover[std::size_t(i) * std::size_t(kept + 1)];
             const int first = first_row[std::size_t(i)];
-            const int last = std::max(chain.r[std::size_t(i)], chain.r[std::size_t(i - 1)]) + reach;
-            for (int k = 0; first + k < last; ++k) {
+            const int low = std::min(chain.r[std::size_t(i)], chain.r[std::size_t(i - 1)]);
+            const int high = std::max(chain.r[std::size_t(i)], chain.r[std::size_t(i - 1)]);
+            const int last = cd.same == 2 ? high : high + reach;
+            for (int k = cd.same == 1 ? low - first : 0; first + k < last; ++k) {
                 const int v = first + k;
                 x[k + 1] = x[k] + along_border(i, v, false);
                 y[k + 1] = y[k] + along_border(i, v, true);
             }
         }
-        // The rows [a, b) of step i's sums.
-        const auto rows_of = [&](const std::vector<uint64_t>& sums, int i, int a, int b) {
-            const uint64_t* row = &sums[std::size_t(i) * std::size_t(kept + 1)];
-            return row[b - first_row[std::size_t(i)]] - row[a - first_row[std::size_t(i)]];
-        };
         uint64_t total = 0;
         for (int side = 0; side < 2 && total != kNone; ++side) {
             // Side 0: the path between A and the cover, t = rows of A
@@ -521,46 +674,49 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
             cost.assign(std::size_t(n) * std::size_t(span), kNone);
             from.assign(std::size_t(n) * std::size_t(span), 0);
             cost[0] = 0;
+            // Where the path steps across between the two steps along, the
+            // pixels it passes are the cover on one side and the copy on
+            // the other (side 0: the copy before its edge, the cover from
+            // it; side 1 the reverse): the sums for the rows from this
+            // step's edge to the last one's (e < ep), and back (ep < e).
+            const int sign = side == 0 ? -1 : 1;
+            const uint64_t* before_sums = side == 0 ? to_cover.data() : from_cover.data();
+            const uint64_t* after_sums = side == 0 ? from_cover.data() : to_cover.data();
+            const uint64_t* edge = edges[side].data();
             for (int i = 1; i < n; ++i) {
                 const bool inside = i + 1 < n;
                 const int r = chain.r[std::size_t(i)], before = chain.r[std::size_t(i - 1)];
                 const int t0 = side == 0 && inside ? std::min(1, maxa[std::size_t(i)]) : 0;
                 const int t1 = inside ? (side == 0 ? maxa[std::size_t(i)] : maxb[std::size_t(i)]) : 0;
+                const uint64_t* previous = &cost[std::size_t(i - 1) * std::size_t(span)];
+                uint64_t* current = &cost[std::size_t(i) * std::size_t(span)];
+                int8_t* moves = &from[std::size_t(i) * std::size_t(span)];
+                // (The sums of step i indexed by row: row v at v - f.)
+                const std::size_t sums = std::size_t(i) * std::size_t(kept + 1);
+                const int f = first_row[std::size_t(i)];
+                const uint64_t* below = before_sums + sums;
+                const uint64_t* above = after_sums + sums;
                 for (int t = t0; t <= t1; ++t) {
-                    uint64_t here = inside ? seam_price : 0;
-                    // (The cover's pixel beyond the edge may be past its
-                    // rectangle, where its colour was not compared.)
-                    if (inside) {
-                        const int e = side == 0 ? r - t : r + t;
-                        if (goes_on(i, e) && e > lo && e < hi)
-                            here += difference(i, e - 1) + difference(i, e);
-                        else
-                            here += side == 0 ? seam_cost(at(i, e - 1), c_at(i, e), ax, ay)
-                                              : seam_cost(c_at(i, e - 1), at(i, e), ax, ay);
-                    }
+                    const uint64_t here = inside ? edge[std::size_t(i) * std::size_t(span) + std::size_t(t)] : 0;
+                    const int e = r + sign * t;
                     uint64_t b = kNone;
                     int8_t move = 0;
                     for (int d : {0, -1, 1}) {
                         const int tt = t + d;
                         if (tt < 0 || tt > H) continue;
-                        uint64_t v = cost[std::size_t(i - 1) * std::size_t(span) + std::size_t(tt)];
+                        uint64_t v = previous[tt];
                         if (v == kNone) continue;
-                        // Where the path steps across between the two
-                        // steps along, the pixels it passes are the cover
-                        // on one side and the copy on the other.
-                        // (Side 0: the copy before its edge, the cover
-                        // from it; side 1 the reverse.)
-                        const int e = side == 0 ? r - t : r + t, ep = side == 0 ? before - tt : before + tt;
-                        if (e < ep) v += rows_of(side == 0 ? to_cover : from_cover, i, e, ep);
-                        if (ep < e) v += rows_of(side == 0 ? from_cover : to_cover, i, ep, e);
+                        const int ep = before + sign * tt;
+                        if (e < ep) v += below[ep - f] - below[e - f];
+                        if (ep < e) v += above[e - f] - above[ep - f];
                         if (v < b) {
                             b = v;
                             move = int8_t(d);
                         }
                     }
                     if (b == kNone) continue;
-                    cost[std::size_t(i) * std::size_t(span) + std::size_t(t)] = b + here;
-                    from[std::size_t(i) * std::size_t(span) + std::size_t(t)] = move;
+                    current[t] = b + here;
+                    moves[t] = move;
                 }
             }
             const uint64_t end = cost[std::size_t(n - 1) * std::size_t(span)];
@@ -576,10 +732,47 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
                 t += from[std::size_t(i) * std::size_t(span) + std::size_t(t)];
             }
         }
+        return total;
+    };
+    // A's and B's translations are measured first: they need no search,
+    // and what they cost decides whether one is needed. Any other cover has
+    // two borders, each paying the price at every step inside, so where
+    // that alone costs more than the best of A, B and the border as it is,
+    // no searched corner can be chosen. (On a tie between A and B their
+    // order, which the search can change, decides: then it is searched.)
+    std::vector<Candidate> own;
+    list_own(own);
+    uint64_t own_total[2] = {kNone, kNone};
+    std::vector<int> own_paths[2][2];
+    uint64_t least = original;
+    for (std::size_t k = 0; k < own.size(); ++k) {
+        own_total[k] = measure(own[k], own_paths[k], kNone);
+        least = std::min(least, own_total[k]);
+    }
+    const bool tie = own.size() == 2 && own_total[0] == own_total[1] && own_total[0] < original;
+    if (searches && (2 * seam_price * uint64_t(n - 2) <= least || tie)) search();
+    list_own(best);
+    uint64_t chosen = original;
+    std::vector<int> paths[2], chosen_paths[2];
+    uint32_t chosen_corner = 0;
+    int searched = 0;
+    for (const Candidate& cd : best) {
+        if (cd.same == 0 && searched++ >= kCutCandidates) continue;
+        uint64_t total = kNone;
+        const std::vector<int>* measured_paths = paths;
+        if (cd.same == 0) {
+            total = measure(cd, paths, least);
+        } else {
+            for (std::size_t k = 0; k < own.size(); ++k)
+                if (own[k].corner == cd.corner) {
+                    total = own_total[k];
+                    measured_paths = own_paths[k];
+                }
+        }
         if (total < chosen) {
             chosen = total;
-            chosen_paths[0] = paths[0];
-            chosen_paths[1] = paths[1];
+            chosen_paths[0] = measured_paths[0];
+            chosen_paths[1] = measured_paths[1];
             chosen_corner = cd.corner;
         }
     }
@@ -596,19 +789,19 @@ uint64_t cover_chain(const Colours<kChannels>& colours, const Axes& axes, const 
 }
 
 // cover_chain for the example's channel count.
-uint64_t cover_with(const Image& ex, bool wraps, const Axes& axes, const std::vector<uint32_t>& pos,
-                    const Chain& chain, int reach, Strip& strip, Writes& out) {
+uint64_t cover_with(const Image& ex, bool wraps, const uint32_t* packed, const Axes& axes,
+                    const std::vector<uint32_t>& pos, const Chain& chain, int reach, Strip& strip, Writes& out) {
     switch (ex.channels) {
-    case 1: return cover_chain(Colours<1>(ex, wraps), axes, pos, chain, reach, strip, out);
-    case 2: return cover_chain(Colours<2>(ex, wraps), axes, pos, chain, reach, strip, out);
-    case 3: return cover_chain(Colours<3>(ex, wraps), axes, pos, chain, reach, strip, out);
-    case 4: return cover_chain(Colours<4>(ex, wraps), axes, pos, chain, reach, strip, out);
-    default: return cover_chain(Colours<0>(ex, wraps), axes, pos, chain, reach, strip, out);
+    case 1: return cover_chain(Colours<1>(ex, wraps, packed), axes, pos, chain, reach, strip, out);
+    case 2: return cover_chain(Colours<2>(ex, wraps, packed), axes, pos, chain, reach, strip, out);
+    case 3: return cover_chain(Colours<3>(ex, wraps, packed), axes, pos, chain, reach, strip, out);
+    case 4: return cover_chain(Colours<4>(ex, wraps, packed), axes, pos, chain, reach, strip, out);
+    default: return cover_chain(Colours<0>(ex, wraps, packed), axes, pos, chain, reach, strip, out);
     }
 }
 
-void cover_direction(const Image& ex, bool wraps, const Axes& axes, std::vector<uint32_t>& pos,
-                     const CoverRules& rules, int threads) {
+void cover_direction(const Image& ex, bool wraps, const uint32_t* packed, const Axes& axes,
+                     std::vector<uint32_t>& pos, const CoverRules& rules, int threads) {
     const std::vector<int> starts = block_starts(axes, rules);
     const std::size_t blocks = starts.size() - 1;
     std::vector<std::vector<Chain>> found(blocks);
@@ -629,7 +822,7 @@ void cover_direction(const Image& ex, bool wraps, const Axes& axes, std::vector<
     parallel_for(threads, chains.size(), 1, [&](std::size_t c0, std::size_t c1) {
         Strip strip;
         for (std::size_t c = c0; c < c1; ++c)
-            gains[c] = cover_with(ex, wraps, axes, pos, chains[c], rules.reach, strip, writes[c]);
+            gains[c] = cover_with(ex, wraps, packed, axes, pos, chains[c], rules.reach, strip, writes[c]);
     });
     // Where covers overlap, the one that gains most is written and the
     // others not (on a tie, none): decided pixel by pixel, so that it does
@@ -675,8 +868,20 @@ void cover_seams(const Image& example, bool wraps, int width, int height, std::v
                  const CoverRules& rules, int threads, int first_row, int torus_rows) {
     if (rules.reach <= 0 || width <= 0 || height <= 0) return;
     if (torus_rows <= 0) torus_rows = height;
-    cover_direction(example, wraps, Axes{width, height, false, 0, width}, positions, rules, threads);
-    cover_direction(example, wraps, Axes{width, height, true, first_row, torus_rows}, positions, rules, threads);
+    // The example as the covers' kernels read it (Colours::packed).
+    std::vector<uint32_t> packed;
+    if (example.channels <= 4) {
+        packed.resize(std::size_t(example.width) * std::size_t(example.height));
+        const std::size_t ch = std::size_t(example.channels);
+        for (std::size_t i = 0; i < packed.size(); ++i) {
+            uint32_t p = 0;
+            for (std::size_t c = 0; c < ch; ++c) p |= uint32_t(example.pixels[i * ch + c]) << (8 * c);
+            packed[i] = p;
+        }
+    }
+    const uint32_t* pk = packed.empty() ? nullptr : packed.data();
+    cover_direction(example, wraps, pk, Axes{width, height, false, 0, width}, positions, rules, threads);
+    cover_direction(example, wraps, pk, Axes{width, height, true, first_row, torus_rows}, positions, rules, threads);
 }
 
 }  // namespace vqtex
