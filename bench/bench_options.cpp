@@ -74,4 +74,30 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
     return -1;
 }
 
+bool list_inputs(const BenchOptions& o, std::vector<std::filesystem::path>& files, FILE*& csv) {
+    namespace fs = std::filesystem;
+    files.clear();
+    csv = nullptr;
+    std::error_code ec;
+    for (fs::directory_iterator it(o.folder, ec), end; !ec && it != end; it.increment(ec))
+        if (it->path().filename().string().find(o.pattern) != std::string::npos && it->path().extension() == ".png")
+            files.push_back(it->path());
+    if (ec) {
+        std::fprintf(stderr, "vqtex-bench: error: cannot read the folder %s: %s\n", o.folder.c_str(),
+                     ec.message().c_str());
+        return false;
+    }
+    std::sort(files.begin(), files.end());
+    if (o.limit && files.size() > o.limit) files.resize(o.limit);
+    if (files.empty()) {
+        std::fprintf(stderr, "vqtex-bench: error: no '%s' PNG files in %s\n", o.pattern.c_str(), o.folder.c_str());
+        return false;
+    }
+    if (!o.csv.empty() && !(csv = std::fopen(o.csv.c_str(), "w"))) {
+        std::fprintf(stderr, "vqtex-bench: error: cannot write %s\n", o.csv.c_str());
+        return false;
+    }
+    return true;
+}
+
 }  // namespace vqtex_tools

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,11 @@ struct BenchOptions {
     // of maps, not photographs.
     bool rates() const { return want("same") || want("large"); }
 };
+
+// The folder's PNG files whose name contains the pattern, sorted, at most
+// --limit of them; and the CSV file (null without --csv). False, with an
+// error on stderr, when there is none or the CSV cannot be written.
+bool list_inputs(const BenchOptions& o, std::vector<std::filesystem::path>& files, FILE*& csv);
 
 // Reads the command line into `o`. Returns -1 to go on, or the exit status
 // when the parser has answered (--help, an invalid option).

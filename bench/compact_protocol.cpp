@@ -194,20 +194,8 @@ void run_tiling(Writer& writer, const std::string& name, const Image& tile, cons
 
 int run_compact_protocol(const BenchOptions& o) {
     std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(o.folder))
-        if (e.path().filename().string().find(o.pattern) != std::string::npos && e.path().extension() == ".png")
-            files.push_back(e.path());
-    std::sort(files.begin(), files.end());
-    if (o.limit && files.size() > o.limit) files.resize(o.limit);
-    if (files.empty()) {
-        std::fprintf(stderr, "vqtex-bench: error: no '%s' PNG files in %s\n", o.pattern.c_str(), o.folder.c_str());
-        return 1;
-    }
     FILE* out = nullptr;
-    if (!o.csv.empty() && !(out = std::fopen(o.csv.c_str(), "w"))) {
-        std::fprintf(stderr, "vqtex-bench: error: cannot write %s\n", o.csv.c_str());
-        return 1;
-    }
+    if (!list_inputs(o, files, out)) return 1;
     Writer writer(out);
     char dir_template[] = "/tmp/vqtex_compact_XXXXXX";
     if (!::mkdtemp(dir_template)) {

@@ -66,20 +66,8 @@ int main(int argc, char** argv) {
     // ceiling rows; it is optional (its rows then say missing).
     const bool gmic_available = (o.want("synth") || o.want("large")) && !o.no_peers && tool_available("gmic");
     std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(o.folder))
-        if (e.path().filename().string().find(o.pattern) != std::string::npos && e.path().extension() == ".png")
-            files.push_back(e.path());
-    std::sort(files.begin(), files.end());
-    if (o.limit && files.size() > o.limit) files.resize(o.limit);
-    if (files.empty()) {
-        std::fprintf(stderr, "vqtex-bench: error: no '%s' PNG files in %s\n", o.pattern.c_str(), o.folder.c_str());
-        return 1;
-    }
     FILE* out = nullptr;
-    if (!o.csv.empty() && !(out = std::fopen(o.csv.c_str(), "w"))) {
-        std::fprintf(stderr, "vqtex-bench: error: cannot write %s\n", o.csv.c_str());
-        return 1;
-    }
+    if (!list_inputs(o, files, out)) return 1;
     Writer writer(out);
     const fs::path scratch = fs::temp_directory_path() / ("vqtex_bench_" + std::to_string(::getpid()));
     fs::create_directories(scratch);
