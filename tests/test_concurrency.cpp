@@ -207,6 +207,13 @@ TEST(Concurrency, LoopsFromManyThreadsAndInsideLoopsRunEveryItemOnce) {
 // kept threads' state but not the threads: the child's loops still run, on
 // threads of their own, instead of waiting for ever.
 TEST(Concurrency, AChildForkedAfterLoopsRanRunsItsOwnLoops) {
+#if defined(__SANITIZE_THREAD__)
+    GTEST_SKIP() << "ThreadSanitizer does not let a child forked from a process with threads start threads";
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+    GTEST_SKIP() << "ThreadSanitizer does not let a child forked from a process with threads start threads";
+#endif
+#endif
     std::atomic<int> sum{0};
     vqtex::parallel_for(3, 300, 1, [&](std::size_t b, std::size_t e) {
         for (std::size_t i = b; i < e; ++i) sum.fetch_add(1);
