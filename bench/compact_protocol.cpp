@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -47,7 +46,7 @@ AllScores compact_scores(const Image& output, const Image& input, uint64_t seed)
 }
 
 // A file decoded at w x h (empty when it does not decode).
-Image decode_file(const std::vector<uint8_t>& file, int w, int h, uint64_t seed, double* seconds) {
+Image decode_file(const std::vector<uint8_t>& file, int w, int h, uint64_t seed) {
     vqtex_decode_params p;
     vqtex_decode_params_init(&p);
     p.width = uint32_t(w);
@@ -56,12 +55,10 @@ Image decode_file(const std::vector<uint8_t>& file, int w, int h, uint64_t seed,
     p.threads = kEncodeThreads;
     vqtex_image out{};
     vqtex_error err{};
-    const auto t0 = std::chrono::steady_clock::now();
     if (vqtex_decode(&p, file.data(), file.size(), &out, &err) != VQTEX_OK) {
         std::fprintf(stderr, "vqtex-bench: error: decode: %s\n", err.detail);
         return {};
     }
-    if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return from_c(out);
 }
 
@@ -181,8 +178,8 @@ void run_tiling(Writer& writer, const std::string& name, const Image& tile, cons
     const Encoded alone = encode_public(tile, 0, scratch);
     const Image sheet = tiled(tile, tile.width * 4, tile.height * 4);
     const Encoded tiling = encode_public(sheet, 0, scratch);
-    const Image out_alone = alone.ok ? decode_file(alone.file, sheet.width, sheet.height, seed, nullptr) : Image{};
-    const Image out_tiling = tiling.ok ? decode_file(tiling.file, sheet.width, sheet.height, seed, nullptr) : Image{};
+    const Image out_alone = alone.ok ? decode_file(alone.file, sheet.width, sheet.height, seed) : Image{};
+    const Image out_tiling = tiling.ok ? decode_file(tiling.file, sheet.width, sheet.height, seed) : Image{};
     add_row(writer, name, "tile-alone", 0, "default", &alone, alone.file.size(), out_alone, tile, seed);
     add_row(writer, name, "tiling-4x4", 0, "default", &tiling, tiling.file.size(), out_tiling, tile, seed);
     std::printf("%s: tile alone %zu bytes, its 4x4 tiling %zu bytes (%.3fx)\n", name.c_str(), alone.file.size(),
@@ -235,10 +232,10 @@ int run_compact_protocol(const BenchOptions& o) {
             const int q = int(target);
             const std::string setting = target ? "--target-size " + std::to_string(target) : "default";
             const Encoded v = encode_public(input, target, scratch);
-            Image v_out = v.ok ? decode_file(v.file, input.width, input.height, o.seed, nullptr) : Image{};
+            Image v_out = v.ok ? decode_file(v.file, input.width, input.height, o.seed) : Image{};
             add_row(writer, name, "vqtex", q, setting, &v, v.file.size(), v_out, input, o.seed);
             const Encoded c = encode_crop_rule(input, target, scratch);
-            Image c_out = c.ok ? decode_file(c.file, input.width, input.height, o.seed, nullptr) : Image{};
+            Image c_out = c.ok ? decode_file(c.file, input.width, input.height, o.seed) : Image{};
             add_row(writer, name, "vqtex-crop", q, setting, &c, c.file.size(), c_out, input, o.seed);
             Image a_out;
             if (!o.no_peers && v.ok) {

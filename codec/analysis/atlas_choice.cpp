@@ -106,7 +106,6 @@ public:
         c.levels = levels_;
         c.atlas = atlas_;
         c.attempts = *attempts_;
-        c.wraps = wraps_;
         return c;
     }
 

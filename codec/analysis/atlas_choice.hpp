@@ -35,7 +35,6 @@ struct AtlasChoice {
     uint32_t attempts = 0;      // AV1 encodes tried
     int x = 0, y = 0;           // where the atlas lies in the example
     bool tile = false;          // the atlas is the tile the example repeats
-    bool wraps = false;         // the file's atlas wraps
 };
 
 // The finest AV1 level, 0..63, at which `size_at(level)` (a file's bytes)
