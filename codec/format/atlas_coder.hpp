@@ -35,6 +35,18 @@ inline constexpr int kMaxAtlasSide = 4096;
 Image decode_atlas(const uint8_t* data, std::size_t size, int width, int height, int channels,
                    const std::string& where);
 
+// Most frames an animation's atlas holds (format version 12): a loop of a
+// few seconds; this bounds what a hostile count can make the decoder hold.
+inline constexpr int kMaxAtlasFrames = 256;
+
+// The bitstream of an animation's atlas (format version 12, docs/FORMAT.md
+// §6): as decode_atlas's, each part (colour, then alpha) a sequence of
+// `frames` shown AV1 frames, the first a key frame, the others free to
+// predict from earlier ones; temporal delimiters optional. A still atlas
+// is the case of one frame.
+std::vector<Image> decode_atlas_frames(const uint8_t* data, std::size_t size, int width, int height, int channels,
+                                       int frames, const std::string& where);
+
 // The bitstream of an atlas of 10 or 12 bits a sample (a map of a version
 // 9 file, docs/FORMAT.md §3): as above, every frame at that bit depth, and
 // no colour conversion: a 3-channel frame is 4:4:4 and its planes are the

@@ -38,21 +38,42 @@ struct ImageFree {
 // One plane image to an AV1 frame; `planes` are the Y (or grey), Cb and Cr
 // samples at full resolution (Cb, Cr empty for monochrome), 8 bits a
 // sample, or `bits` (10 or 12) in 16-bit values, always 4:4:4 then.
+// Planes of one frame: Y (or grey), Cb and Cr at full resolution, Cb and
+// Cr empty for monochrome.
 template <typename T>
-std::vector<uint8_t> encode_frame(int width, int height, const std::vector<T>& luma, const std::vector<T>& cb,
-                                  const std::vector<T>& cr, const AtlasEncodeOptions& o, int bits = 8) {
-    const bool mono = cb.empty();
+struct FramePlanes {
+    std::vector<T> luma, cb, cr;
+};
+
+// A sequence of frames to AV1: one frame is a still picture in all-intra
+// mode; several are a key frame and inter frames (libaom's good-quality
+// mode, with its look-ahead and hidden reference frames), every frame
+// shown once in order.
+template <typename T>
+std::vector<uint8_t> encode_frames(int width, int height, const std::vector<FramePlanes<T>>& frames,
+                                   const AtlasEncodeOptions& o, int bits = 8) {
+    const bool mono = frames[0].cb.empty();
+    const bool still = frames.size() == 1;
     const bool high = bits > 8;
     const bool full_chroma = (o.chroma444 || high) && !mono;
     aom_codec_iface_t* iface = aom_codec_av1_cx();
     aom_codec_enc_cfg_t cfg;
-    if (aom_codec_enc_config_default(iface, &cfg, AOM_USAGE_ALL_INTRA) != AOM_CODEC_OK)
+    if (aom_codec_enc_config_default(iface, &cfg, still ? AOM_USAGE_ALL_INTRA : AOM_USAGE_GOOD_QUALITY) !=
+        AOM_CODEC_OK)
         aom_failed(nullptr, "default configuration");
     cfg.g_w = unsigned(width);
     cfg.g_h = unsigned(height);
     cfg.g_threads = 1;
-    cfg.g_limit = 1;  // a still picture: reduced still-picture header
-    cfg.g_lag_in_frames = 0;
+    // One frame: a still picture, with the reduced still-picture header.
+    // Several: one key frame, then inter frames predicted from up to 19
+    // frames of look-ahead.
+    cfg.g_limit = unsigned(frames.size());
+    cfg.g_lag_in_frames = still ? 0 : unsigned(std::min<std::size_t>(frames.size(), 19));
+    if (!still) {
+        cfg.kf_mode = AOM_KF_DISABLED;
+        cfg.kf_min_dist = cfg.kf_max_dist = unsigned(frames.size());
+        cfg.g_timebase = {1, 30};
+    }
     // AV1's profiles: main (0) 8 and 10 bits, 4:2:0 and monochrome; high
     // (1) 4:4:4 at those; professional (2) 12 bits.
     cfg.g_profile = bits == 12 ? 2 : full_chroma ? 1 : 0;
@@ -93,34 +114,36 @@ std::vector<uint8_t> encode_frame(int width, int height, const std::vector<T>& l
         return reinterpret_cast<T*>(img->planes[p] + std::ptrdiff_t(y) * img->stride[p])[x];
     };
     const T neutral = T(1 << (bits - 1));
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) sample(0, x, y) = luma[std::size_t(y) * width + x];
-    const int cw = full_chroma ? width : (width + 1) / 2, ch = full_chroma ? height : (height + 1) / 2;
-    for (int p = 1; p <= 2; ++p) {
-        const std::vector<T>* src = p == 1 ? &cb : &cr;
-        for (int y = 0; y < ch; ++y)
-            for (int x = 0; x < cw; ++x) {
-                T v = neutral;
-                if (mono) {
-                } else if (full_chroma) {
-                    v = (*src)[std::size_t(y) * width + x];
-                } else {
-                    // The mean of the 2x2 block (fewer at the right and
-                    // bottom edges of odd sizes); the decoder replicates it.
-                    int sum = 0, n = 0;
-                    for (int dy = 0; dy < 2; ++dy)
-                        for (int dx = 0; dx < 2; ++dx) {
-                            const int sx = 2 * x + dx, sy = 2 * y + dy;
-                            if (sx < width && sy < height) {
-                                sum += (*src)[std::size_t(sy) * width + sx];
-                                ++n;
+    const auto fill = [&](const FramePlanes<T>& f) {
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) sample(0, x, y) = f.luma[std::size_t(y) * width + x];
+        const int cw = full_chroma ? width : (width + 1) / 2, ch = full_chroma ? height : (height + 1) / 2;
+        for (int p = 1; p <= 2; ++p) {
+            const std::vector<T>* src = p == 1 ? &f.cb : &f.cr;
+            for (int y = 0; y < ch; ++y)
+                for (int x = 0; x < cw; ++x) {
+                    T v = neutral;
+                    if (mono) {
+                    } else if (full_chroma) {
+                        v = (*src)[std::size_t(y) * width + x];
+                    } else {
+                        // The mean of the 2x2 block (fewer at the right and
+                        // bottom edges of odd sizes); the decoder replicates it.
+                        int sum = 0, n = 0;
+                        for (int dy = 0; dy < 2; ++dy)
+                            for (int dx = 0; dx < 2; ++dx) {
+                                const int sx = 2 * x + dx, sy = 2 * y + dy;
+                                if (sx < width && sy < height) {
+                                    sum += (*src)[std::size_t(sy) * width + sx];
+                                    ++n;
+                                }
                             }
-                        }
-                    v = T((sum + n / 2) / n);
+                        v = T((sum + n / 2) / n);
+                    }
+                    sample(p, x, y) = v;
                 }
-                sample(p, x, y) = v;
-            }
-    }
+        }
+    };
     std::vector<uint8_t> out;
     auto collect = [&] {
         aom_codec_iter_t iter = nullptr;
@@ -130,10 +153,19 @@ std::vector<uint8_t> encode_frame(int width, int height, const std::vector<T>& l
                 out.insert(out.end(), b, b + pkt->data.frame.sz);
             }
     };
-    if (aom_codec_encode(ctx.get(), img.get(), 0, 1, 0) != AOM_CODEC_OK) aom_failed(ctx.get(), "encoding");
-    collect();
-    if (aom_codec_encode(ctx.get(), nullptr, 0, 0, 0) != AOM_CODEC_OK) aom_failed(ctx.get(), "flushing");
-    collect();
+    for (std::size_t t = 0; t < frames.size(); ++t) {
+        fill(frames[t]);
+        if (aom_codec_encode(ctx.get(), img.get(), aom_codec_pts_t(t), 1, 0) != AOM_CODEC_OK)
+            aom_failed(ctx.get(), "encoding");
+        collect();
+    }
+    // Drain the look-ahead until the encoder has nothing left.
+    for (;;) {
+        const std::size_t before = out.size();
+        if (aom_codec_encode(ctx.get(), nullptr, 0, 0, 0) != AOM_CODEC_OK) aom_failed(ctx.get(), "flushing");
+        collect();
+        if (out.size() == before) break;
+    }
     return strip_temporal_delimiters(out);
 }
 
@@ -157,37 +189,60 @@ std::vector<uint8_t> strip_temporal_delimiters(const std::vector<uint8_t>& obus)
     return out;
 }
 
-std::vector<uint8_t> encode_atlas(const Image& image, const AtlasEncodeOptions& options) {
-    const int w = image.width, h = image.height, c = image.channels;
+namespace {
+
+std::vector<uint8_t> encode_sequence(const std::vector<const Image*>& images, const AtlasEncodeOptions& options) {
+    if (images.empty() || images.size() > std::size_t(kMaxAtlasFrames))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "an atlas has 1 to " + std::to_string(kMaxAtlasFrames) + " frames");
+    const int w = images[0]->width, h = images[0]->height, c = images[0]->channels;
     if (w < 1 || h < 1 || w > kMaxAtlasSide || h > kMaxAtlasSide)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "atlas size " + std::to_string(w) + "x" + std::to_string(h) +
                                                " is out of range (1 to " + std::to_string(kMaxAtlasSide) + ")");
     if (c < 1 || c > 4) fail(VQTEX_ERROR_INVALID_ARGUMENT, "an atlas has 1 to 4 channels");
     if (options.cq_level < 0 || options.cq_level > 63 || options.speed < 0 || options.speed > 9)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "atlas quality level 0..63 and speed 0..9");
-    const std::size_t n = image.pixel_count();
+    for (const Image* image : images)
+        if (image->width != w || image->height != h || image->channels != c)
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "an atlas's frames must all have the first frame's size and channels");
+    const std::size_t n = images[0]->pixel_count();
     const bool alpha = c == 2 || c == 4;
-    std::vector<uint8_t> y(n), cb, cr, a;
-    if (c >= 3) {
-        cb.resize(n);
-        cr.resize(n);
+    std::vector<FramePlanes<uint8_t>> colour(images.size()), alphas(alpha ? images.size() : 0);
+    for (std::size_t t = 0; t < images.size(); ++t) {
+        FramePlanes<uint8_t>& f = colour[t];
+        f.luma.resize(n);
+        if (c >= 3) {
+            f.cb.resize(n);
+            f.cr.resize(n);
+        }
+        if (alpha) alphas[t].luma.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const uint8_t* p = images[t]->pixels.data() + i * std::size_t(c);
+            if (c >= 3)
+                atlas_rgb_to_ycbcr(p, f.luma[i], f.cb[i], f.cr[i]);
+            else
+                f.luma[i] = p[0];
+            if (alpha) alphas[t].luma[i] = p[c - 1];
+        }
     }
-    if (alpha) a.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const uint8_t* p = image.pixels.data() + i * std::size_t(c);
-        if (c >= 3)
-            atlas_rgb_to_ycbcr(p, y[i], cb[i], cr[i]);
-        else
-            y[i] = p[0];
-        if (alpha) a[i] = p[c - 1];
-    }
-    std::vector<uint8_t> colour = encode_frame<uint8_t>(w, h, y, cb, cr, options);
-    if (!alpha) return colour;
+    std::vector<uint8_t> coded = encode_frames(w, h, colour, options);
+    if (!alpha) return coded;
     ByteWriter out;
-    out.varint(colour.size());
-    out.bytes(colour);
-    out.bytes(encode_frame<uint8_t>(w, h, a, {}, {}, options));
+    out.varint(coded.size());
+    out.bytes(coded);
+    out.bytes(encode_frames(w, h, alphas, options));
     return std::move(out.data());
+}
+
+}  // namespace
+
+std::vector<uint8_t> encode_atlas(const Image& image, const AtlasEncodeOptions& options) {
+    return encode_sequence({&image}, options);
+}
+
+std::vector<uint8_t> encode_atlas_frames(const std::vector<Image>& frames, const AtlasEncodeOptions& options) {
+    std::vector<const Image*> images;
+    for (const Image& f : frames) images.push_back(&f);
+    return encode_sequence(images, options);
 }
 
 std::vector<uint8_t> encode_atlas_high(const Image16& image, int bits, const AtlasEncodeOptions& options) {
@@ -205,15 +260,20 @@ std::vector<uint8_t> encode_atlas_high(const Image16& image, int bits, const Atl
     for (std::size_t i = 0; i < n; ++i)
         for (int k = 0; k < c; ++k)
             planes[std::size_t(k)][i] = std::min(image.pixels[i * std::size_t(c) + std::size_t(k)], top);
-    const std::vector<uint16_t> none;
-    std::vector<uint8_t> frame = colour == 1
-                                     ? encode_frame(w, h, planes[0], none, none, options, bits)
-                                     : encode_frame(w, h, planes[0], planes[1], planes[2], options, bits);
+    std::vector<FramePlanes<uint16_t>> colour_frame(1);
+    colour_frame[0].luma = planes[0];
+    if (colour == 3) {
+        colour_frame[0].cb = planes[1];
+        colour_frame[0].cr = planes[2];
+    }
+    std::vector<uint8_t> frame = encode_frames(w, h, colour_frame, options, bits);
     if (!alpha) return frame;
+    std::vector<FramePlanes<uint16_t>> alpha_frame(1);
+    alpha_frame[0].luma = planes[std::size_t(c - 1)];
     ByteWriter out;
     out.varint(frame.size());
     out.bytes(frame);
-    out.bytes(encode_frame(w, h, planes[std::size_t(c - 1)], none, none, options, bits));
+    out.bytes(encode_frames(w, h, alpha_frame, options, bits));
     return std::move(out.data());
 }
 

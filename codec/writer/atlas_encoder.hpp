@@ -30,6 +30,11 @@ struct AtlasEncodeOptions {
 // count.
 std::vector<uint8_t> encode_atlas(const Image& image, const AtlasEncodeOptions& options);
 
+// The bitstream of atlas_coder.hpp's decode_atlas_frames: 1 to
+// kMaxAtlasFrames frames of one size and channel count, coded as a key frame
+// and inter frames (one frame: exactly encode_atlas's bytes).
+std::vector<uint8_t> encode_atlas_frames(const std::vector<Image>& frames, const AtlasEncodeOptions& options);
+
 // The bitstream of atlas_coder.hpp's decode_atlas_high: every frame at
 // `bits` (10 or 12) a sample, 4:4:4 or monochrome, the channels as planes
 // with no colour conversion; samples above 2^bits - 1 are clamped.
