@@ -816,13 +816,6 @@ TEST(AtlasFile, GoldenCoverFileDecodesToKnownPixels) {
     EXPECT_TRUE(f.maps.empty());
 }
 
-// Whether a params struct can ask for an atlas or a target size.
-template <typename Params>
-constexpr bool has_codebook_kind = requires(Params p) { p.codebook; };
-template <typename Params>
-constexpr bool has_target_size = requires(Params p) { p.target_size; };
-static_assert(has_codebook_kind<vqtex_encode_params> && has_target_size<vqtex_encode_params>);
-
 TEST(AtlasFile, ParametersOutsideTheAtlasPathAreRefused) {
     const vqtex::Image ex = load_corpus("cellular_128.png");
     vqtex_image in{128, 128, 3, const_cast<uint8_t*>(ex.pixels.data())};
@@ -840,8 +833,17 @@ TEST(AtlasFile, ParametersOutsideTheAtlasPathAreRefused) {
     p = atlas_params();
     EXPECT_EQ(vqtex_encode(&p, &tiny, &data, &size, nullptr, &err), VQTEX_ERROR_IMAGE_TOO_SMALL);
     EXPECT_EQ(data, nullptr);
-    // Animations store trees: their params have no codebook kind (nor a
-    // target size) to ask for an atlas with.
-    static_assert(!has_codebook_kind<vqtex_volume_encode_params>);
-    static_assert(!has_target_size<vqtex_volume_encode_params>);
+    // Animations store an atlas by default; a target size with trees is
+    // refused (their size comes from the preset).
+    vqtex_volume_encode_params vp;
+    vqtex_volume_encode_params_init(&vp);
+    EXPECT_EQ(vp.codebook, VQTEX_CODEBOOK_ATLAS);
+    vp.codebook = VQTEX_CODEBOOK_TREES;
+    vp.target_size = 4000;
+    std::vector<uint8_t> frames(std::size_t(16) * 16 * 3 * 2, 100);
+    vqtex_volume vol{16, 16, 2, 3, frames.data()};
+    EXPECT_EQ(vqtex_encode_volume(&vp, &vol, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    vp.codebook = VQTEX_CODEBOOK_ATLAS;
+    vp.quality = 101;
+    EXPECT_EQ(vqtex_encode_volume(&vp, &vol, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
 }

@@ -52,10 +52,21 @@ FileReport encode_animation(const std::string& input, const std::string& output,
     r.json = {{"input", input},       {"output", output},         {"width", seq.width}, {"height", seq.height},
               {"frames", seq.frames}, {"channels", seq.channels}, {"bits", 8},          {"bytes", size},
               {"encode_seconds", seconds}};
+    if (p.codebook == VQTEX_CODEBOOK_ATLAS)
+        r.json["atlas"] = {{"width", stats.atlas_width}, {"height", stats.atlas_height}, {"x", stats.atlas_x},
+                           {"y", stats.atlas_y},         {"frames", stats.atlas_frames},
+                           {"first_frame", stats.atlas_first_frame},
+                           {"kind", stats.atlas_kind ? "part" : "whole"}};
     if (!seq.notice.empty()) r.json["notices"] = std::vector<std::string>{input + ": " + seq.notice};
     std::snprintf(line, sizeof line, "%s (%ux%u, %u frames, %u channels) -> %s\n", input.c_str(), seq.width,
                   seq.height, seq.frames, seq.channels, output.c_str());
     r.text = line;
+    if (p.codebook == VQTEX_CODEBOOK_ATLAS) {
+        std::snprintf(line, sizeof line, "atlas: %ux%u at (%u, %u), frames %u to %u of the example\n",
+                      stats.atlas_width, stats.atlas_height, stats.atlas_x, stats.atlas_y, stats.atlas_first_frame,
+                      stats.atlas_first_frame + stats.atlas_frames - 1);
+        r.text += line;
+    }
     std::snprintf(line, sizeof line, "%zu bytes, %.3f bits per example pixel, %.3f s\n", size,
                   8.0 * double(size) / (double(seq.width) * seq.height * seq.frames), seconds);
     r.text += line;
@@ -167,7 +178,6 @@ std::vector<MapInput> parse_maps(const std::vector<std::string>& specs) {
 struct Settings {
     vqtex_encode_params params;  // without threads and progress
     std::string shapes;
-    bool atlas_asked = false;  // --atlas given (the default for still textures)
     bool normal = false;       // --normal: each example is a normal map
     bool data = false;         // --data: each example holds values (height, roughness, a mask)
     bool quiet = false;
@@ -365,14 +375,17 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
     vqtex_encode_params p = s.params;
     p.threads = threads;
     if (is_sequence(input)) {
-        if (p.target_size)
-            throw std::invalid_argument("--target-size is not supported for animations: use --quality");
-        if (s.atlas_asked)
-            throw std::invalid_argument("--atlas is for still textures (animations store trees)");
-        // The still texture's trees (preset and options), trained as the
+        // A space-time atlas unless trees are asked for; the trees take
+        // the still texture's preset and options, trained as the
         // animation defaults say.
         vqtex_volume_encode_params vp;
         vqtex_volume_encode_params_init(&vp);
+        vp.codebook = p.codebook;
+        vp.quality = p.quality;
+        vp.target_size = p.target_size;
+        if (p.target_size && p.codebook == VQTEX_CODEBOOK_TREES)
+            throw std::invalid_argument("--target-size takes an animation's atlas: drop --trees and the options "
+                                        "that describe trees");
         vp.levels = p.levels;
         vp.example_tileable = p.example_tileable;
         vp.seed = p.seed;
@@ -586,7 +599,6 @@ int main(int argc, char** argv) {
         Settings s;
         s.params = p;
         s.shapes = shapes;
-        s.atlas_asked = atlas;
         s.normal = normal;
         s.data = data;
         s.quiet = quiet;

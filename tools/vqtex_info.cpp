@@ -89,6 +89,7 @@ FileReport info_one(const std::string& input) {
         j["cut"] = info.cut;
         j["cover"] = info.cover;
         j["atlas_wraps"] = info.atlas_wraps != 0;
+        if (info.atlas_frames) j["atlas_frames"] = info.atlas_frames;
         j["atlas_share"] = double(info.atlas_width) * info.atlas_height /
                            (double(info.exemplar_width) * info.exemplar_height);
     }
@@ -126,7 +127,9 @@ FileReport info_one(const std::string& input) {
         (unsigned long long)info.file_bytes);
     add(t, "example   %ux%u, %u channel%s; default seed %llu\n", info.exemplar_width, info.exemplar_height,
         info.channels, info.channels == 1 ? "" : "s", (unsigned long long)info.seed);
-    if (info.exemplar_frames) {
+    if (info.atlas_frames) {
+        add(t, "animation a loop of %u frames (the default output length)\n", info.atlas_frames);
+    } else if (info.exemplar_frames) {
         add(t, "animation %u example frames; windows", info.exemplar_frames);
         for (uint32_t l = 0; l < info.levels; ++l)
             add(t, " {%ux%ux%u,%u}", info.shapes[l].rows, info.shapes[l].cols, info.window_frames[l],
@@ -141,8 +144,10 @@ FileReport info_one(const std::string& input) {
                              (double(info.exemplar_width) * info.exemplar_height);
         const std::string part =
             whole ? " (the whole example" : " (a part of the example, " + std::to_string(int(share + 0.5)) + "% of its area";
-        add(t, "atlas     %ux%u%s%s), coded as AV1%s\n", info.atlas_width, info.atlas_height, part.c_str(),
-            info.atlas_wraps ? ", wrapping" : "", header.c_str());
+        const std::string frames = info.atlas_frames ? "x" + std::to_string(info.atlas_frames) : std::string();
+        add(t, "atlas     %ux%u%s%s%s), coded as AV1%s%s\n", info.atlas_width, info.atlas_height, frames.c_str(),
+            part.c_str(), info.atlas_wraps ? ", wrapping" : "", info.atlas_frames ? " with inter frames" : "",
+            header.c_str());
         const std::string seams =
             info.blend ? "seams blended over " + std::to_string(info.blend) + " pixels" : "seams not blended";
         const std::string copies = info.relocate ? ", copies relocated (" + std::to_string(info.relocate) +
@@ -154,8 +159,12 @@ FileReport info_one(const std::string& input) {
             info.cut ? ", borders cut within " + std::to_string(info.cut) + " pixels" : std::string();
         const std::string covers =
             info.cover ? ", long borders covered within " + std::to_string(info.cover) + " pixels" : std::string();
-        add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s%s%s%s%s\n", info.levels,
-            info.codewords[0], seams.c_str(), copies.c_str(), edges.c_str(), cuts.c_str(), covers.c_str());
+        if (info.atlas_frames)
+            add(t, "decoding  coherent engine for animations, %u levels, an atlas of %u voxels\n", info.levels,
+                info.codewords[0]);
+        else
+            add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s%s%s%s%s\n", info.levels,
+                info.codewords[0], seams.c_str(), copies.c_str(), edges.c_str(), cuts.c_str(), covers.c_str());
     } else
         add(t, "decoding  %u levels, %s init, backtrack %u, seam closing %s, %u-bit codewords, %u-bit pixels\n",
             info.levels, info.init ? "noise" : "parent", info.backtrack, info.seam_closing ? "on" : "off",

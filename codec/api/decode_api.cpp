@@ -17,10 +17,13 @@
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/normal_map.hpp"
+#include "engine/appearance.hpp"
+#include "engine/coherent_volume_synthesis.hpp"
 #include "engine/pyramid.hpp"
 #include "engine/synthesis.hpp"
 #include "engine/temporal_synthesis.hpp"
 #include "format/tree_model.hpp"
+#include "format/animation_file.hpp"
 #include "format/atlas_file.hpp"
 #include "format/model_codec.hpp"
 #include "format/volume_codec.hpp"
@@ -213,6 +216,73 @@ std::vector<Image> decode_pyramid(const vqtex_decode_params* p, const uint8_t* d
                               tree_options<SynthesisOptions>(p, f.header, f.init, out_size));
 }
 
+// An atlas animation (docs/FORMAT.md §6): the atlas's frames decoded, then
+// the coherent engine for animations synthesises from them exactly as
+// vqtex_synthesize_volume would from those frames, with the file's
+// parameters.
+Volume decode_animation_atlas(const vqtex_decode_params* p, uint32_t frames, const uint8_t* data, std::size_t size) {
+    const std::size_t limit = memory_limit_of(p);
+    const AnimationFile f = decode_animation_file(data, size, limit);
+    const OutputSize out = output_size(p, f.header, frames, uint32_t(f.atlas_frames));
+    uint64_t atlas = 0;
+    for (const Image& frame : f.frames) atlas += frame.byte_count();
+    check_output_memory(size + atlas +
+                            animation_decode_memory(f.atlas_width, f.atlas_height, f.atlas_frames, f.header.channels,
+                                                    f.header.levels, out.width, out.height, out.frames),
+                        limit, out.name());
+    const int threads = resolve_threads(p->threads);
+    const std::vector<AppearanceSpace> space =
+        build_appearance_frames(f.frames, f.header.levels, f.params.example_tileable, threads);
+    VolumeCoherentOptions opt;
+    opt.width = int(out.width);
+    opt.height = int(out.height);
+    opt.frames = int(out.frames);
+    opt.seed = seed_of(p, f.header);
+    opt.threads = threads;
+    opt.passes = f.params.passes;
+    opt.coarse_passes = f.params.coarse_passes;
+    opt.polish_passes = f.params.polish_passes;
+    opt.roll = f.params.roll;
+    opt.temporal_bias = f.params.temporal_bias;
+    opt.close_loop = f.params.closing_frames > 0;
+    opt.closing_frames = f.params.closing_frames;
+    opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
+    return synthesize_volume_coherent(space, f.frames, opt);
+}
+
+// vqtex_inspect for an atlas animation: its atlas's size and frames, the
+// coded bitstream and the parameters as the parts of the file.
+void describe_animation_file(const uint8_t* data, std::size_t size, std::size_t memory_limit, vqtex_file_info* info) {
+    const AnimationFile f = decode_animation_file(data, size, memory_limit);
+    info->format_version = f.header.version;
+    info->file_bytes = size;
+    info->exemplar_width = f.header.exemplar_width;
+    info->exemplar_height = f.header.exemplar_height;
+    info->channels = f.header.channels;
+    info->levels = f.header.levels;
+    info->seed = f.header.seed;
+    info->backtrack = 1;
+    // The atlas is the codebook: every voxel a codeword, at every level.
+    for (int l = 0; l < f.header.levels; ++l)
+        info->codewords[l] = uint32_t(f.atlas_width * f.atlas_height * f.atlas_frames);
+    info->exemplar_frames = uint32_t(f.atlas_frames);
+    info->atlas_width = uint32_t(f.atlas_width);
+    info->atlas_height = uint32_t(f.atlas_height);
+    info->atlas_frames = uint32_t(f.atlas_frames);
+    info->atlas_wraps = f.params.example_tileable ? 1 : 0;
+    info->map_count = 1;
+    std::snprintf(info->maps[0].name, sizeof info->maps[0].name, "%s", "texture");
+    info->maps[0].kind = VQTEX_MAP_COLOUR;
+    info->maps[0].channels = f.header.channels;
+    info->maps[0].bits = 8;
+    info->maps[0].bytes = f.atlas_bytes;
+    const vqtex_section_info parts[2] = {{"ATLS", 0, 0, f.atlas_bytes, f.atlas_bytes},
+                                         {"SYNP", 0, 0, f.parameter_bytes, f.parameter_bytes}};
+    info->section_count = 2;
+    info->sections[0] = parts[0];
+    info->sections[1] = parts[1];
+}
+
 // vqtex_inspect for an animated texture.
 void describe_volume_file(const uint8_t* data, std::size_t size, std::size_t memory_limit, vqtex_file_info* info) {
     const DecodedVolumeFile f = decode_volume_file(data, size, memory_limit);
@@ -386,6 +456,10 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
             }
             return;
         }
+        if (is_animation_file(data, size)) {
+            describe_animation_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit), info);
+            return;
+        }
         if (is_volume_file(data, size)) {
             describe_volume_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit), info);
             return;
@@ -413,6 +487,10 @@ vqtex_status vqtex_decode_volume(const vqtex_decode_params* p, uint32_t frames, 
                                                    " with " + std::to_string(frames) + " frames is out of range (1 to " +
                                                    std::to_string(kMaxOutputSide) + " per side, 1 to " +
                                                    std::to_string(kMaxOutputFrames) + " frames)");
+        if (is_animation_file(data, size)) {
+            volume_to_c(decode_animation_atlas(p, frames, data, size), out);
+            return;
+        }
         const std::size_t limit = memory_limit_of(p);
         const DecodedVolumeFile f = decode_volume_file(data, size, limit);
         const OutputSize out_size = output_size(p, f.header, frames, f.model.exemplar_frames);

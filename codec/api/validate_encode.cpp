@@ -140,6 +140,12 @@ void validate(const vqtex_volume_encode_params* p) {
     check_levels(p->levels);
     check_tsvq(p->tsvq);
     check_tree_coding(p->precision, p->pixel_precision, p->smoothing, p->backtrack, p->init);
+    if (!is_one_of(p->codebook, {VQTEX_CODEBOOK_TREES, VQTEX_CODEBOOK_ATLAS}))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown codebook kind: VQTEX_CODEBOOK_TREES or VQTEX_CODEBOOK_ATLAS");
+    if (p->quality > 100) fail(VQTEX_ERROR_INVALID_ARGUMENT, "quality must be 0 to 100");
+    if (p->target_size && p->codebook != VQTEX_CODEBOOK_ATLAS)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "a target size needs the atlas codebook: trees animations take their "
+                                           "codebook sizes from the preset");
 }
 
 void validate(const vqtex_fill_params* p) {

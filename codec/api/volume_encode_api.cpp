@@ -1,5 +1,7 @@
 // volume_encode_api.cpp - the exported encoder for animated textures (paper
-// section 5.2 with the codec of section 6): a frame sequence into a file.
+// section 5.2 with the codec of section 6): a frame sequence into a file,
+// a space-time atlas (format version 12, analysis/animation_choice.hpp) or
+// the paper's TSVQ trees (format version 2).
 // Decoding is in decode_api.cpp; what it shares with the still encoder is
 // in encode_support.hpp.
 #include <chrono>
@@ -11,11 +13,51 @@
 #include "api/encode_support.hpp"
 #include "api/validate_encode.hpp"
 #include "common/error.hpp"
+#include "analysis/animation_choice.hpp"
 #include "analysis/temporal_model.hpp"
 #include "writer/volume_writer.hpp"
 #include "vqtex/vqtex.h"
 
 using namespace vqtex;
+
+namespace {
+
+// A space-time atlas for the quality's budget or the target size.
+void encode_animation_atlas(const vqtex_volume_encode_params& p, const Volume& ex, uint8_t** data, size_t* size,
+                            vqtex_encode_stats* stats) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const ProgressFn progress = stage_progress(p.progress, p.progress_user, VQTEX_STAGE_ANALYSE);
+    if (progress && !progress(0, 1)) fail(VQTEX_ERROR_CANCELLED, "encoding cancelled by the progress callback");
+    std::vector<Image> frames;
+    for (int t = 0; t < ex.frames; ++t) frames.push_back(ex.frame(t));
+    AnimationChoiceOptions o;
+    o.budget = p.target_size;
+    o.quality = int(p.quality);
+    o.levels = int(p.levels);
+    o.example_tileable = p.example_tileable != 0;
+    o.seed = p.seed;
+    const AnimationChoice c = choose_animation_atlas(frames, o);
+    if (progress && !progress(1, 1)) fail(VQTEX_ERROR_CANCELLED, "encoding cancelled by the progress callback");
+    copy_out(c.file, data, size);
+    if (stats) {
+        *stats = vqtex_encode_stats{};
+        stats->bytes = c.file.size();
+        stats->quality = p.target_size ? 0u : p.quality;
+        stats->levels = uint32_t(c.levels);
+        for (int l = 0; l < c.levels; ++l) stats->codewords[l] = uint32_t(c.width * c.height * c.frames);
+        stats->attempts = c.attempts;
+        stats->seconds = seconds_since(t0, std::chrono::steady_clock::now());
+        stats->atlas_width = uint32_t(c.width);
+        stats->atlas_height = uint32_t(c.height);
+        stats->atlas_x = uint32_t(c.x);
+        stats->atlas_y = uint32_t(c.y);
+        stats->atlas_kind = c.width == ex.width && c.height == ex.height ? 0u : 1u;
+        stats->atlas_frames = uint32_t(c.frames);
+        stats->atlas_first_frame = uint32_t(c.first);
+    }
+}
+
+}  // namespace
 
 extern "C" {
 
@@ -26,6 +68,8 @@ void vqtex_volume_encode_params_init(vqtex_volume_encode_params* p) {
     vqtex_encode_params_init(&still);
     *p = vqtex_volume_encode_params{};
     p->struct_size = uint32_t(sizeof(vqtex_volume_encode_params)) | VQTEX_LAYOUT_MARK;
+    p->codebook = VQTEX_CODEBOOK_ATLAS;
+    p->quality = VQTEX_QUALITY_DEFAULT;
     p->seed = still.seed;
     p->tsvq = still.trees.tsvq;
     p->precision = still.trees.precision;
@@ -53,6 +97,10 @@ vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const
         validate(params);
         const Volume ex = volume_from_c(example);
         const vqtex_volume_encode_params& p = *params;
+        if (p.codebook == VQTEX_CODEBOOK_ATLAS) {
+            encode_animation_atlas(p, ex, data, size, stats);
+            return;
+        }
         std::vector<Shape> shapes;
         for (const vqtex_shape3& s : p.shapes)
             shapes.push_back(Shape{.rows = s.rows, .cols = s.cols, .levels = s.levels, .frames = s.frames});

@@ -25,19 +25,23 @@ uint16_t read_format_version(const uint8_t* data, std::size_t size) {
     if (size < 10) fail(VQTEX_ERROR_TRUNCATED, "file ends inside the header (" + std::to_string(size) + " bytes)");
     const uint16_t version = uint16_t(data[8] | (data[9] << 8));
     if (version != kFormatVersion && version != kVolumeFormatVersion && version != kAtlasFormatVersion &&
-        !is_compact_atlas_version(version))
+        !is_compact_atlas_version(version) && version != kAnimationAtlasFormatVersion)
         fail(VQTEX_ERROR_UNSUPPORTED_VERSION,
              "file is format version " + std::to_string(version) + "; this library reads versions " +
                  std::to_string(kFormatVersion) + " (still textures), " + std::to_string(kVolumeFormatVersion) +
                  " (animations), " + std::to_string(kAtlasFormatVersion) + ", " +
                  std::to_string(kCompactAtlasFormatVersion) + ", " + std::to_string(kBlendAtlasFormatVersion) +
-                 " to " + std::to_string(kCoverMaterialFormatVersion) +
-                 " (atlas textures): use a matching vqtex release");
+                 " to " + std::to_string(kCoverMaterialFormatVersion) + " (atlas textures) and " +
+                 std::to_string(kAnimationAtlasFormatVersion) + " (atlas animations): use a matching vqtex release");
     return version;
 }
 
 FileHeader read_header(const uint8_t* data, std::size_t size) {
     const uint16_t version = read_format_version(data, size);
+    if (version == kAnimationAtlasFormatVersion)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "file holds an animation (a space-time atlas, format version 12), not a "
+                                           "still texture: decode it with vqtex_decode_volume (vqtex-decode writes "
+                                           "its frames)");
     if (is_compact_atlas_version(version))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "file holds a still texture (an atlas with the compact header of format version " +

@@ -57,6 +57,12 @@ inline constexpr uint16_t kMaterialAtlasFormatVersion = 9;
 // The encoder writes version 10 for one colour image and 11 for a set.
 inline constexpr uint16_t kCoverAtlasFormatVersion = 10;
 inline constexpr uint16_t kCoverMaterialFormatVersion = 11;
+// Version 12 (docs/FORMAT.md §6): an animation as a space-time atlas, a
+// short loop of frames of a small area coded as AV1 with inter prediction,
+// decoded by the coherent engine for animations. The compact header of
+// versions 4 to 11 with the atlas's frame count; the encoder writes it for
+// every animation (version 2 stays, for the paper's trees).
+inline constexpr uint16_t kAnimationAtlasFormatVersion = 12;
 inline bool is_compact_atlas_version(uint16_t version) {
     return version >= kCompactAtlasFormatVersion && version <= kCoverMaterialFormatVersion;
 }
@@ -110,7 +116,7 @@ struct Container {
 
 // Checks 1-4 of docs/FORMAT.md §B.4, which every version shares (the
 // signature and the version field: TRUNCATED, BAD_MAGIC,
-// UNSUPPORTED_VERSION), and returns the version, 1 to 7.
+// UNSUPPORTED_VERSION), and returns the version, 1 to 12.
 uint16_t read_format_version(const uint8_t* data, std::size_t size);
 
 // The header's fields as read, after the signature, the version and the

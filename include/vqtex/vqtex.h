@@ -47,7 +47,10 @@
  *   the file was made at, for trees files and atlas files alike.
  *   vqtex_volume_encode_params_preset fills an animation's the same way.
  * - vqtex_volume_encode_params holds its own fields instead of a nested
- *   vqtex_encode_params: no target size, codebook kind or 2D shapes.
+ *   vqtex_encode_params: its codebook kind (a space-time atlas by default,
+ *   format version 12), quality and target size, then the trees' fields.
+ *   vqtex_encode_stats reports an animation's atlas (atlas_frames,
+ *   atlas_first_frame), vqtex_file_info its frame count (atlas_frames).
  * - VQTEX_MAX_SIDE: the largest example side (and example frame count).
  */
 #ifndef VQTEX_H
@@ -362,9 +365,12 @@ typedef struct vqtex_encode_stats {
     /* An atlas file's atlas: its size and where it lies in the example;
      * atlas_kind 0 = the whole example, 1 = a part of it (a crop), 2 = the
      * tile a repeating example is made of (docs/ATLAS.md "Large examples").
-     * All 0 for trees files and animations. */
+     * All 0 for trees files. */
     uint32_t atlas_width, atlas_height, atlas_x, atlas_y;
     uint32_t atlas_kind;
+    /* An animation's atlas: its frames and the example frame it starts at
+     * (0 for a still texture). */
+    uint32_t atlas_frames, atlas_first_frame;
 } vqtex_encode_stats;
 
 /* Encodes an example into a new buffer (*data, *size), freed with
@@ -494,7 +500,9 @@ typedef struct vqtex_file_info {
     uint32_t closing_codewords[VQTEX_MAX_LEVELS];
     uint32_t section_count;
     vqtex_section_info sections[VQTEX_MAX_SECTIONS];
-    uint32_t exemplar_frames;                      /* animated texture: frames of the example; 0 for a still one */
+    uint32_t exemplar_frames;                      /* animated texture: frames of the example (an atlas
+                                                      animation: of its atlas, the default output count);
+                                                      0 for a still one */
     uint8_t window_frames[VQTEX_MAX_LEVELS];       /* animated texture: D of each level's {RxCxD,k} */
     uint32_t atlas_width, atlas_height;            /* atlas texture: the atlas's size; 0 otherwise */
     uint32_t blend;                                /* atlas texture: radius of the blend at seams the decoder
@@ -509,6 +517,8 @@ typedef struct vqtex_file_info {
                                                       the decoder uses, in output pixels (0: none); 0 otherwise */
     uint32_t atlas_wraps;                          /* atlas texture: 1 when the atlas wraps (a tileable example,
                                                       or the tile a repeating example is made of) */
+    uint32_t atlas_frames;                         /* atlas animation (format 12): the atlas's frames, the
+                                                      default output frame count; 0 otherwise */
     uint32_t map_count;                            /* maps in the file: 1 but for a material set */
     struct {
         char name[VQTEX_MAX_MAP_NAME + 1];         /* "texture" for a file that is not a set */
@@ -616,6 +626,14 @@ typedef struct vqtex_shape3 {
 
 typedef struct vqtex_volume_encode_params {
     uint32_t struct_size;          /* set by vqtex_volume_encode_params_init */
+    /* What the file stores: a space-time atlas (default: a loop of frames
+     * of the example, or of a part of it, as an AV1 sequence, decoded by
+     * the coherent engine, format version 12) or the paper's TSVQ trees
+     * (format version 2) [--trees]. */
+    vqtex_codebook codebook;
+    uint32_t quality;              /* 0 to 100, default VQTEX_QUALITY_DEFAULT [--quality]. An atlas:
+                                      its byte budget (docs/ANIMATION.md); trees: the fields below */
+    uint64_t target_size;          /* bytes; nonzero: an atlas, the best that fits [--target-size] */
     uint32_t levels;               /* pyramid depth, 1 to VQTEX_MAX_LEVELS; 0 = automatic [--levels] */
     uint32_t example_tileable;     /* 1: the example wraps in space [--tileable-example] */
     uint64_t seed;                 /* default decoding seed stored in the file [--seed] */
@@ -623,9 +641,9 @@ typedef struct vqtex_volume_encode_params {
     vqtex_progress_fn progress;
     void* progress_user;
     vqtex_shape3 shapes[VQTEX_MAX_LEVELS]; /* [0] = finest; {0,0,0,0} = default [--shapes] */
-    /* The codebooks and their precision, as a still texture's trees; its
-     * shapes are the 3D ones above. tsvq.seam_closing also builds the
-     * loop-closing trees. */
+    /* Trees only: the codebooks and their precision, as a still texture's
+     * trees; its shapes are the 3D ones above. tsvq.seam_closing also
+     * builds the loop-closing trees. */
     vqtex_tsvq_params tsvq;
     uint32_t precision;            /* bits per codeword and key sample, 1 to 8 [--precision] */
     uint32_t pixel_precision;      /* bits per output pixel sample, 1 to 8 [--pixel-precision] */
@@ -634,17 +652,21 @@ typedef struct vqtex_volume_encode_params {
     vqtex_init init;               /* how decoding starts each level */
 } vqtex_volume_encode_params;
 
-/* Defaults: 3 levels (fewer for tiny examples), {5x5x5,2} and {5x5x5,1} at
- * the coarsest level, codebooks trained on a random 10% of the example's
- * neighbourhoods as the paper, loop closing on; the codebook sizes and
- * precision of the VQTEX_QUALITY_DEFAULT preset. */
+/* Defaults: a space-time atlas at VQTEX_QUALITY_DEFAULT. For trees: 3
+ * levels (fewer for tiny examples), {5x5x5,2} and {5x5x5,1} at the coarsest
+ * level, codebooks trained on a random 10% of the example's neighbourhoods
+ * as the paper, loop closing on; the codebook sizes and precision of the
+ * VQTEX_QUALITY_DEFAULT preset. */
 VQTEX_API void vqtex_volume_encode_params_init(vqtex_volume_encode_params* params);
 /* Fills the codebook sizes and precision from the quality preset of
  * vqtex_encode_params_preset, 0 to 100 [--quality]; the training fraction,
  * levels, shapes and every other field are untouched. */
 VQTEX_API vqtex_status vqtex_volume_encode_params_preset(vqtex_volume_encode_params* params, int quality);
 
-/* Encodes an example frame sequence (at least 1 frame; the paper uses 32). */
+/* Encodes an example frame sequence (at least 1 frame; the paper uses 32).
+ * An atlas (the default) is a segment of the example's loop, of the whole
+ * example or a part of it, whichever scores best at the budget
+ * (docs/ANIMATION.md). */
 VQTEX_API vqtex_status vqtex_encode_volume(const vqtex_volume_encode_params* params, const vqtex_volume* example,
                                            uint8_t** data, size_t* size, vqtex_encode_stats* stats,
                                            vqtex_error* error);

@@ -1,0 +1,124 @@
+// animation_file.cpp - reading format version 12 (docs/FORMAT.md §6): the
+// CRC first (the file has no sizes to walk), then the fields in their
+// order, each checked as it is read, the memory before dav1d runs, then
+// the atlas's frames.
+#include "format/animation_file.hpp"
+
+#include "common/bitstream.hpp"
+#include "common/checksum.hpp"
+#include "common/error.hpp"
+#include "engine/coherent_synthesis.hpp"
+#include "format/atlas_coder.hpp"
+#include "format/atlas_compact.hpp"
+#include "format/atlas_file.hpp"
+
+namespace vqtex {
+
+namespace {
+
+// dav1d's own state and its reference frames beside the decoded atlas.
+constexpr uint64_t kDav1dFixedBytes = 8ull << 20;
+
+// Signature, version, packed byte, one-byte atlas width, height, frame
+// count and seed, CRC-32: no version 12 file is shorter.
+constexpr std::size_t kAnimationMinSize = sizeof kMagic + 2 + 1 + 4 + kTrailerSize;
+
+// The decoded frames, and dav1d's frame buffers (at most 8 references and
+// the frame being decoded, 3 planes of 16-bit samples at most).
+uint64_t atlas_frames_memory(int aw, int ah, int frames, int channels) {
+    const uint64_t a = uint64_t(aw) * uint64_t(ah);
+    return a * uint64_t(frames) * uint64_t(channels) + a * 9 * 6 + kDav1dFixedBytes;
+}
+
+}  // namespace
+
+bool is_animation_file(const uint8_t* data, std::size_t size) {
+    try {
+        return read_format_version(data, size) == kAnimationAtlasFormatVersion;
+    } catch (const Error&) {
+        return false;
+    }
+}
+
+uint64_t animation_decode_memory(int atlas_width, int atlas_height, int atlas_frames, int channels, int levels,
+                                 uint64_t width, uint64_t height, uint64_t frames) {
+    // Every atlas frame's appearance space; the output volume, the copy
+    // handed to the caller and the torus cut's planes; one frame's and the
+    // previous frame's position maps at every level.
+    return uint64_t(atlas_frames) * coherent_analysis_memory(atlas_width, atlas_height, channels, levels, 1) +
+           3 * width * height * frames * uint64_t(channels) + 2 * coherent_output_memory(width, height, channels);
+}
+
+AnimationFile decode_animation_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {
+    const uint16_t version = read_format_version(data, size);
+    if (version != kAnimationAtlasFormatVersion)
+        fail(VQTEX_ERROR_INTERNAL, "decode_animation_file called on a version " + std::to_string(version) + " file");
+    if (size < kAnimationMinSize)
+        fail(VQTEX_ERROR_TRUNCATED, "file is " + std::to_string(size) + " bytes; a format version 12 file has at least " +
+                                        std::to_string(kAnimationMinSize));
+    const std::size_t end = size - kTrailerSize;
+    const uint32_t stored_crc = uint32_t(data[end]) | uint32_t(data[end + 1]) << 8 | uint32_t(data[end + 2]) << 16 |
+                                uint32_t(data[end + 3]) << 24;
+    const uint32_t actual_crc = crc32(data, end);
+    if (stored_crc != actual_crc)
+        fail(VQTEX_ERROR_CHECKSUM, "checksum mismatch (file says " + std::to_string(stored_crc) + ", bytes give " +
+                                       std::to_string(actual_crc) + "): the file is damaged or truncated");
+    ByteReader r(data, end, "format version 12 header");
+    r.bytes(sizeof kMagic + 2, "signature and version");
+    const uint8_t packed = r.u8("packed fields");
+    AnimationFile f;
+    FileHeader& h = f.header;
+    h.version = version;
+    h.channels = uint8_t((packed & kPackedChannels) + 1);
+    h.levels = uint8_t(((packed >> kPackedLevelsShift) & 7) + 1);
+    h.init = 0;
+    h.backtrack = 1;
+    const int aw = int(r.varint_in("atlas width", kMinAtlasSide, kMaxAtlasSide));
+    const int ah = int(r.varint_in("atlas height", kMinAtlasSide, kMaxAtlasSide));
+    const int frames = int(r.varint_in("atlas frames", 1, kMaxAtlasFrames));
+    if (packed & kPackedExemplarSize) {
+        h.exemplar_width = uint32_t(r.varint_in("exemplar width", 1, VQTEX_MAX_SIDE));
+        h.exemplar_height = uint32_t(r.varint_in("exemplar height", 1, VQTEX_MAX_SIDE));
+        if (h.exemplar_width == uint32_t(aw) && h.exemplar_height == uint32_t(ah))
+            r.corrupt("the exemplar size is stored but is the atlas's (packed bit 5 must then be 0)");
+    } else {
+        h.exemplar_width = uint32_t(aw);
+        h.exemplar_height = uint32_t(ah);
+    }
+    h.seed = r.varint("seed");
+    AnimationParams& p = f.params;
+    p.example_tileable = (packed & kPackedTileable) != 0;
+    if (packed & kPackedParameters) {
+        const std::size_t at = r.position();
+        p.passes = int(r.varint_in("passes", 1, 16));
+        p.coarse_passes = int(r.varint_in("coarse passes", 1, 16));
+        p.polish_passes = int(r.varint_in("polish passes", 0, 4));
+        p.temporal_bias = int(r.varint_in("temporal bias", 0, kMaxTemporalBias));
+        p.closing_frames = int(r.varint_in("closing frames", 0, kMaxClosingFrames));
+        p.roll = r.varint_in("roll flag", 0, 1) != 0;
+        if (are_animation_defaults(p))
+            r.corrupt("the parameters are stored but are the defaults (packed bit 6 must then be 0)");
+        f.parameter_bytes = r.position() - at;
+    }
+    if (r.remaining() == 0) r.corrupt("the file has no atlas bitstream");
+    if (h.levels > coherent_levels(aw, ah))
+        fail(VQTEX_ERROR_CORRUPT, "header declares " + std::to_string(h.levels) + " levels; a " + std::to_string(aw) +
+                                      "x" + std::to_string(ah) + " atlas allows at most " +
+                                      std::to_string(coherent_levels(aw, ah)));
+    const uint64_t needed = atlas_frames_memory(aw, ah, frames, h.channels) + size;
+    if (needed > memory_limit)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "decoding the " + std::to_string(aw) + "x" + std::to_string(ah) + "x" +
+                                             std::to_string(frames) + " atlas needs about " +
+                                             std::to_string(needed >> 20) + " MiB, above the memory limit of " +
+                                             std::to_string(memory_limit >> 20) +
+                                             " MiB: raise memory_limit (--memory-limit)");
+    f.atlas_width = aw;
+    f.atlas_height = ah;
+    f.atlas_frames = frames;
+    f.atlas_bytes = r.remaining();
+    const uint8_t* bits = r.bytes(r.remaining(), "atlas bitstream");
+    f.frames = decode_atlas_frames(bits, f.atlas_bytes, aw, ah, h.channels, frames, "atlas bitstream");
+    return f;
+}
+
+}  // namespace vqtex

@@ -1,0 +1,66 @@
+// animation_file.hpp - format version 12 (docs/FORMAT.md §6): an animated
+// texture (Wei & Levoy section 5.2) stored as a space-time atlas, a short
+// loop of frames of a small area, coded as one AV1 sequence with inter
+// prediction (atlas_coder.hpp), plus the parameters of the coherent engine
+// for animations (engine/coherent_volume_synthesis.hpp), which decodes it:
+// every output voxel is a position (x, y, t) in the atlas, so the output
+// tiles in space, loops in time and has any size and frame count.
+// writer/animation_writer.hpp writes it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "common/image.hpp"
+#include "format/container.hpp"
+
+namespace vqtex {
+
+// What the coherent engine for animations runs with (docs/FORMAT.md §6.2).
+// The defaults are version 12's, fixed by the format.
+struct AnimationParams {
+    bool example_tileable = false;  // the atlas wraps in space
+    int passes = 2;                 // correction passes per level and, after the first frame, per frame, 1..16
+    int coarse_passes = 4;          // at the first frame's coarsest level, 1..16
+    int polish_passes = 1;          // colour passes at the finest level, 0..4
+    int temporal_bias = 256;        // surcharge of a move away from the advanced position, in 1/256, 0..1024
+    int closing_frames = 8;         // last frames matched against the first to close the loop, 0..64
+    bool roll = true;               // cut the output torus where the pixels change least over the frames
+};
+inline constexpr int kMaxTemporalBias = 1024;
+inline constexpr int kMaxClosingFrames = 64;
+
+inline bool are_animation_defaults(const AnimationParams& p) {
+    const AnimationParams d;
+    return p.passes == d.passes && p.coarse_passes == d.coarse_passes && p.polish_passes == d.polish_passes &&
+           p.temporal_bias == d.temporal_bias && p.closing_frames == d.closing_frames && p.roll == d.roll;
+}
+
+struct AnimationFile {
+    // channels, levels, exemplar size (the default output size) and seed;
+    // version 12.
+    FileHeader header;
+    int atlas_width = 0, atlas_height = 0, atlas_frames = 0;
+    AnimationParams params;
+    std::vector<Image> frames;        // the decoded atlas, atlas_frames images
+    std::size_t atlas_bytes = 0;      // the coded atlas bitstream
+    std::size_t parameter_bytes = 0;  // the parameter varints (0 for the defaults)
+};
+
+// True when the signature reads and the version is 12 (any damage is left
+// to decode_animation_file to report).
+bool is_animation_file(const uint8_t* data, std::size_t size);
+
+// Reads and checks a version 12 file and decodes its atlas's frames. The
+// memory limit covers the file, dav1d's frames and the decoded atlas; the
+// engine's memory is the caller's to check, with animation_decode_memory.
+AnimationFile decode_animation_file(const uint8_t* data, std::size_t size, std::size_t memory_limit);
+
+// What decoding needs beside the file and the decoded atlas: the
+// appearance space of every atlas frame, and an output of `frames` frames
+// of width x height with its position maps (docs/FORMAT.md §6.3).
+uint64_t animation_decode_memory(int atlas_width, int atlas_height, int atlas_frames, int channels, int levels,
+                                 uint64_t width, uint64_t height, uint64_t frames);
+
+}  // namespace vqtex

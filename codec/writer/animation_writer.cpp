@@ -1,0 +1,55 @@
+// animation_writer.cpp - format version 12's bytes (docs/FORMAT.md §6.1);
+// every header of given content has exactly one encoding.
+#include "writer/animation_writer.hpp"
+
+#include "common/checksum.hpp"
+#include "common/error.hpp"
+#include "format/atlas_coder.hpp"
+#include "format/atlas_compact.hpp"
+#include "format/atlas_file.hpp"
+#include "writer/byte_writer.hpp"
+
+namespace vqtex {
+
+std::vector<uint8_t> encode_animation_file(const FileHeader& header, int atlas_width, int atlas_height,
+                                           int atlas_frames, const std::vector<uint8_t>& bitstream,
+                                           const AnimationParams& params) {
+    const AnimationParams& p = params;
+    if (header.levels < 1 || header.levels > 8 || header.channels < 1 || header.channels > 4 ||
+        atlas_width < kMinAtlasSide || atlas_height < kMinAtlasSide || atlas_width > kMaxAtlasSide ||
+        atlas_height > kMaxAtlasSide || atlas_frames < 1 || atlas_frames > kMaxAtlasFrames || bitstream.empty() ||
+        p.passes < 1 || p.passes > 16 || p.coarse_passes < 1 || p.coarse_passes > 16 || p.polish_passes < 0 ||
+        p.polish_passes > 4 || p.temporal_bias < 0 || p.temporal_bias > kMaxTemporalBias || p.closing_frames < 0 ||
+        p.closing_frames > kMaxClosingFrames)
+        fail(VQTEX_ERROR_INTERNAL, "encode_animation_file: fields outside what format version 12 can hold");
+    const bool exemplar_size =
+        header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
+    const bool parameters = !are_animation_defaults(p);
+    ByteWriter w;
+    w.bytes(kMagic, sizeof kMagic);
+    w.u16(kAnimationAtlasFormatVersion);
+    w.u8(uint8_t((header.channels - 1) | (header.levels - 1) << kPackedLevelsShift |
+                 (exemplar_size ? kPackedExemplarSize : 0) | (parameters ? kPackedParameters : 0) |
+                 (p.example_tileable ? kPackedTileable : 0)));
+    w.varint(uint64_t(atlas_width));
+    w.varint(uint64_t(atlas_height));
+    w.varint(uint64_t(atlas_frames));
+    if (exemplar_size) {
+        w.varint(header.exemplar_width);
+        w.varint(header.exemplar_height);
+    }
+    w.varint(header.seed);
+    if (parameters) {
+        w.varint(uint64_t(p.passes));
+        w.varint(uint64_t(p.coarse_passes));
+        w.varint(uint64_t(p.polish_passes));
+        w.varint(uint64_t(p.temporal_bias));
+        w.varint(uint64_t(p.closing_frames));
+        w.varint(p.roll ? 1 : 0);
+    }
+    w.bytes(bitstream);
+    w.u32(crc32(w.data().data(), w.size()));
+    return std::move(w.data());
+}
+
+}  // namespace vqtex
