@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole decodes under every kernel set: the golden still, animated and atlas files,
+# Whole decodes under every kernel set: the golden still, animated and atlas files (atlas animations too),
 # and a trees file encoded here (seam closing, several entries), decoded with
 # VQTEX_SIMD forced to each level (dsp/dispatch.cpp takes the best available
 # set not above it) must give the bytes of the default set. test_dsp checks
@@ -32,6 +32,8 @@ decode_all() {  # $1 = output directory
   "$decode" "$golden/cellular_v8.vqt" "$1/atlas_v8.png" --size 260x200 --seed 8 -j 2 --quiet
   "$decode" "$golden/material_v9.vqt" "$1/material_{map}.png" --size 180x120 --seed 9 -j 2 --quiet
   "$decode" "$golden/cellular_v10.vqt" "$1/atlas_v10.png" --size 280x210 --seed 10 -j 2 --quiet
+  mkdir -p "$1/anim_v12"
+  "$decode" "$golden/waves_v12.vqt" "$1/anim_v12/f_%03d.png" --frames 9 --size 70x60 --seed 11 -j 2 --quiet
   "$synth" "$corpus/cellular_128.png" "$1/coherent.png" --size 210x150 --seed 4 -j 2 --quiet
   mkdir -p "$1/anim_coherent"
   "$synth" "$corpus/flicker_32_anim/frame_%03d.png" "$1/anim_coherent/f_%03d.png" --frames 6 --size 40x36 --seed 2 -j 2 --quiet

@@ -417,6 +417,7 @@ std::vector<uint8_t> encode_corpus(const char* name, int quality = 30) {
     const Volume ex = load_sequence(name);
     vqtex_volume_encode_params p;
     vqtex_volume_encode_params_init(&p);
+    p.codebook = VQTEX_CODEBOOK_TREES;  // the paper's codec (format 2)
     EXPECT_EQ(vqtex_volume_encode_params_preset(&p, quality), VQTEX_OK);
     p.threads = 2;
     const vqtex_volume in{uint32_t(ex.width), uint32_t(ex.height), uint32_t(ex.frames), uint32_t(ex.channels),
@@ -588,6 +589,7 @@ TEST(TemporalCodec, StillSequenceDecodesStill) {
         const Volume ex = still_sequence(32, noise);
         vqtex_volume_encode_params p;
         vqtex_volume_encode_params_init(&p);
+        p.codebook = VQTEX_CODEBOOK_TREES;
         ASSERT_EQ(vqtex_volume_encode_params_preset(&p, 30), VQTEX_OK);
         p.threads = 2;
         const vqtex_volume in{uint32_t(ex.width), uint32_t(ex.height), uint32_t(ex.frames), uint32_t(ex.channels),
@@ -632,23 +634,27 @@ TEST(TemporalCodec, DefaultsEncodeSmallAndShortSequences) {
         std::vector<uint8_t> pixels(std::size_t(w) * h * f * 3);
         Rng rng(uint64_t(w * 1000 + h * 10 + f));
         for (auto& v : pixels) v = uint8_t(rng.below(256));
-        vqtex_volume_encode_params p;
-        vqtex_volume_encode_params_init(&p);
-        p.threads = 2;
-        const vqtex_volume in{uint32_t(w), uint32_t(h), uint32_t(f), 3, pixels.data()};
-        uint8_t* data = nullptr;
-        std::size_t bytes = 0;
-        vqtex_error err{};
-        ASSERT_EQ(vqtex_encode_volume(&p, &in, &data, &bytes, nullptr, &err), VQTEX_OK)
-            << w << "x" << h << "x" << f << ": " << err.detail;
-        vqtex_decode_params d;
-        vqtex_decode_params_init(&d);
-        d.width = 20;
-        d.height = 18;
-        vqtex_volume out{};
-        EXPECT_EQ(vqtex_decode_volume(&d, 3, data, bytes, &out, &err), VQTEX_OK) << err.detail;
-        EXPECT_EQ(out.frames, 3u);
-        vqtex_volume_free(&out);
-        vqtex_free(data);
+        // Trees and the space-time atlas alike.
+        for (const vqtex_codebook codebook : {VQTEX_CODEBOOK_TREES, VQTEX_CODEBOOK_ATLAS}) {
+            vqtex_volume_encode_params p;
+            vqtex_volume_encode_params_init(&p);
+            p.codebook = codebook;
+            p.threads = 2;
+            const vqtex_volume in{uint32_t(w), uint32_t(h), uint32_t(f), 3, pixels.data()};
+            uint8_t* data = nullptr;
+            std::size_t bytes = 0;
+            vqtex_error err{};
+            ASSERT_EQ(vqtex_encode_volume(&p, &in, &data, &bytes, nullptr, &err), VQTEX_OK)
+                << w << "x" << h << "x" << f << " codebook " << codebook << ": " << err.detail;
+            vqtex_decode_params d;
+            vqtex_decode_params_init(&d);
+            d.width = 20;
+            d.height = 18;
+            vqtex_volume out{};
+            EXPECT_EQ(vqtex_decode_volume(&d, 3, data, bytes, &out, &err), VQTEX_OK) << err.detail;
+            EXPECT_EQ(out.frames, 3u);
+            vqtex_volume_free(&out);
+            vqtex_free(data);
+        }
     }
 }

@@ -357,9 +357,19 @@ TEST(Tools, AnimationRoundTrip) {
     ToolRun r = encode_tool("'" + corpus + "/flicker_32_anim/frame_%03d.png' " + file + " --quality 10 -j 2");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("32 frames"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("atlas: 32x32 at (0, 0), frames 0 to 31"), std::string::npos) << r.output;
     r = info_tool(file);
     ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("vqtex format 12"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("a loop of 32 frames"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("atlas     32x32x32 (the whole example)"), std::string::npos) << r.output;
+    // With --trees, the paper's codebooks (format 2).
+    const std::string trees = (dir / "flicker_trees.vqt").string();
+    r = encode_tool("'" + corpus + "/flicker_32_anim/frame_%03d.png' " + trees + " --trees --quality 10 -j 2");
+    ASSERT_EQ(r.status, 0) << r.output;
+    r = info_tool(trees);
     EXPECT_NE(r.output.find("animation 32 example frames"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("vqtex format 2"), std::string::npos) << r.output;
     r = decode_tool(file + " '" + (dir / "out_%02d.png").string() + "' --frames 6 --size 20x12 -j 2");
     ASSERT_EQ(r.status, 0) << r.output;
     for (int t = 0; t < 6; ++t) {

@@ -90,8 +90,9 @@ AnimationChoice choose_animation_atlas(const std::vector<Image>& frames, const A
     }
     c.frames = loop_length(frames);
     if (c.width < kMinAtlasSide || c.height < kMinAtlasSide)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "an animation's frames must be at least " + std::to_string(kMinAtlasSide) +
-                                               "x" + std::to_string(kMinAtlasSide) + " pixels to store as an atlas");
+        fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "an animation's frames must be at least " + std::to_string(kMinAtlasSide) +
+                                              "x" + std::to_string(kMinAtlasSide) +
+                                              " pixels to store as an atlas: store it as trees (--trees)");
     const uint64_t budget = options.budget ? options.budget
                                            : animation_budget_of_quality(options.quality,
                                                                          uint64_t(c.width) * uint64_t(c.height), c.frames);

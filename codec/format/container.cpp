@@ -39,9 +39,8 @@ uint16_t read_format_version(const uint8_t* data, std::size_t size) {
 FileHeader read_header(const uint8_t* data, std::size_t size) {
     const uint16_t version = read_format_version(data, size);
     if (version == kAnimationAtlasFormatVersion)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "file holds an animation (a space-time atlas, format version 12), not a "
-                                           "still texture: decode it with vqtex_decode_volume (vqtex-decode writes "
-                                           "its frames)");
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "file holds an animated texture (a space-time atlas, format version 12): "
+                                           "decode it with vqtex_decode_volume (vqtex-decode --frames)");
     if (is_compact_atlas_version(version))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "file holds a still texture (an atlas with the compact header of format version " +
