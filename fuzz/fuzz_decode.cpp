@@ -1,7 +1,8 @@
 // fuzz_decode.cpp - libFuzzer target: any bytes as a .vqt file through
 // vqtex_decode_mips and vqtex_decode at a small output size and a low memory
 // limit, so the fuzzer spends its time on the parser and the synthesis of
-// what the parser accepts, not on large legitimate outputs. Inputs whose
+// what the parser accepts, not on large legitimate outputs; an animation
+// (format 2 or 12) goes to vqtex_decode_volume for a few frames. Inputs whose
 // only fault is the checksum are decoded again with the checksum repaired.
 // Whatever decodes must have the right mip chain; one accepted input in
 // kRecheck is decoded a second time, with vqtex_decode, which must give the
@@ -35,12 +36,40 @@ uint32_t input_hash(const uint8_t* data, size_t size) {
     return h;
 }
 
+// An animation (format 2 or 12): a few small frames through
+// vqtex_decode_volume, which must give exactly what it was asked for.
+vqtex_status decode_animation(const uint8_t* data, size_t size) {
+    constexpr uint32_t kFrames = 3;
+    vqtex_decode_params p = params();
+    p.width = 16;
+    p.height = 12;
+    vqtex_volume out;
+    vqtex_error err;
+    const vqtex_status st = vqtex_decode_volume(&p, kFrames, data, size, &out, &err);
+    if (st != VQTEX_OK) {
+        check_failure(st, err);
+        if (out.pixels) violated("a failed animation decode returned frames");
+        return st;
+    }
+    if (out.width != 16 || out.height != 12 || out.frames != kFrames || out.channels < 1 || out.channels > 4 ||
+        !out.pixels)
+        violated("decoded animation has the wrong shape");
+    volatile uint32_t sum = 0;
+    for (size_t i = 0; i < size_t(16) * 12 * kFrames * out.channels; ++i) sum = sum + out.pixels[i];
+    vqtex_volume_free(&out);
+    return st;
+}
+
 vqtex_status decode(const uint8_t* data, size_t size) {
     const vqtex_decode_params p = params();
     vqtex_image levels[16];
     uint32_t count = 0;
     vqtex_error err;
     const vqtex_status st = vqtex_decode_mips(&p, data, size, levels, 16, &count, &err);
+    // An animation is refused as a still texture before anything else:
+    // decode its frames instead.
+    if (st == VQTEX_ERROR_INVALID_ARGUMENT && size > 9 && (data[8] == 2 || data[8] == 12) && data[9] == 0)
+        return decode_animation(data, size);
     if (st != VQTEX_OK) {
         check_failure(st, err);
         if (count != 0) violated("a failed decode returned levels");

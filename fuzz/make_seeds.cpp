@@ -3,7 +3,8 @@
 // format feature (keyed and keyless entries, noise and parent init, seam
 // closing on and off, 1 to 4 channels, every precision; format v7 atlas
 // files as the encoder writes them, the same as v3 to v6, and v7 files
-// with a stored exemplar size and stored parameters), and encoder inputs
+// with a stored exemplar size and stored parameters; animations as
+// space-time atlases and as trees), and encoder inputs
 // in fuzz_encode.cpp's layout. Small crops keep the seeds small, which is
 // what mutation works best on. Usage: make_seeds CORPUS_DIR OUT_DIR
 #include <cstdio>
@@ -211,6 +212,43 @@ int main(int argc, char** argv) {
                 return 1;
             }
             write(out / "decode" / ("set_" + std::to_string(count) + "_maps.vqt"), data, size);
+            vqtex_free(data);
+            ++files;
+        }
+    }
+    // Animations: a space-time atlas (version 12) of 1, 3 and 4 channels
+    // and a trees file (version 2), 16x16 and 4 frames, so that the fuzzers
+    // reach the sequence reader, dav1d's inter frames and both engines for
+    // animations.
+    for (uint32_t channels : {1u, 3u, 4u}) {
+        const vqtex_tools::LoadedImage img = vqtex_tools::load_image((corpus / images[channels % 5]).string());
+        std::vector<uint8_t> frames;
+        for (uint32_t t = 0; t < 4; ++t) {
+            // Each frame the example moved 2 pixels to the right.
+            const std::vector<uint8_t> frame = crop(img, 16 + 2 * t, channels);
+            for (uint32_t y = 0; y < 16; ++y)
+                for (uint32_t x = 0; x < 16; ++x)
+                    for (uint32_t c = 0; c < channels; ++c)
+                        frames.push_back(frame[(size_t(y) * (16 + 2 * t) + x + 2 * t) * channels + c]);
+        }
+        for (const vqtex_codebook codebook : {VQTEX_CODEBOOK_ATLAS, VQTEX_CODEBOOK_TREES}) {
+            if (codebook == VQTEX_CODEBOOK_TREES && channels != 3) continue;
+            vqtex_volume_encode_params p;
+            vqtex_volume_encode_params_init(&p);
+            p.codebook = codebook;
+            p.threads = 1;
+            if (codebook == VQTEX_CODEBOOK_ATLAS) p.target_size = 600;
+            const vqtex_volume example{16, 16, 4, channels, frames.data()};
+            uint8_t* data = nullptr;
+            size_t size = 0;
+            vqtex_error err;
+            if (vqtex_encode_volume(&p, &example, &data, &size, nullptr, &err) != VQTEX_OK) {
+                std::fprintf(stderr, "make_seeds: animation of %u channels: %s\n", channels, err.detail);
+                return 1;
+            }
+            const std::string name = std::string("anim_") + (codebook == VQTEX_CODEBOOK_ATLAS ? "v12" : "v2") + "_c" +
+                                     std::to_string(channels);
+            write(out / "decode" / (name + ".vqt"), data, size);
             vqtex_free(data);
             ++files;
         }

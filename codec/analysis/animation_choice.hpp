@@ -19,6 +19,7 @@ struct AnimationChoiceOptions {
     int levels = 0;                 // the engine's stack depth; 0 = the deepest the atlas allows
     bool example_tileable = false;  // the example wraps in space
     uint64_t seed = 1;              // the file's default decoding seed
+    int threads = 1;                // the file does not depend on it
 };
 
 struct AnimationChoice {
@@ -30,11 +31,15 @@ struct AnimationChoice {
     uint32_t attempts = 0;                    // AV1 encodes tried
 };
 
+// How many still frames' budgets an atlas of `frames` frames gets: 1 +
+// (frames - 1) / 5, for at most 64 frames (the inter frames of a loop cost
+// a fraction of its key frame; docs/ANIMATION.md measures it).
+double budgeted_frames(int frames);
+
 // The byte budget of a quality preset for an animation whose atlas has
 // `pixels` pixels a frame and `frames` frames: a still atlas's budget for
-// that area (atlas_choice.hpp, at most 256x256 counted), times 1 + (frames
-// - 1) / 4 for at most 64 frames (the inter frames of a loop cost a fraction
-// of its key frame; docs/ANIMATION.md measures it).
+// that area (atlas_choice.hpp, at most 256x256 counted) times
+// budgeted_frames: 29.5 KB for 128x128x32 at the default.
 uint64_t animation_budget_of_quality(int quality, uint64_t pixels, int frames);
 
 // Where the loop of `frames` closes best: the segment length n (2 to the
@@ -48,10 +53,15 @@ int loop_length(const std::vector<Image>& frames);
 // The atlas: the whole frame area, or above 256x256 the square part of
 // side 256 whose first frame's colours are nearest the whole's
 // (representative_place); the loop's segment from frame 0 (loop_length);
-// the finest AV1 level whose file fits the budget. When even level 63
-// does not fit, the segment is halved, then the area, until it does;
-// LIMIT_EXCEEDED when nothing fits. The bytes do not depend on any thread
-// count (libaom runs on one thread).
+// the finest AV1 level whose file fits the budget. At budgets of at most
+// 0.13 bytes per pixel of the frame area counted as the budget counts its
+// frames, parts of 3/4 and 1/2 the side (centre and top-left) compete,
+// each at its finest fitting level: each file is decoded for a few frames
+// and scored against the example's frames with metrics/, by the stills'
+// rule (atlas_choice.hpp). When even level 63 of the whole does not fit,
+// the segment is halved, then the area, until it does; LIMIT_EXCEEDED
+// when nothing fits. The bytes do not depend on the thread count (libaom
+// runs on one thread; the metrics are seeded).
 AnimationChoice choose_animation_atlas(const std::vector<Image>& frames, const AnimationChoiceOptions& options);
 
 }  // namespace vqtex

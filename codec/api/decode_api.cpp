@@ -17,8 +17,6 @@
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/normal_map.hpp"
-#include "engine/appearance.hpp"
-#include "engine/coherent_volume_synthesis.hpp"
 #include "engine/pyramid.hpp"
 #include "engine/synthesis.hpp"
 #include "engine/temporal_synthesis.hpp"
@@ -230,24 +228,14 @@ Volume decode_animation_atlas(const vqtex_decode_params* p, uint32_t frames, con
                             animation_decode_memory(f.atlas_width, f.atlas_height, f.atlas_frames, f.header.channels,
                                                     f.header.levels, out.width, out.height, out.frames),
                         limit, out.name());
-    const int threads = resolve_threads(p->threads);
-    const std::vector<AppearanceSpace> space =
-        build_appearance_frames(f.frames, f.header.levels, f.params.example_tileable, threads);
-    VolumeCoherentOptions opt;
-    opt.width = int(out.width);
-    opt.height = int(out.height);
-    opt.frames = int(out.frames);
-    opt.seed = seed_of(p, f.header);
-    opt.threads = threads;
-    opt.passes = f.params.passes;
-    opt.coarse_passes = f.params.coarse_passes;
-    opt.polish_passes = f.params.polish_passes;
-    opt.roll = f.params.roll;
-    opt.temporal_bias = f.params.temporal_bias;
-    opt.close_loop = f.params.closing_frames > 0;
-    opt.closing_frames = f.params.closing_frames;
-    opt.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
-    return synthesize_volume_coherent(space, f.frames, opt);
+    AnimationRequest request;
+    request.width = int(out.width);
+    request.height = int(out.height);
+    request.frames = int(out.frames);
+    request.seed = seed_of(p, f.header);
+    request.threads = resolve_threads(p->threads);
+    request.progress = stage_progress(p->progress, p->progress_user, VQTEX_STAGE_SYNTHESISE);
+    return synthesize_animation(f, request);
 }
 
 // vqtex_inspect for an atlas animation: its atlas's size and frames, the

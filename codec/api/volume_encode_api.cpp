@@ -36,6 +36,7 @@ void encode_animation_atlas(const vqtex_volume_encode_params& p, const Volume& e
     o.levels = int(p.levels);
     o.example_tileable = p.example_tileable != 0;
     o.seed = p.seed;
+    o.threads = resolve_threads(p.threads);
     const AnimationChoice c = choose_animation_atlas(frames, o);
     if (progress && !progress(1, 1)) fail(VQTEX_ERROR_CANCELLED, "encoding cancelled by the progress callback");
     copy_out(c.file, data, size);

@@ -7,7 +7,9 @@
 #include "common/bitstream.hpp"
 #include "common/checksum.hpp"
 #include "common/error.hpp"
+#include "engine/appearance.hpp"
 #include "engine/coherent_synthesis.hpp"
+#include "engine/coherent_volume_synthesis.hpp"
 #include "format/atlas_coder.hpp"
 #include "format/atlas_compact.hpp"
 #include "format/atlas_file.hpp"
@@ -47,6 +49,26 @@ uint64_t animation_decode_memory(int atlas_width, int atlas_height, int atlas_fr
     // previous frame's position maps at every level.
     return uint64_t(atlas_frames) * coherent_analysis_memory(atlas_width, atlas_height, channels, levels, 1) +
            3 * width * height * frames * uint64_t(channels) + 2 * coherent_output_memory(width, height, channels);
+}
+
+Volume synthesize_animation(const AnimationFile& f, const AnimationRequest& request) {
+    const std::vector<AppearanceSpace> space =
+        build_appearance_frames(f.frames, f.header.levels, f.params.example_tileable, request.threads);
+    VolumeCoherentOptions opt;
+    opt.width = request.width;
+    opt.height = request.height;
+    opt.frames = request.frames;
+    opt.seed = request.seed;
+    opt.threads = request.threads;
+    opt.passes = f.params.passes;
+    opt.coarse_passes = f.params.coarse_passes;
+    opt.polish_passes = f.params.polish_passes;
+    opt.roll = f.params.roll;
+    opt.temporal_bias = f.params.temporal_bias;
+    opt.close_loop = f.params.closing_frames > 0;
+    opt.closing_frames = f.params.closing_frames;
+    opt.progress = request.progress;
+    return synthesize_volume_coherent(space, f.frames, opt);
 }
 
 AnimationFile decode_animation_file(const uint8_t* data, std::size_t size, std::size_t memory_limit) {

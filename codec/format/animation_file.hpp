@@ -10,9 +10,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "common/image.hpp"
+#include "engine/volume.hpp"
 #include "format/container.hpp"
 
 namespace vqtex {
@@ -56,6 +58,20 @@ bool is_animation_file(const uint8_t* data, std::size_t size);
 // memory limit covers the file, dav1d's frames and the decoded atlas; the
 // engine's memory is the caller's to check, with animation_decode_memory.
 AnimationFile decode_animation_file(const uint8_t* data, std::size_t size, std::size_t memory_limit);
+
+// What a decode of a file is asked for.
+struct AnimationRequest {
+    int width = 0, height = 0, frames = 0;  // the output's size and frame count, all set
+    uint64_t seed = 1;
+    int threads = 1;
+    std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
+};
+
+// The animation a decoded file gives (docs/FORMAT.md §6.3): the coherent
+// engine for animations on the atlas's frames, with the file's
+// parameters; exactly what vqtex_synthesize_volume gives from those frames
+// with the same parameters.
+Volume synthesize_animation(const AnimationFile& file, const AnimationRequest& request);
 
 // What decoding needs beside the file and the decoded atlas: the
 // appearance space of every atlas frame, and an output of `frames` frames
