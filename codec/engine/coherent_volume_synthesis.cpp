@@ -14,6 +14,7 @@
 #include "engine/coherent_start.hpp"
 #include "engine/coherent_torus.hpp"
 #include "engine/pyramid.hpp"
+#include "engine/seam_blend.hpp"
 
 namespace vqtex {
 namespace {
@@ -220,11 +221,18 @@ Volume synthesize_volume_coherent(const std::vector<AppearanceSpace>& example, c
             current[std::size_t(l)] = std::move(map);
         }
         const VoxelMap& finest = current[0];
-        for (int y = 0; y < options.height; ++y)
-            for (int x = 0; x < options.width; ++x) {
-                const uint64_t v = finest.voxels[std::size_t(y) * options.width + x];
-                copy_pixel(out.at(x, y, f), frames[std::size_t(voxel_t(v))].at(voxel_x(v), voxel_y(v)), out.channels);
-            }
+        if (options.blend > 0) {
+            Image frame(options.width, options.height, out.channels);
+            blend_voxels(frames, space.wraps, options.blend, finest.voxels.data(), frame, options.threads);
+            std::copy(frame.pixels.begin(), frame.pixels.end(), out.frame_data(f));
+        } else {
+            for (int y = 0; y < options.height; ++y)
+                for (int x = 0; x < options.width; ++x) {
+                    const uint64_t v = finest.voxels[std::size_t(y) * options.width + x];
+                    copy_pixel(out.at(x, y, f), frames[std::size_t(voxel_t(v))].at(voxel_x(v), voxel_y(v)),
+                               out.channels);
+                }
+        }
         if (maps) (*maps)[std::size_t(f)] = finest;
         if (f == 0) first = current;
         previous.swap(current);

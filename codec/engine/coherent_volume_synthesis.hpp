@@ -53,6 +53,9 @@ struct VolumeCoherentOptions : CoherentRun {
     // frame-to-frame change 1.04-1.09 times the example's with 0, 1.02-1.04
     // with 256, per-frame SWD unchanged.
     int temporal_bias = 256;
+    // Radius of the blend of the copies that meet at a seam, in each frame
+    // (seam_blend.hpp), 0..kMaxBlendRadius; 0 copies every pixel.
+    int blend = 0;
 };
 
 // One output frame's positions (pack_voxel), width x height.

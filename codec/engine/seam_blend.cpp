@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/parallel.hpp"
+#include "engine/coherent_positions.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/copy_links.hpp"
 
@@ -19,34 +20,26 @@ namespace {
 constexpr int kWeights[kMaxBlendRadius + 1][2 * kMaxBlendRadius + 1] = {
     {1}, {1, 2, 1}, {1, 4, 6, 4, 1}, {1, 6, 15, 20, 15, 6, 1}};
 
-// Pixel (x, y)'s blend at a seam (blend_rows), for C channels: `rows`
-// are the map's rows from y - r, `xs` the window's wrapped columns. With
+// Pixel (x, y)'s blend at a seam, for C channels: `source(dx, dy)` is
+// the example pixel (C samples) that the neighbour at offset (dx, dy) puts
+// at (x, y), or nullptr when its copy does not reach it. With
 // kStraightAlpha, the last of C channels is straight (unassociated) alpha
 // and colour is weighted by each tap's alpha as well, so that a
 // transparent copy's colour (often black) does not darken an opaque one
 // where they meet; where every tap is transparent, colour is weighted as
 // alpha is.
-template <int C, bool kStraightAlpha, typename T>
-void blend_pixel(const BasicImage<T>& example, bool wraps, int r, const uint32_t* const* rows, const int* xs, T* dst) {
-    const int ew = example.width, eh = example.height;
+template <int C, bool kStraightAlpha, typename T, typename Source>
+void blend_pixel(int r, const Source& source, T* dst) {
     const int* weight = kWeights[r];
     // Sums of a tap's weight (at most 64 x 64) times a byte fit 32 bits;
     // times alpha and colour, or of 16-bit samples, they need 64.
     using Sum = std::conditional_t<kStraightAlpha || (sizeof(T) > 1), uint64_t, uint32_t>;
     Sum sum[C] = {}, weighted[C] = {}, total = 0, alpha = 0;
-    for (int dy = -r; dy <= r; ++dy) {
-        const uint32_t* taps = rows[dy + r];
+    for (int dy = -r; dy <= r; ++dy)
         for (int dx = -r; dx <= r; ++dx) {
-            const uint32_t p = taps[xs[dx + r]];
-            int sx = position_x(p) - dx, sy = position_y(p) - dy;
-            if (wraps) {
-                sx = Image::wrap(sx, ew);
-                sy = Image::wrap(sy, eh);
-            } else if (unsigned(sx) >= unsigned(ew) || unsigned(sy) >= unsigned(eh)) {
-                continue;  // this neighbour's copy does not reach (x, y)
-            }
+            const T* src = source(dx, dy);
+            if (!src) continue;
             const Sum wt = Sum(weight[dx + r] * weight[dy + r]);
-            const T* src = example.pixels.data() + (std::size_t(sy) * std::size_t(ew) + std::size_t(sx)) * C;
             for (int c = 0; c < C; ++c) sum[c] += wt * src[c];
             if constexpr (kStraightAlpha) {
                 for (int c = 0; c < C - 1; ++c) weighted[c] += wt * src[C - 1] * src[c];
@@ -54,11 +47,37 @@ void blend_pixel(const BasicImage<T>& example, bool wraps, int r, const uint32_t
             }
             total += wt;
         }
-    }
     for (int c = 0; c < C; ++c) {
         const bool by_alpha = kStraightAlpha && c < C - 1 && alpha > 0;
         dst[c] = T(by_alpha ? (weighted[c] + alpha / 2) / alpha : (sum[c] + total / 2) / total);
     }
+}
+
+// blend_pixel for the channel count and alpha rule of `channels` and
+// `straight_alpha`.
+template <typename T, typename Source>
+void blend_any_pixel(int channels, bool straight_alpha, int r, const Source& source, T* dst) {
+    switch (channels + (straight_alpha ? 4 : 0)) {
+        case 1: case 5: blend_pixel<1, false>(r, source, dst); break;
+        case 2: blend_pixel<2, false>(r, source, dst); break;
+        case 3: case 7: blend_pixel<3, false>(r, source, dst); break;
+        case 4: blend_pixel<4, false>(r, source, dst); break;
+        case 6: blend_pixel<2, true>(r, source, dst); break;
+        default: blend_pixel<4, true>(r, source, dst); break;
+    }
+}
+
+// The example pixel at (sx, sy), wrapped when the example wraps, nullptr
+// past its edge otherwise.
+template <typename T>
+const T* example_pixel(const BasicImage<T>& example, bool wraps, int sx, int sy) {
+    if (wraps) {
+        sx = Image::wrap(sx, example.width);
+        sy = Image::wrap(sy, example.height);
+    } else if (unsigned(sx) >= unsigned(example.width) || unsigned(sy) >= unsigned(example.height)) {
+        return nullptr;
+    }
+    return example.at(sx, sy);
 }
 
 template <typename T>
@@ -118,14 +137,12 @@ void blend_rows_of(const BasicImage<T>& example, bool wraps, int radius,
                 }
                 for (int dx = -r; dx <= r; ++dx) xs[dx + r] = Image::wrap(x + dx, w);
                 const uint32_t* const* window = row.data() + (local - r);
-                switch (channels + (straight_alpha ? 4 : 0)) {
-                    case 1: case 5: blend_pixel<1, false>(example, wraps, r, window, xs, dst); break;
-                    case 2: blend_pixel<2, false>(example, wraps, r, window, xs, dst); break;
-                    case 3: case 7: blend_pixel<3, false>(example, wraps, r, window, xs, dst); break;
-                    case 4: blend_pixel<4, false>(example, wraps, r, window, xs, dst); break;
-                    case 6: blend_pixel<2, true>(example, wraps, r, window, xs, dst); break;
-                    default: blend_pixel<4, true>(example, wraps, r, window, xs, dst); break;
-                }
+                blend_any_pixel(example.channels, straight_alpha, r,
+                                [&](int dx, int dy) {
+                                    const uint32_t p = window[dy + r][xs[dx + r]];
+                                    return example_pixel(example, wraps, position_x(p) - dx, position_y(p) - dy);
+                                },
+                                dst);
             }
         }
     });
@@ -141,6 +158,47 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
 void blend_rows(const Image16& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
                 int first, int count, Image16& out, int threads, bool straight_alpha) {
     blend_rows_of(example, wraps, radius, row_at, first, count, out, threads, straight_alpha);
+}
+
+void blend_voxels(const std::vector<Image>& frames, bool wraps, int radius, const uint64_t* voxels, Image& out,
+                  int threads) {
+    const int r = std::clamp(radius, 0, kMaxBlendRadius);
+    const int w = out.width, h = out.height, channels = out.channels;
+    parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
+        int xs[2 * kMaxBlendRadius + 1], ys[2 * kMaxBlendRadius + 1];
+        for (int y = int(y0); y < int(y1); ++y) {
+            for (int d = -r; d <= r; ++d) ys[d + r] = Image::wrap(y + d, h);
+            uint8_t* dst = out.at(0, y);
+            for (int x = 0; x < w; ++x, dst += channels) {
+                const uint64_t own = voxels[std::size_t(y) * w + x];
+                const Image& frame = frames[std::size_t(voxel_t(own))];
+                for (int d = -r; d <= r; ++d) xs[d + r] = Image::wrap(x + d, w);
+                // Inside a copy every neighbour holds the centre's voxel
+                // plus its offset, and proposes the centre's own pixel.
+                bool whole = true;
+                for (int dy = -r; dy <= r && whole; ++dy)
+                    for (int dx = -r; dx <= r; ++dx) {
+                        const uint64_t v = voxels[std::size_t(ys[dy + r]) * w + std::size_t(xs[dx + r])];
+                        if (voxel_t(v) != voxel_t(own) || voxel_x(v) != voxel_x(own) + dx ||
+                            voxel_y(v) != voxel_y(own) + dy) {
+                            whole = false;
+                            break;
+                        }
+                    }
+                if (whole) {
+                    copy_pixel(dst, frame.at(voxel_x(own), voxel_y(own)), channels);
+                    continue;
+                }
+                blend_any_pixel(channels, false, r,
+                                [&](int dx, int dy) {
+                                    const uint64_t v = voxels[std::size_t(ys[dy + r]) * w + std::size_t(xs[dx + r])];
+                                    return example_pixel(frames[std::size_t(voxel_t(v))], wraps, voxel_x(v) - dx,
+                                                         voxel_y(v) - dy);
+                                },
+                                dst);
+            }
+        }
+    });
 }
 
 }  // namespace vqtex

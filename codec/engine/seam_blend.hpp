@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "common/image.hpp"
 
@@ -42,5 +43,12 @@ void blend_rows(const Image& example, bool wraps, int radius, const std::functio
 // §4.15): the same weights and rounding.
 void blend_rows(const Image16& example, bool wraps, int radius, const std::function<const uint32_t*(int)>& row_at,
                 int first, int count, Image16& out, int threads, bool straight_alpha = false);
+
+// An animation's frame read through its voxels (coherent_volume_synthesis.hpp,
+// pack_voxel: a w x h map, out's size): the same blend, each neighbour
+// proposing the pixel of its own example frame; out has the frames'
+// channels. Integer arithmetic, the same bytes for any thread count.
+void blend_voxels(const std::vector<Image>& frames, bool wraps, int radius, const uint64_t* voxels, Image& out,
+                  int threads);
 
 }  // namespace vqtex

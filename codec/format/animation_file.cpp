@@ -10,6 +10,7 @@
 #include "engine/appearance.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/coherent_volume_synthesis.hpp"
+#include "engine/seam_blend.hpp"
 #include "format/atlas_coder.hpp"
 #include "format/atlas_compact.hpp"
 #include "format/atlas_file.hpp"
@@ -67,6 +68,7 @@ Volume synthesize_animation(const AnimationFile& f, const AnimationRequest& requ
     opt.temporal_bias = f.params.temporal_bias;
     opt.close_loop = f.params.closing_frames > 0;
     opt.closing_frames = f.params.closing_frames;
+    opt.blend = f.params.blend;
     opt.progress = request.progress;
     return synthesize_volume_coherent(space, f.frames, opt);
 }
@@ -118,6 +120,7 @@ AnimationFile decode_animation_file(const uint8_t* data, std::size_t size, std::
         p.temporal_bias = int(r.varint_in("temporal bias", 0, kMaxTemporalBias));
         p.closing_frames = int(r.varint_in("closing frames", 0, kMaxClosingFrames));
         p.roll = r.varint_in("roll flag", 0, 1) != 0;
+        p.blend = int(r.varint_in("blend", 0, kMaxBlendRadius));
         if (are_animation_defaults(p))
             r.corrupt("the parameters are stored but are the defaults (packed bit 6 must then be 0)");
         f.parameter_bytes = r.position() - at;

@@ -29,6 +29,7 @@ struct AnimationParams {
     int temporal_bias = 256;        // surcharge of a move away from the advanced position, in 1/256, 0..1024
     int closing_frames = 8;         // last frames matched against the first to close the loop, 0..64
     bool roll = true;               // cut the output torus where the pixels change least over the frames
+    int blend = 2;                  // radius of the blend at seams in each frame, 0..kMaxBlendRadius
 };
 inline constexpr int kMaxTemporalBias = 1024;
 inline constexpr int kMaxClosingFrames = 64;
@@ -36,7 +37,8 @@ inline constexpr int kMaxClosingFrames = 64;
 inline bool are_animation_defaults(const AnimationParams& p) {
     const AnimationParams d;
     return p.passes == d.passes && p.coarse_passes == d.coarse_passes && p.polish_passes == d.polish_passes &&
-           p.temporal_bias == d.temporal_bias && p.closing_frames == d.closing_frames && p.roll == d.roll;
+           p.temporal_bias == d.temporal_bias && p.closing_frames == d.closing_frames && p.roll == d.roll &&
+           p.blend == d.blend;
 }
 
 struct AnimationFile {

@@ -220,8 +220,8 @@ typedef struct vqtex_coherent_params {
     uint32_t passes;           /* correction passes per level (the finest: one fewer, then a colour pass), 1 to 8 [--passes] */
     uint32_t jitter;           /* variety: seeded displacement of each level's coordinates, in
                                   1/256 of the level's spacing, 0 to 1024 [--jitter] */
-    uint32_t blend;            /* still textures: radius of the blend of the copies that meet at the
-                                  output's seams, 0 (none) to 3; default 2 [--blend] */
+    uint32_t blend;            /* radius of the blend of the copies that meet at the output's seams
+                                  (an animation's: in each frame), 0 (none) to 3; default 2 [--blend] */
     uint32_t relocate;         /* still textures: positions tried per copy by the copy relocation,
                                   which moves whole copies to where they fit the copies around
                                   them; 0 (none) to 1024, default 64 [--relocate] */
@@ -685,10 +685,11 @@ VQTEX_API vqtex_status vqtex_decode_volume(const vqtex_decode_params* params, ui
  * in time) and is corrected with neighbourhoods of the current and the
  * previous frame. The output tiles in space; its last frame is matched
  * against its first, so it loops in time (docs/ANIMATION.md says how well).
- * Uses params->engine (VQTEX_ENGINE_COHERENT only), the common fields
- * and coherent.passes; coherent.coherence must be 1 and coherent.jitter 0;
- * blend, relocate and edge_guard are not used (frames are not blended at
- * seams nor relocated). The same bytes for any thread count.
+ * Uses params->engine (VQTEX_ENGINE_COHERENT only), the common fields,
+ * coherent.passes and coherent.blend (each frame's copies blended where
+ * they meet); coherent.coherence must be 1 and coherent.jitter 0;
+ * relocate, edge_guard, cut and cover are not used. The same bytes for any
+ * thread count; a version 12 file decodes as this call on its atlas.
  * `out` receives a new volume (free with vqtex_volume_free); stats and error
  * may be NULL. */
 VQTEX_API vqtex_status vqtex_synthesize_volume(const vqtex_synth_params* params, const vqtex_volume* example,
