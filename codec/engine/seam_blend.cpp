@@ -164,6 +164,7 @@ void blend_voxels(const std::vector<Image>& frames, bool wraps, int radius, cons
                   int threads) {
     const int r = std::clamp(radius, 0, kMaxBlendRadius);
     const int w = out.width, h = out.height, channels = out.channels;
+    const bool straight_alpha = channels == 2 || channels == 4;
     parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
         int xs[2 * kMaxBlendRadius + 1], ys[2 * kMaxBlendRadius + 1];
         for (int y = int(y0); y < int(y1); ++y) {
@@ -189,7 +190,7 @@ void blend_voxels(const std::vector<Image>& frames, bool wraps, int radius, cons
                     copy_pixel(dst, frame.at(voxel_x(own), voxel_y(own)), channels);
                     continue;
                 }
-                blend_any_pixel(channels, false, r,
+                blend_any_pixel(channels, straight_alpha, r,
                                 [&](int dx, int dy) {
                                     const uint64_t v = voxels[std::size_t(ys[dy + r]) * w + std::size_t(xs[dx + r])];
                                     return example_pixel(frames[std::size_t(voxel_t(v))], wraps, voxel_x(v) - dx,

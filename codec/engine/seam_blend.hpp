@@ -47,7 +47,9 @@ void blend_rows(const Image16& example, bool wraps, int radius, const std::funct
 // An animation's frame read through its voxels (coherent_volume_synthesis.hpp,
 // pack_voxel: a w x h map, out's size): the same blend, each neighbour
 // proposing the pixel of its own example frame; out has the frames'
-// channels. Integer arithmetic, the same bytes for any thread count.
+// channels, a 2- or 4-channel frame's last one straight alpha (weighting
+// colour, as blend_rows does with straight_alpha). Integer arithmetic, the
+// same bytes for any thread count.
 void blend_voxels(const std::vector<Image>& frames, bool wraps, int radius, const uint64_t* voxels, Image& out,
                   int threads);
 

@@ -4,6 +4,8 @@
 // the atlas's frames.
 #include "format/animation_file.hpp"
 
+#include <algorithm>
+
 #include "common/bitstream.hpp"
 #include "common/checksum.hpp"
 #include "common/error.hpp"
@@ -45,11 +47,16 @@ bool is_animation_file(const uint8_t* data, std::size_t size) {
 
 uint64_t animation_decode_memory(int atlas_width, int atlas_height, int atlas_frames, int channels, int levels,
                                  uint64_t width, uint64_t height, uint64_t frames) {
-    // Every atlas frame's appearance space; the output volume, the copy
-    // handed to the caller and the torus cut's planes; one frame's and the
-    // previous frame's position maps at every level.
-    return uint64_t(atlas_frames) * coherent_analysis_memory(atlas_width, atlas_height, channels, levels, 1) +
-           3 * width * height * frames * uint64_t(channels) + 2 * coherent_output_memory(width, height, channels);
+    const uint64_t a = uint64_t(atlas_width) * uint64_t(atlas_height), ch = uint64_t(channels),
+                   l = uint64_t(std::max(levels, 1));
+    // Every level of every atlas frame at once: its stack's colours, its raw
+    // vectors and its appearance vectors (8 components of 16 bits). The
+    // output volume, the copy handed to the caller and the torus cut's
+    // planes. The position maps of 8-byte voxels (the frame being
+    // corrected, the previous one, frame 0's and the pass's buffers: 56
+    // bytes a pixel with frame 0's coarser levels) and a frame's blend.
+    return uint64_t(atlas_frames) * a * (l * ch + 16 + 16 * l) + 3 * width * height * frames * ch +
+           width * height * (56 + ch);
 }
 
 Volume synthesize_animation(const AnimationFile& f, const AnimationRequest& request) {

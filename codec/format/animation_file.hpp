@@ -69,15 +69,16 @@ struct AnimationRequest {
     std::function<bool(uint64_t done, uint64_t total)> progress;  // false cancels
 };
 
-// The animation a decoded file gives (docs/FORMAT.md §6.3): the coherent
+// The animation a decoded file gives (docs/FORMAT.md §6.5): the coherent
 // engine for animations on the atlas's frames, with the file's
 // parameters; exactly what vqtex_synthesize_volume gives from those frames
 // with the same parameters.
 Volume synthesize_animation(const AnimationFile& file, const AnimationRequest& request);
 
 // What decoding needs beside the file and the decoded atlas: the
-// appearance space of every atlas frame, and an output of `frames` frames
-// of width x height with its position maps (docs/FORMAT.md §6.3).
+// analysis of every level of every atlas frame, held at once, and an
+// output of `frames` frames of width x height with its position maps
+// (docs/FORMAT.md §6.3).
 uint64_t animation_decode_memory(int atlas_width, int atlas_height, int atlas_frames, int channels, int levels,
                                  uint64_t width, uint64_t height, uint64_t frames);
 

@@ -25,13 +25,14 @@ inline constexpr int kMaxAtlasSide = 4096;
 
 // The bitstream of an atlas of `channels` channels (docs/FORMAT.md §3):
 //  1 (grey): one monochrome AV1 frame.
-//  3 (RGB): one AV1 frame in YCbCr (4:4:4 or 4:2:0), converted by
-//     atlas_ycbcr_to_rgb.
+//  3 (RGB): one AV1 frame in YCbCr (any chroma subsampling; the encoder
+//     writes 4:4:4 or 4:2:0), converted by atlas_ycbcr_to_rgb.
 //  2, 4 (with alpha): varint n, then n bytes of the colour frame as above,
 //     then the alpha plane as a monochrome AV1 frame.
-// Each AV1 frame is a sequence of OBUs with size fields and no temporal
-// delimiter: a sequence header and one frame (or frame header and tile
-// group), 8 bits per sample, exactly width x height.
+// Each AV1 frame is a sequence of OBUs with size fields, temporal
+// delimiters optional (the encoder writes none): a sequence header and one
+// frame (or frame header and tile group), 8 bits per sample, exactly width
+// x height.
 Image decode_atlas(const uint8_t* data, std::size_t size, int width, int height, int channels,
                    const std::string& where);
 

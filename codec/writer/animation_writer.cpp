@@ -7,6 +7,7 @@
 #include "format/atlas_coder.hpp"
 #include "format/atlas_compact.hpp"
 #include "format/atlas_file.hpp"
+#include "engine/coherent_synthesis.hpp"
 #include "engine/seam_blend.hpp"
 #include "writer/byte_writer.hpp"
 
@@ -21,7 +22,9 @@ std::vector<uint8_t> encode_animation_file(const FileHeader& header, int atlas_w
         atlas_height > kMaxAtlasSide || atlas_frames < 1 || atlas_frames > kMaxAtlasFrames || bitstream.empty() ||
         p.passes < 1 || p.passes > 16 || p.coarse_passes < 1 || p.coarse_passes > 16 || p.polish_passes < 0 ||
         p.polish_passes > 4 || p.temporal_bias < 0 || p.temporal_bias > kMaxTemporalBias || p.closing_frames < 0 ||
-        p.closing_frames > kMaxClosingFrames || p.blend < 0 || p.blend > kMaxBlendRadius)
+        p.closing_frames > kMaxClosingFrames || p.blend < 0 || p.blend > kMaxBlendRadius ||
+        header.levels > coherent_levels(atlas_width, atlas_height) || header.exemplar_width < 1 ||
+        header.exemplar_height < 1 || header.exemplar_width > VQTEX_MAX_SIDE || header.exemplar_height > VQTEX_MAX_SIDE)
         fail(VQTEX_ERROR_INTERNAL, "encode_animation_file: fields outside what format version 12 can hold");
     const bool exemplar_size =
         header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
