@@ -15,12 +15,16 @@ bool BenchOptions::want(const std::string& protocol) const {
 }
 
 int parse_options(int argc, char** argv, BenchOptions& o) {
+#ifdef VQTEX_BENCH_SHARED_CORPUS
+    o.shared = VQTEX_BENCH_SHARED_CORPUS;  // the shared corpus beside the source tree
+#endif
     CLI::App app{"vqtex-bench: rate-quality of vqtex and peer codecs against held-out crops (docs/METRICS.md)."};
     app.add_flag("--atlas", o.atlas, "name the vqtex rows vqtex-atlas (atlas files, format 8, as without it)");
     app.add_option("--target-sizes", o.target_sizes,
                    "rate points as byte targets (vqtex-encode --target-size) instead of -q presets; "
                    "the summary's q column then holds the target. materials protocol: the whole set's targets, "
-                   "after the default quality (default 8000,16000,32000,64000; 0: the default quality alone)")
+                   "after the default quality (default 8000,16000,32000,64000; 0: the default quality alone); animation "
+                   "protocol: likewise (default 4000,16000,64000)")
         ->delimiter(',');
     app.add_option("folder", o.folder, "folder of textures (each cut into exemplar and held-out crops)")
         ->capture_default_str();
@@ -37,9 +41,10 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
     app.add_option("--protocols", o.protocols,
                    "protocols to run, comma-separated: same, large, synth; or materials alone (a folder of "
                    "material sets: one folder of maps each); or compact alone (each image the whole example, "
-                   "decoded at its size)")
+                   "decoded at its size); or animation alone (the folder's NAME_anim/ frame sequences and "
+                   "animations made from two photographs of --shared)")
         ->delimiter(',')
-        ->check(CLI::IsMember({"same", "large", "synth", "materials", "compact"}))
+        ->check(CLI::IsMember({"same", "large", "synth", "materials", "compact", "animation"}))
         ->capture_default_str();
     app.add_option("--sets", o.sets, "materials protocol: only these sets (folder names), comma-separated")
         ->delimiter(',');
@@ -52,6 +57,13 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
     app.add_flag("--compact-parts", o.compact_parts,
                  "compact protocol: also rows synthesised from lossless square parts of 256, 362 and 512 pixels "
                  "(the ceiling of an atlas that is a part of the input)");
+    app.add_option("--shared", o.shared,
+                   "animation protocol: the folder holding tux_oceansplash_256.png and embark_caustics_256.png, "
+                   "made into animations ('': none; a missing file is skipped with a note)")
+        ->capture_default_str();
+    app.add_option("--frames", o.anim_frames, "animation protocol: output frames")
+        ->check(CLI::Range(1u, 16384u))
+        ->capture_default_str();
     app.add_option("--synth-size", o.synth_size, "synth protocol: output side (default: 2x the exemplar's width and height)")
         ->check(CLI::Range(8u, 16384u));
     app.add_option("--synth-cache", o.synth_cache, "keep G'MIC's outputs here (synth protocol, large protocol's gmic rows), "
@@ -65,6 +77,11 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
     if (o.want("compact") && o.protocols.size() > 1) {
         std::fprintf(stderr, "vqtex-bench: error: the compact protocol runs alone (its images are whole examples, "
                              "not cut into exemplar and held-out crops)\n");
+        return 1;
+    }
+    if (o.want("animation") && o.protocols.size() > 1) {
+        std::fprintf(stderr, "vqtex-bench: error: the animation protocol runs alone (its folder holds frame "
+                             "sequences, not photographs)\n");
         return 1;
     }
     if (o.quick) {

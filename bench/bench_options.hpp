@@ -28,6 +28,11 @@ struct BenchOptions {
     // The compact protocol: also synthesise from lossless parts of the
     // input (the ceiling of any atlas that is a part of it).
     bool compact_parts = false;
+    // The animation protocol: the folder of the shared corpus whose
+    // photographs become animations (empty: none; default the source
+    // tree's ../shared/corpus) and the output frame count.
+    std::string shared;
+    uint32_t anim_frames = 64;
 
     bool want(const std::string& protocol) const;
     // The rate points (encodes, peers, ASTC) serve only the same and large

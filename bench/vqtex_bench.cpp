@@ -24,6 +24,10 @@
 // photographs, with a CSV of its own (material_protocol.cpp):
 //   materials: the maps of a surface stored in one file and decoded
 //          aligned, beside each map stored alone at the same bytes.
+// Two more run alone with CSVs and summaries of their own: compact
+// (compact_protocol.hpp: whole large examples) and animation
+// (animation_protocol.hpp: animated textures from a file against their
+// example sequence).
 //
 // This file holds the order of the work; the work itself is in
 // rate_protocols.cpp (same, large, ceilings), synth_protocol.cpp,
@@ -40,6 +44,7 @@
 #include <system_error>
 #include <vector>
 
+#include "animation_protocol.hpp"
 #include "bench_images.hpp"
 #include "bench_options.hpp"
 #include "bench_peers.hpp"
@@ -62,6 +67,7 @@ int main(int argc, char** argv) {
     if (const int status = parse_options(argc, argv, o); status >= 0) return status;
     if (o.want("materials")) return run_material_protocol(o);
     if (o.want("compact")) return run_compact_protocol(o);
+    if (o.want("animation")) return run_animation_protocol(o);
     // G'MIC serves the synth protocol and the large protocol's PEER+gmic and
     // ceiling rows; it is optional (its rows then say missing).
     const bool gmic_available = (o.want("synth") || o.want("large")) && !o.no_peers && tool_available("gmic");
