@@ -2,10 +2,11 @@
 // example: does every frame look like the example's frames, and does it move
 // as much as the example does? Reads two frame sequences (example, output)
 // and prints, on one JSON line:
-//  - swd: the mean over output frames f of the sliced Wasserstein distance
-//    (metrics/, 4 levels of 7x7 patches) between frame f and example frame
-//    f mod T, and swd_floor, the same between each example frame and the one
-//    half a loop later (what two frames of the same texture score);
+//  - swd: the mean over output frames of the sliced Wasserstein distance
+//    (metrics/, 4 levels of 7x7 patches) between the frame and all the
+//    example's frames side by side, and swd_floor, each example frame
+//    against the one half a loop later (what two frames of the same texture
+//    score);
 //  - change: the mean absolute difference between consecutive frames (grey
 //    levels per sample, over all channels), for the output and the example,
 //    and their ratio: near 1 keeps the motion, 0 is frozen, far above 1

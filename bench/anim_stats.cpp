@@ -14,6 +14,32 @@ double mean_abs_difference(const vqtex_metrics::Image& a, const vqtex_metrics::I
     return a.pixels.empty() ? 0.0 : double(sum) / double(a.pixels.size());
 }
 
+// `frames` side by side, up to 8 a row: the reference an output frame's
+// windows are looked up in. A window across two frames is not the
+// example's, but they are a few columns in a frame's width.
+vqtex_metrics::Image mosaic(const Frames& frames) {
+    const int w = frames[0].width, h = frames[0].height, c = frames[0].channels;
+    const int n = int(frames.size()), cols = std::min(n, 8), rows = (n + cols - 1) / cols;
+    vqtex_metrics::Image out;
+    out.width = cols * w;
+    out.height = rows * h;
+    out.channels = c;
+    out.pixels.assign(std::size_t(out.width) * out.height * c, 0);
+    for (int t = 0; t < n; ++t)
+        for (int y = 0; y < h; ++y)
+            std::copy_n(frames[std::size_t(t)].pixels.begin() + std::ptrdiff_t(y) * w * c, std::size_t(w) * c,
+                        out.pixels.begin() + (std::ptrdiff_t((t / cols) * h + y) * out.width + (t % cols) * w) * c);
+    return out;
+}
+
+// Up to `count` frames evenly spread over the sequence.
+Frames spread(const Frames& frames, std::size_t count) {
+    if (frames.size() <= count) return frames;
+    Frames out;
+    for (std::size_t i = 0; i < count; ++i) out.push_back(frames[i * frames.size() / count]);
+    return out;
+}
+
 }  // namespace
 
 Frames split_frames(const uint8_t* pixels, uint32_t width, uint32_t height, uint32_t channels, uint32_t frames) {
@@ -58,12 +84,16 @@ AnimStats anim_stats(const Frames& example, const Frames& output, const AnimStat
     if (example.empty() || output.empty()) throw std::invalid_argument("anim_stats: an empty sequence");
     AnimStats s;
     s.frames = uint32_t(output.size());
+    // Every output frame against all the example's frames: the engine
+    // starts anywhere in the example's time, and an example that pans shows
+    // in one frame what another does not.
+    const vqtex_metrics::Image all = mosaic(example);
+    const vqtex_metrics::Image some = options.seam_visibility ? mosaic(spread(example, kSeamFrames)) : all;
     for (std::size_t f = 0; f < output.size(); ++f) {
-        const vqtex_metrics::Image& ex = example[f % example.size()];
-        s.swd += vqtex_metrics::sliced_wasserstein(output[f], ex).mean;
-        if (options.coherence) s.coherence += vqtex_metrics::coherence(output[f], ex, 7, 256, options.seed);
+        s.swd += vqtex_metrics::sliced_wasserstein(output[f], all).mean;
+        if (options.coherence) s.coherence += vqtex_metrics::coherence(output[f], all, 7, 256, options.seed);
         if (options.seam_visibility)
-            s.seam_visibility += vqtex_metrics::seam_visibility(output[f], ex, false, options.threads);
+            s.seam_visibility += vqtex_metrics::seam_visibility(output[f], some, false, options.threads);
     }
     const double n = double(output.size());
     s.swd /= n;

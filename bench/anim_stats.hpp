@@ -2,15 +2,19 @@
 // its example, the measures of anim-metrics (bench/anim_metrics.cpp) and of
 // vqtex-bench's animation protocol (animation_protocol.hpp), computed here
 // once for both:
-//  - swd: the mean over output frames f of the sliced Wasserstein distance
-//    (metrics/, 4 levels of 7x7 patches, default seed) between frame f and
-//    example frame f mod T; swd_floor, the same between each example frame
-//    and the one half a loop later (what two frames of the same texture
-//    score);
+//  - swd: the mean over output frames of the sliced Wasserstein distance
+//    (metrics/, 4 levels of 7x7 patches, default seed) between the frame
+//    and all the example's frames side by side (a frame may show what any
+//    example frame shows: the engine starts anywhere in the example's
+//    time, and a panning example shows in one frame what another does
+//    not); swd_floor, each example frame against the one half a loop later
+//    (what two frames of the same texture score);
 //  - coherence and seam_visibility (when asked: they cost more): the same
 //    mean over frames of vqtex_metrics::coherence (7x7 patches, 256 queries)
-//    and of the straight-seam visibility (seam_visibility, not wrapped, as
-//    seam_scores), frame f against example frame f mod T;
+//    against all the example's frames, and of the straight-seam visibility
+//    (seam_visibility, not wrapped, as seam_scores) against kSeamFrames of
+//    them evenly spread (its nearest-window search costs the reference's
+//    area);
 //  - change: the mean absolute difference between consecutive frames (grey
 //    levels per sample, over all channels); the output's over the example's
 //    is near 1 when the motion is kept, 0 when frozen, far above 1 when it
@@ -43,6 +47,9 @@ Motion motion(const Frames& frames);
 
 // The example's SWD floor: each frame against the one half a loop later.
 double swd_floor(const Frames& example);
+
+// How many example frames the straight-seam visibility searches.
+inline constexpr std::size_t kSeamFrames = 4;
 
 struct AnimStatsOptions {
     bool coherence = false;                       // also the per-frame coherence

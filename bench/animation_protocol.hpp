@@ -20,8 +20,8 @@
 // Encodes, decodes and syntheses run on 2 threads; the times are wall
 // times in this process (av1+synth's encode: the whole level search;
 // its decode: the AV1 decode and the synthesis).
-// Measures: anim_stats.hpp's, every one of them per frame against example
-// frame f mod T. CSV: animation_rows.hpp. Summary: animation_summary.hpp.
+// Measures: anim_stats.hpp's, every one of them per output frame against
+// the example's frames. CSV: animation_rows.hpp. Summary: animation_summary.hpp.
 // Pictures with --sheets: anim_pictures.hpp.
 #pragma once
 

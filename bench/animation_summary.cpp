@@ -25,7 +25,7 @@ void print_animation_summary(const std::vector<AnimRow>& rows) {
     for (const AnimRow& r : rows)
         if (animations.empty() || animations.back() != r.animation) animations.push_back(r.animation);
     std::printf(
-        "\nanimation protocol (means over output frames f, each against example frame f mod T; lower is "
+        "\nanimation protocol (means over output frames, each against all the example's frames; lower is "
         "better for swd, coher, seamV; chg = frame-to-frame change, ratio = output's over example's; loop = "
         "last-to-first change over the median change; target 0 = the default quality; swd/c and coh/c = "
         "over the ceiling's; <=a = at or below the av1+synth row at the same target)\n");

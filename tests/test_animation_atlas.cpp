@@ -340,5 +340,5 @@ TEST(AnimationFile, GoldenFileDecodesToKnownPixels) {
         vqtex_cpp::decode_volume(vqtex_test::decode_params(64, 56, 5), 12, bytes.data(), bytes.size());
     ASSERT_EQ(v.frames(), 12u);
     const uint64_t hash = vqtex_test::fnv1a(v.frame(0), v.frame_bytes() * v.frames());
-    EXPECT_EQ(hash, 0xf0c8f7a067a25d26ull) << std::hex << "decoded hash 0x" << hash;
+    EXPECT_EQ(hash, 0x605c69709be75f52ull) << std::hex << "decoded hash 0x" << hash;
 }

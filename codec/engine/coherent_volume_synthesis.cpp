@@ -20,6 +20,8 @@ namespace vqtex {
 namespace {
 
 using coherent::kTaps;
+// The four nearest taps of a window: up, left, right, down.
+constexpr int kNearest[4] = {kTaps / 2 - coherent::kSide, kTaps / 2 - 1, kTaps / 2 + 1, kTaps / 2 + coherent::kSide};
 
 // One level of the example as the correction reads it: per example frame,
 // kAppearanceDims values per pixel (appearance vectors, or raw colours for
@@ -30,6 +32,8 @@ struct VolumeLevelView {
     int spacing;
     const dsp::Kernels& kernels;
     int temporal_bias;  // VolumeCoherentOptions::temporal_bias
+    bool no_repeats;    // VolumeCoherentOptions::no_repeats
+    int link_bias;      // VolumeCoherentOptions::link_bias
 
     int frames() const { return int(planes.size()); }
     const int16_t* feature(uint64_t v) const {
@@ -55,9 +59,10 @@ struct Neighbours {
 // its current, previous and next neighbours propose, by the distance of
 // the current window plus the previous frame's window (against the
 // candidate's example frame minus one) plus the next frame's (example frame
-// plus `gap`). After the first frame the voxel's own position continues
-// the previous frame's motion: another must beat it by the temporal bias,
-// unless it leads to the first frame (closing the loop).
+// plus `gap`), surcharged per nearest neighbour that does not continue the
+// candidate's copy (the link bias). After the first frame the voxel's own
+// position continues the previous frame's motion: another must beat it by
+// the temporal bias, unless it leads to the first frame (closing the loop).
 struct VoxelStep {
     using Position = uint64_t;
     using Distance = uint64_t;
@@ -108,7 +113,7 @@ struct VoxelStep {
             int ux, uy;
             if (!coherent::continued_source(v.space, v.spacing, voxel_x(source), voxel_y(source), t, ux, uy)) return;
             const uint64_t c = pack_voxel(ux, uy, (voxel_t(source) + dt + frames) % frames);
-            if (c != own) candidates.add(c, from_next);
+            if (c != own && !barred(win, c)) candidates.add(c, from_next);
         };
         for (int t = 0; t < kTaps; ++t) {
             if (around.previous) offer(win.before[t], t, 1, false);
@@ -122,9 +127,27 @@ struct VoxelStep {
         if (around.previous) coherent::fill_query(win.before, feature, query + kTaps * kAppearanceDims);
         if (around.next) coherent::fill_query(win.after, feature, query + 2 * kTaps * kAppearanceDims);
     }
-    bool barred(const Window&, uint64_t) const { return false; }
-    uint64_t weight(const Window&, uint64_t, bool closes) const {
-        return 256 * (256 + (around.previous && !closes ? uint64_t(v.temporal_bias) : 0));
+    // No two adjacent pixels of an example frame share a voxel: a
+    // candidate that one of the four nearest neighbours holds would repeat
+    // a pixel beside itself (a stutter of rows or columns), as the still
+    // engine's rule says (coherent_pixel_correction.cpp); the own voxel
+    // gives way to any candidate when it does.
+    bool barred(const Window& win, uint64_t c) const {
+        if (!v.no_repeats) return false;
+        for (int n : kNearest)
+            if (c == win.sources[n]) return true;
+        return false;
+    }
+    uint64_t weight(const Window& win, uint64_t c, bool closes) const {
+        uint64_t links_factor = 256;
+        if (v.link_bias > 0) {
+            const int cx = voxel_x(c), cy = voxel_y(c), ct = voxel_t(c), s = v.spacing;
+            int links = 0;
+            for (int n : kNearest)
+                links += int(win.sources[n] == pack_voxel(cx + coherent::tap_dx(n) * s, cy + coherent::tap_dy(n) * s, ct));
+            links_factor += uint64_t(v.link_bias) * uint64_t(4 - links);
+        }
+        return links_factor * (256 + (around.previous && !closes ? uint64_t(v.temporal_bias) : 0));
     }
     uint64_t distance(const Window&, const int16_t* query, uint64_t c, uint64_t bound) const {
         const int cx = voxel_x(c), cy = voxel_y(c), ct = voxel_t(c), frames = v.frames();
@@ -159,11 +182,12 @@ Volume synthesize_volume_coherent(const std::vector<AppearanceSpace>& example, c
     const int top = int(space.levels.size()) - 1;
     const int out_frames = options.frames;
     auto level_view = [&](int l) {
-        VolumeLevelView view{space, {}, space.levels[std::size_t(l)].spacing, dsp::kernels(), options.temporal_bias};
+        VolumeLevelView view{space, {}, space.levels[std::size_t(l)].spacing, dsp::kernels(), options.temporal_bias,
+                             options.no_repeats, options.link_bias};
         for (const AppearanceSpace& f : example) view.planes.push_back(f.levels[std::size_t(l)].features.data());
         return view;
     };
-    VolumeLevelView polish{space, {}, 1, dsp::kernels(), options.temporal_bias};
+    VolumeLevelView polish{space, {}, 1, dsp::kernels(), options.temporal_bias, options.no_repeats, options.link_bias};
     for (const AppearanceSpace& f : example) polish.planes.push_back(f.pixels.data());
 
     coherent::PassProgress progress{options.progress};
