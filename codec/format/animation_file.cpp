@@ -84,39 +84,17 @@ AnimationFile decode_animation_file(const uint8_t* data, std::size_t size, std::
     const uint16_t version = read_format_version(data, size);
     if (version != kAnimationAtlasFormatVersion)
         fail(VQTEX_ERROR_INTERNAL, "decode_animation_file called on a version " + std::to_string(version) + " file");
-    if (size < kAnimationMinSize)
-        fail(VQTEX_ERROR_TRUNCATED, "file is " + std::to_string(size) + " bytes; a format version 12 file has at least " +
-                                        std::to_string(kAnimationMinSize));
-    const std::size_t end = size - kTrailerSize;
-    const uint32_t stored_crc = uint32_t(data[end]) | uint32_t(data[end + 1]) << 8 | uint32_t(data[end + 2]) << 16 |
-                                uint32_t(data[end + 3]) << 24;
-    const uint32_t actual_crc = crc32(data, end);
-    if (stored_crc != actual_crc)
-        fail(VQTEX_ERROR_CHECKSUM, "checksum mismatch (file says " + std::to_string(stored_crc) + ", bytes give " +
-                                       std::to_string(actual_crc) + "): the file is damaged or truncated");
+    const std::size_t end = check_compact_file(data, size, version, kAnimationMinSize);
     ByteReader r(data, end, "format version 12 header");
     r.bytes(sizeof kMagic + 2, "signature and version");
     const uint8_t packed = r.u8("packed fields");
     AnimationFile f;
     FileHeader& h = f.header;
-    h.version = version;
-    h.channels = uint8_t((packed & kPackedChannels) + 1);
-    h.levels = uint8_t(((packed >> kPackedLevelsShift) & 7) + 1);
-    h.init = 0;
-    h.backtrack = 1;
+    read_packed_fields(packed, version, h);
     const int aw = int(r.varint_in("atlas width", kMinAtlasSide, kMaxAtlasSide));
     const int ah = int(r.varint_in("atlas height", kMinAtlasSide, kMaxAtlasSide));
     const int frames = int(r.varint_in("atlas frames", 1, kMaxAtlasFrames));
-    if (packed & kPackedExemplarSize) {
-        h.exemplar_width = uint32_t(r.varint_in("exemplar width", 1, VQTEX_MAX_SIDE));
-        h.exemplar_height = uint32_t(r.varint_in("exemplar height", 1, VQTEX_MAX_SIDE));
-        if (h.exemplar_width == uint32_t(aw) && h.exemplar_height == uint32_t(ah))
-            r.corrupt("the exemplar size is stored but is the atlas's (packed bit 5 must then be 0)");
-    } else {
-        h.exemplar_width = uint32_t(aw);
-        h.exemplar_height = uint32_t(ah);
-    }
-    h.seed = r.varint("seed");
+    read_exemplar_size_and_seed(r, packed, aw, ah, h);
     AnimationParams& p = f.params;
     p.example_tileable = (packed & kPackedTileable) != 0;
     if (packed & kPackedParameters) {

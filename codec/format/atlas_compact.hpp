@@ -6,9 +6,14 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
+#include "common/bitstream.hpp"
+#include "common/checksum.hpp"
+#include "common/error.hpp"
 #include "format/atlas_file.hpp"
 #include "format/container.hpp"
+#include "vqtex/vqtex.h"
 
 namespace vqtex {
 
@@ -42,6 +47,50 @@ constexpr int default_cut(uint16_t version) { return version >= kSeamCutAtlasFor
 
 // The covers' reach when it is not stored: version 10's default, none before.
 constexpr int default_cover(uint16_t version) { return version >= kCoverAtlasFormatVersion ? kV10DefaultCover : 0; }
+
+// The first checks of a compact file (versions 4 to 12, docs/FORMAT.md
+// §2.3 and §6.3): its length against the shortest file of its version
+// (TRUNCATED), then the CRC, before any field is read (CHECKSUM). Returns
+// where the checksum starts.
+inline std::size_t check_compact_file(const uint8_t* data, std::size_t size, uint16_t version,
+                                      std::size_t min_size) {
+    if (size < min_size)
+        fail(VQTEX_ERROR_TRUNCATED, "file is " + std::to_string(size) + " bytes; a format version " +
+                                        std::to_string(version) + " file has at least " + std::to_string(min_size));
+    const std::size_t end = size - kTrailerSize;
+    const uint32_t stored_crc = uint32_t(data[end]) | uint32_t(data[end + 1]) << 8 | uint32_t(data[end + 2]) << 16 |
+                                uint32_t(data[end + 3]) << 24;
+    const uint32_t actual_crc = crc32(data, end);
+    if (stored_crc != actual_crc)
+        fail(VQTEX_ERROR_CHECKSUM, "checksum mismatch (file says " + std::to_string(stored_crc) + ", bytes give " +
+                                       std::to_string(actual_crc) + "): the file is damaged or truncated");
+    return end;
+}
+
+// The packed byte's channels and levels into `h` (docs/FORMAT.md §2.1),
+// with the fields a compact file leaves out as version 3 has them.
+inline void read_packed_fields(uint8_t packed, uint16_t version, FileHeader& h) {
+    h.version = version;
+    h.channels = uint8_t((packed & kPackedChannels) + 1);
+    h.levels = uint8_t(((packed >> kPackedLevelsShift) & 7) + 1);
+    h.init = 0;
+    h.backtrack = 1;
+}
+
+// The exemplar size when packed bit 5 says it is stored, else the atlas's
+// (CORRUPT when stored but equal to the atlas's), then the seed.
+inline void read_exemplar_size_and_seed(ByteReader& r, uint8_t packed, int aw, int ah, FileHeader& h) {
+    if (packed & kPackedExemplarSize) {
+        h.exemplar_width = uint32_t(r.varint_in("exemplar width", 1, VQTEX_MAX_SIDE));
+        h.exemplar_height = uint32_t(r.varint_in("exemplar height", 1, VQTEX_MAX_SIDE));
+        if (h.exemplar_width == uint32_t(aw) && h.exemplar_height == uint32_t(ah))
+            r.corrupt("the exemplar size is stored but is the atlas's (packed bit 5 must then be 0)");
+    } else {
+        h.exemplar_width = uint32_t(aw);
+        h.exemplar_height = uint32_t(ah);
+    }
+    h.seed = r.varint("seed");
+}
 
 inline bool are_compact_defaults(const AtlasSynthesisParams& p, uint16_t version) {
     return p.passes == 2 && p.coarse_passes == 4 && p.polish_passes == 1 && p.coherence_bias == 256 &&

@@ -9,6 +9,7 @@
 #include "format/atlas_file.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/seam_blend.hpp"
+#include "writer/atlas_writer.hpp"
 #include "writer/byte_writer.hpp"
 
 namespace vqtex {
@@ -26,23 +27,12 @@ std::vector<uint8_t> encode_animation_file(const FileHeader& header, int atlas_w
         header.levels > coherent_levels(atlas_width, atlas_height) || header.exemplar_width < 1 ||
         header.exemplar_height < 1 || header.exemplar_width > VQTEX_MAX_SIDE || header.exemplar_height > VQTEX_MAX_SIDE)
         fail(VQTEX_ERROR_INTERNAL, "encode_animation_file: fields outside what format version 12 can hold");
-    const bool exemplar_size =
-        header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
     const bool parameters = !are_animation_defaults(p);
     ByteWriter w;
-    w.bytes(kMagic, sizeof kMagic);
-    w.u16(kAnimationAtlasFormatVersion);
-    w.u8(uint8_t((header.channels - 1) | (header.levels - 1) << kPackedLevelsShift |
-                 (exemplar_size ? kPackedExemplarSize : 0) | (parameters ? kPackedParameters : 0) |
-                 (p.example_tileable ? kPackedTileable : 0)));
-    w.varint(uint64_t(atlas_width));
-    w.varint(uint64_t(atlas_height));
+    write_compact_start(w, kAnimationAtlasFormatVersion, uint8_t(header.channels - 1), header, atlas_width,
+                        atlas_height, parameters, p.example_tileable);
     w.varint(uint64_t(atlas_frames));
-    if (exemplar_size) {
-        w.varint(header.exemplar_width);
-        w.varint(header.exemplar_height);
-    }
-    w.varint(header.seed);
+    write_exemplar_size_and_seed(w, header, atlas_width, atlas_height);
     if (parameters) {
         w.varint(uint64_t(p.passes));
         w.varint(uint64_t(p.coarse_passes));

@@ -32,20 +32,10 @@ void check_fields(const FileHeader& header, int atlas_width, int atlas_height, c
 // Everything before the bitstreams that versions 10 and 11 share.
 void write_header(ByteWriter& w, uint16_t version, uint8_t channel_bits, const FileHeader& header, int atlas_width,
                   int atlas_height, const AtlasSynthesisParams& params) {
-    const bool exemplar_size =
-        header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
     const bool parameters = !are_compact_defaults(params, version);
-    w.bytes(kMagic, sizeof kMagic);
-    w.u16(version);
-    w.u8(uint8_t(channel_bits | (header.levels - 1) << kPackedLevelsShift | (exemplar_size ? kPackedExemplarSize : 0) |
-                 (parameters ? kPackedParameters : 0) | (params.example_tileable ? kPackedTileable : 0)));
-    w.varint(uint64_t(atlas_width));
-    w.varint(uint64_t(atlas_height));
-    if (exemplar_size) {
-        w.varint(header.exemplar_width);
-        w.varint(header.exemplar_height);
-    }
-    w.varint(header.seed);
+    write_compact_start(w, version, channel_bits, header, atlas_width, atlas_height, parameters,
+                        params.example_tileable);
+    write_exemplar_size_and_seed(w, header, atlas_width, atlas_height);
     if (parameters) {
         w.varint(uint64_t(params.passes));
         w.varint(uint64_t(params.coarse_passes));
@@ -65,6 +55,26 @@ void write_header(ByteWriter& w, uint16_t version, uint8_t channel_bits, const F
 uint64_t zigzag(int64_t v) { return (uint64_t(v) << 1) ^ uint64_t(v >> 63); }
 
 }  // namespace
+
+void write_compact_start(ByteWriter& w, uint16_t version, uint8_t channel_bits, const FileHeader& header,
+                         int atlas_width, int atlas_height, bool parameters, bool tileable) {
+    const bool exemplar_size =
+        header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height);
+    w.bytes(kMagic, sizeof kMagic);
+    w.u16(version);
+    w.u8(uint8_t(channel_bits | (header.levels - 1) << kPackedLevelsShift | (exemplar_size ? kPackedExemplarSize : 0) |
+                 (parameters ? kPackedParameters : 0) | (tileable ? kPackedTileable : 0)));
+    w.varint(uint64_t(atlas_width));
+    w.varint(uint64_t(atlas_height));
+}
+
+void write_exemplar_size_and_seed(ByteWriter& w, const FileHeader& header, int atlas_width, int atlas_height) {
+    if (header.exemplar_width != uint32_t(atlas_width) || header.exemplar_height != uint32_t(atlas_height)) {
+        w.varint(header.exemplar_width);
+        w.varint(header.exemplar_height);
+    }
+    w.varint(header.seed);
+}
 
 std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
                                        const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params) {

@@ -9,8 +9,19 @@
 
 #include "format/atlas_file.hpp"
 #include "format/container.hpp"
+#include "writer/byte_writer.hpp"
 
 namespace vqtex {
+
+// The compact header's start (versions 4 to 12, docs/FORMAT.md §2.1 and
+// §6.1): signature, version, the packed byte (channel_bits, the levels of
+// `header`, whether the exemplar size is stored, `parameters` and
+// `tileable`), the atlas's width and height.
+void write_compact_start(ByteWriter& w, uint16_t version, uint8_t channel_bits, const FileHeader& header,
+                         int atlas_width, int atlas_height, bool parameters, bool tileable);
+
+// The exemplar size when it is not the atlas's, then the seed.
+void write_exemplar_size_and_seed(ByteWriter& w, const FileHeader& header, int atlas_width, int atlas_height);
 
 // A version 8 file (what the encoder writes for one colour image): the exemplar size, channels,
 // levels and seed of `header` (its other fields are not stored), the coded
