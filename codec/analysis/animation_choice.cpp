@@ -37,14 +37,6 @@ double mean_absolute_difference(const Image& a, const Image& b) {
     return double(sum) / double(std::max<std::size_t>(1, a.pixels.size()));
 }
 
-Image crop(const Image& image, int x, int y, int w, int h) {
-    if (x == 0 && y == 0 && w == image.width && h == image.height) return image;
-    Image out(w, h, image.channels);
-    for (int row = 0; row < h; ++row)
-        std::copy_n(image.at(x, y + row), std::size_t(w) * std::size_t(image.channels), out.at(0, row));
-    return out;
-}
-
 }  // namespace
 
 double budgeted_frames(int frames) { return 1.0 + double(std::clamp(frames, 1, kMaxChosenFrames) - 1) / 5.0; }
@@ -108,8 +100,6 @@ struct Candidate {
     ProxyScores scores;
 };
 
-vqtex_metrics::Image as_metrics_image(const Image& img) { return {img.width, img.height, img.channels, img.pixels}; }
-
 // The finest AV1 level at which the candidate's file fits the budget
 // (file stays empty when even 63 does not).
 void code_candidate(const std::vector<Image>& frames, const AnimationChoiceOptions& options, uint64_t budget,
@@ -117,7 +107,7 @@ void code_candidate(const std::vector<Image>& frames, const AnimationChoiceOptio
     const Image& first = frames[0];
     const Region& r = c.region;
     std::vector<Image> atlas;
-    for (int t = 0; t < c.frames; ++t) atlas.push_back(crop(frames[std::size_t(t)], r.x, r.y, r.width, r.height));
+    for (int t = 0; t < c.frames; ++t) atlas.push_back(frames[std::size_t(t)].crop(r.x, r.y, r.width, r.height));
     const int max_levels = coherent_levels(r.width, r.height);
     c.levels = options.levels ? std::min(options.levels, max_levels) : max_levels;
     FileHeader h;
@@ -234,7 +224,7 @@ AnimationChoice choose_animation_atlas(const std::vector<Image>& frames, const A
         }
         std::vector<vqtex_metrics::Image> reference;
         for (int t = 0; t < std::min<int>(int(frames.size()), kProxyFrames); ++t)
-            reference.push_back(as_metrics_image(crop(frames[std::size_t(t)], area.x, area.y, area.width, area.height)));
+            reference.push_back(as_metrics_image(frames[std::size_t(t)].crop(area.x, area.y, area.width, area.height)));
         parallel_for(options.threads, parts.size() + 1, 1, [&](std::size_t begin, std::size_t end) {
             for (std::size_t i = begin; i < end; ++i) {
                 Candidate& c = i == parts.size() ? whole : parts[i];

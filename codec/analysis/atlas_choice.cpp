@@ -23,6 +23,8 @@
 
 namespace vqtex {
 
+vqtex_metrics::Image as_metrics_image(const Image& img) { return {img.width, img.height, img.channels, img.pixels}; }
+
 uint64_t atlas_budget_of_quality(int quality, uint64_t pixels) {
     const double per_128x128 = 1000.0 * std::pow(2.0, double(quality) / 25.0);
     return std::max<uint64_t>(512, uint64_t(std::llround(per_128x128 * double(pixels) / (128.0 * 128.0))));
@@ -30,21 +32,11 @@ uint64_t atlas_budget_of_quality(int quality, uint64_t pixels) {
 
 namespace {
 
-// The `w` x `h` pixels of the example at (x, y). A crop keeps the features
-// at their scale, which downscaling would not.
-Image crop(const Image& example, int x, int y, int w, int h) {
-    if (x == 0 && y == 0 && w == example.width && h == example.height) return example;
-    Image out(w, h, example.channels);
-    for (int row = 0; row < h; ++row)
-        std::memcpy(out.at(0, row), example.at(x, y + row), std::size_t(w) * std::size_t(example.channels));
-    return out;
-}
-
 // The top-left crop of `scale`/16 of each side, within the atlas limits.
 Image top_left_crop(const Image& example, int scale) {
     const int w = std::min(kMaxAtlasSide, std::max(kMinAtlasSide, example.width * scale / 16));
     const int h = std::min(kMaxAtlasSide, std::max(kMinAtlasSide, example.height * scale / 16));
-    return crop(example, 0, 0, std::min(w, example.width), std::min(h, example.height));
+    return example.crop(0, 0, std::min(w, example.width), std::min(h, example.height));
 }
 
 // The files of one atlas at the levels tried so far. The header names the
@@ -119,8 +111,6 @@ private:
     int levels_ = 0;
     std::map<int, std::vector<uint8_t>> files_;
 };
-
-vqtex_metrics::Image as_metrics_image(const Image& img) { return {img.width, img.height, img.channels, img.pixels}; }
 
 // What the encoder can measure of a file: the texture the decoder makes
 // from it (2x2 the example, a seed of its own), against the example.
@@ -197,7 +187,7 @@ AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, bool
                     continue;
                 }
                 const auto [x, y, s] = regions[i];
-                LevelSearch search(example, crop(source, x, y, s, s), false, options, &crop_attempts[i]);
+                LevelSearch search(example, source.crop(x, y, s, s), false, options, &crop_attempts[i]);
                 const int cq = search.finest_fitting();
                 if (cq < 0) continue;
                 crops[i] = search.choice(cq);
@@ -293,7 +283,7 @@ AtlasChoice choose_part(const Image& example, const Image& source, bool source_w
             // which then keeps its wrap.
             const bool whole = s == source.width && s == source.height;
             const std::array<int, 2> at = whole ? std::array<int, 2>{0, 0} : representative_place(source, s);
-            const Image part = crop(source, at[0], at[1], s, s);
+            const Image part = source.crop(at[0], at[1], s, s);
             const bool wraps = whole && source_wraps;
             LevelSearch fast(example, part, wraps, options, &attempts[i], kSearchSpeed);
             const int guess = fast.finest_fitting();
@@ -381,7 +371,7 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
     const ExamplePeriod period = options.compaction && example.pixel_count() > kBudgetedPixels
                                      ? find_example_period(example)
                                      : ExamplePeriod{};
-    const Image source = period.repeats() ? crop(example, 0, 0, period.width, period.height) : example;
+    const Image source = period.repeats() ? example.crop(0, 0, period.width, period.height) : example;
     const bool wraps = period.repeats() ? period.wraps() : options.example_tileable;
     AtlasChoiceOptions o = options;
     if (o.budget == 0)

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/image.hpp"
+#include "metrics.hpp"
 
 namespace vqtex {
 
@@ -89,6 +90,10 @@ inline constexpr uint64_t kLargeExamplePixels = 2 * 256 * 256;
 // LIMIT_EXCEEDED when nothing fits. The bytes do not depend on the thread
 // count (libaom runs on one thread; the metrics are seeded).
 AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options);
+
+// An image as the metrics library takes it (a copy), for the proxies
+// that score candidate files.
+vqtex_metrics::Image as_metrics_image(const Image& img);
 
 // Where an s x s part of `source` looks most like the whole: of nine
 // places (corners, edge middles, centre), the one whose colours' mean and

@@ -57,15 +57,6 @@ void jacobi_eigen(std::vector<double>& a, std::vector<double>& vectors, int n) {
     }
 }
 
-template <typename T>
-BasicImage<T> crop_top_left(const BasicImage<T>& image, int w, int h) {
-    if (w == image.width && h == image.height) return image;
-    BasicImage<T> out(w, h, image.channels);
-    for (int y = 0; y < h; ++y)
-        std::memcpy(out.at(0, y), image.at(0, y), std::size_t(w) * std::size_t(image.channels) * sizeof(T));
-    return out;
-}
-
 }  // namespace
 
 MaterialMap map_from_16_bits(std::string name, MapKind kind, int weight, const Image16& samples) {
@@ -205,8 +196,8 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
         std::vector<Image> atlases;
         std::vector<Image16> atlases16;
         for (const MaterialMap& m : maps) {
-            atlases.push_back(crop_top_left(m.image, w, h));
-            atlases16.push_back(m.bits > 8 ? crop_top_left(m.image16, w, h) : Image16());
+            atlases.push_back(m.image.crop(0, 0, w, h));
+            atlases16.push_back(m.bits > 8 ? m.image16.crop(0, 0, w, h) : Image16());
         }
         const int deepest = coherent_levels(w, h);
         const int levels = options.levels ? std::min(options.levels, deepest) : deepest;

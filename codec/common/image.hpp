@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -51,6 +52,16 @@ struct BasicImage {
     static int wrap(int v, int size) {
         v %= size;
         return v < 0 ? v + size : v;
+    }
+
+    // The w x h pixels at (x, y), which must lie inside the image; the
+    // image itself when that is all of it.
+    BasicImage crop(int x, int y, int w, int h) const {
+        if (x == 0 && y == 0 && w == width && h == height) return *this;
+        BasicImage out(w, h, channels);
+        for (int row = 0; row < h; ++row)
+            std::copy_n(at(x, y + row), std::size_t(w) * std::size_t(channels), out.at(0, row));
+        return out;
     }
 
     bool operator==(const BasicImage& o) const {

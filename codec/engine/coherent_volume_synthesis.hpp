@@ -56,16 +56,6 @@ struct VolumeCoherentOptions : CoherentRun {
     // Radius of the blend of the copies that meet at a seam, in each frame
     // (seam_blend.hpp), 0..kMaxBlendRadius; 0 copies every pixel.
     int blend = 0;
-    // The still engine's rules against stutters and small copies
-    // (coherent_pixel_correction.cpp): a voxel that one of the four nearest
-    // neighbours holds is neither offered nor kept, and a candidate's
-    // distance is surcharged by link_bias/256 per nearest neighbour that
-    // does not continue its copy. Measured (docs/ANIMATION.md): on panning
-    // photographs, per-frame SWD 11-14% and coherence 6-8% lower against
-    // all the example's frames, and the rows of repeated pixels gone; on
-    // the corpus's synthetic animations within seed-to-seed variation.
-    bool no_repeats = true;
-    int link_bias = 256;
 };
 
 // One output frame's positions (pack_voxel), width x height.

@@ -261,15 +261,15 @@ std::vector<uint8_t> encode_atlas_high(const Image16& image, int bits, const Atl
         for (int k = 0; k < c; ++k)
             planes[std::size_t(k)][i] = std::min(image.pixels[i * std::size_t(c) + std::size_t(k)], top);
     std::vector<FramePlanes<uint16_t>> colour_frame(1);
-    colour_frame[0].luma = planes[0];
+    colour_frame[0].luma = std::move(planes[0]);
     if (colour == 3) {
-        colour_frame[0].cb = planes[1];
-        colour_frame[0].cr = planes[2];
+        colour_frame[0].cb = std::move(planes[1]);
+        colour_frame[0].cr = std::move(planes[2]);
     }
     std::vector<uint8_t> frame = encode_frames(w, h, colour_frame, options, bits);
     if (!alpha) return frame;
     std::vector<FramePlanes<uint16_t>> alpha_frame(1);
-    alpha_frame[0].luma = planes[std::size_t(c - 1)];
+    alpha_frame[0].luma = std::move(planes[std::size_t(c - 1)]);
     ByteWriter out;
     out.varint(frame.size());
     out.bytes(frame);
