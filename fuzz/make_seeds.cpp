@@ -182,6 +182,13 @@ int main(int argc, char** argv) {
                 const std::vector<uint8_t> v7 = vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, sp);
                 write(out / "decode" / (name + "_fields.vqt"), v7.data(), v7.size());
                 ++files;
+                // Version 13: the atlas a part of a larger exemplar, its
+                // origin stored.
+                h.atlas_x = 3;
+                h.atlas_y = 0;
+                const std::vector<uint8_t> v13 = vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, sp);
+                write(out / "decode" / (name + "_v13.vqt"), v13.data(), v13.size());
+                ++files;
             }
         } catch (const std::exception& e) {
             std::fprintf(stderr, "make_seeds: %s atlas: %s\n", images[i], e.what());
@@ -212,6 +219,30 @@ int main(int argc, char** argv) {
                 return 1;
             }
             write(out / "decode" / ("set_" + std::to_string(count) + "_maps.vqt"), data, size);
+            // The same set as version 14: a part of a larger exemplar,
+            // its origin stored.
+            try {
+                const vqtex::AtlasFile f = vqtex::decode_atlas_file(data, size, 32u << 20);
+                std::vector<vqtex::CodedMap> coded;
+                std::size_t at = f.bitstream_offset;
+                for (const vqtex::AtlasMap& m : f.maps) {
+                    coded.push_back({m.name, m.kind, m.atlas.channels, m.bits,
+                                     std::vector<uint8_t>(data + at, data + at + m.bytes)});
+                    at += m.bytes;
+                }
+                vqtex::FileHeader h = f.header;
+                h.exemplar_width += 4;
+                h.exemplar_height += 2;
+                h.atlas_x = 4;
+                h.atlas_y = 1;
+                const std::vector<uint8_t> v14 =
+                    vqtex::encode_material_file(h, f.atlas.width, f.atlas.height, coded, f.guide, f.params);
+                write(out / "decode" / ("set_" + std::to_string(count) + "_maps_v14.vqt"), v14.data(), v14.size());
+                ++files;
+            } catch (const std::exception& e) {
+                std::fprintf(stderr, "make_seeds: set of %u maps as version 14: %s\n", count, e.what());
+                return 1;
+            }
             vqtex_free(data);
             ++files;
         }

@@ -96,12 +96,13 @@ std::size_t atlas_payload_offset(const std::vector<uint8_t>& file) {
     return 0;
 }
 
-// The atlas bitstream of a v10 file, and the same content as a v3 file
-// (the encoder writes v10; v3 must go on decoding), which has no blend, no
-// relocation, no edge guard, no cuts and no covers.
+// The atlas bitstream of a v10 file (v13 when the atlas is a crop away
+// from the corner), and the same content as a v3 file (the encoder writes
+// v10; v3 must go on decoding), which has no blend, no relocation, no edge
+// guard, no cuts and no covers.
 std::vector<uint8_t> bitstream_of(const std::vector<uint8_t>& file) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(file.data(), file.size(), 1u << 30);
-    EXPECT_EQ(f.header.version, 10);
+    EXPECT_TRUE(f.header.version == 10 || f.header.version == 13) << f.header.version;
     return std::vector<uint8_t>(file.begin() + std::ptrdiff_t(f.bitstream_offset),
                                 file.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
 }
@@ -535,10 +536,10 @@ TEST(AtlasFile, CompactFileEveryTruncationAndEveryByteFlipIsRejected) {
             bad[i] ^= uint8_t(1 << bit);
             vqtex_status st = VQTEX_OK;
             decode(bad, p, &st);
-            // The version, 10, flips to 11 or 8, other compact versions,
-            // whose checksum then fails, to 2 (the animations' container,
-            // §D), or to 14, 26, 42, ... (unknown).
-            const bool known = i == 8 && (bit == 0 || bit == 1);
+            // The version, 10, flips to 11, 8 or 14, other compact
+            // versions, whose checksum then fails, to 2 (the animations'
+            // container, §D), or to 26, 42, ... (unknown).
+            const bool known = i == 8 && (bit == 0 || bit == 1 || bit == 2);
             const bool animation = i == 8 && bit == 3;
             const vqtex_status expected = i < 8 ? VQTEX_ERROR_BAD_MAGIC
                                           : animation ? VQTEX_ERROR_CORRUPT
@@ -641,6 +642,33 @@ TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
     EXPECT_EQ(status_of(v10_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 8, 0}))), VQTEX_OK)
         << "cover 0";
     EXPECT_EQ(status_of(v10_file(varints({128, 128, 1, 2, 4, 1, 256, 1, 1, 0, 2, 64, 8, 8, 16}))), VQTEX_OK);
+    // Version 13 is version 10 with the atlas's origin after the seed: it
+    // needs the exemplar size stored, must lie inside it, and is not
+    // (0, 0) (that file is version 10). The pixels do not depend on it.
+    const auto v13_file = [&](uint8_t extra, const std::vector<uint8_t>& fields) {
+        return compact_file(packed | extra, fields, bits, 13);
+    };
+    const uint8_t sized = 1 << 5;
+    EXPECT_EQ(status_of(v13_file(0, varints({128, 128, 1, 5, 0}))), corrupt) << "origin without the exemplar size";
+    EXPECT_EQ(status_of(v13_file(sized, varints({128, 128, 200, 150, 1, 0, 0}))), corrupt) << "origin 0, 0";
+    EXPECT_EQ(status_of(v13_file(sized, varints({128, 128, 200, 150, 1, 73, 0}))), corrupt) << "past the width";
+    EXPECT_EQ(status_of(v13_file(sized, varints({128, 128, 200, 150, 1, 0, 23}))), corrupt) << "past the height";
+    EXPECT_EQ(status_of(v13_file(sized, varints({128, 128, 100, 150, 1, 1, 0}))), corrupt)
+        << "an exemplar narrower than the atlas has no room";
+    EXPECT_EQ(status_of(v13_file(sized, varints({128, 128, 200, 150, 1, 72, 22}))), VQTEX_OK);
+    EXPECT_EQ(status_of(v13_file(sized, varints({128, 128, 200, 150, 1, 72}))), corrupt)
+        << "no atlas y: the bitstream's first byte, an OBU header (10), read as it";
+    const std::vector<uint8_t> placed = v13_file(sized, varints({128, 128, 200, 150, 1, 72, 22}));
+    const vqtex_file_info placed_info = vqtex_cpp::inspect(placed.data(), placed.size());
+    EXPECT_EQ(placed_info.format_version, 13u);
+    EXPECT_EQ(placed_info.atlas_x, 72u);
+    EXPECT_EQ(placed_info.atlas_y, 22u);
+    EXPECT_EQ(decode(placed, p).pixels, decode(compact_file(packed | sized, varints({128, 128, 200, 150, 1}), bits), p).pixels)
+        << "the origin moves the coordinates, never the pixels";
+    EXPECT_EQ(status_of(v13_file(sized | 1 << 6, varints({128, 128, 200, 150, 1, 72, 22, 2, 4, 1, 256, 1, 1, 0,
+                                                          2, 64, 8, 8, 0}))),
+              VQTEX_OK)
+        << "the parameters follow the origin";
     // A version 8 file with no parameters decodes without the covers: the
     // pixels of a version 10 file that stores cover 0.
     EXPECT_EQ(decode(compact_file(packed, varints({128, 128, 1}), bits, 8), p).pixels,

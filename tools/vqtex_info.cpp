@@ -82,6 +82,8 @@ FileReport info_one(const std::string& input) {
     if (atlas) {
         j["atlas_width"] = info.atlas_width;
         j["atlas_height"] = info.atlas_height;
+        j["atlas_x"] = info.atlas_x;
+        j["atlas_y"] = info.atlas_y;
         j["coder"] = "AV1";  // the only atlas coder of formats 3 to 8
         j["blend"] = info.blend;
         j["relocate"] = info.relocate;
@@ -142,8 +144,12 @@ FileReport info_one(const std::string& input) {
         const bool whole = info.atlas_width == info.exemplar_width && info.atlas_height == info.exemplar_height;
         const double share = 100.0 * double(info.atlas_width) * info.atlas_height /
                              (double(info.exemplar_width) * info.exemplar_height);
-        const std::string part =
-            whole ? " (the whole example" : " (a part of the example, " + std::to_string(int(share + 0.5)) + "% of its area";
+        const std::string origin = info.atlas_x || info.atlas_y ? " at (" + std::to_string(info.atlas_x) + ", " +
+                                                                     std::to_string(info.atlas_y) + ")"
+                                                               : std::string();
+        const std::string part = whole ? " (the whole example"
+                                       : " (a part of the example" + origin + ", " +
+                                             std::to_string(int(share + 0.5)) + "% of its area";
         const std::string frames = info.atlas_frames ? "x" + std::to_string(info.atlas_frames) : std::string();
         add(t, "atlas     %ux%u%s%s%s), coded as AV1%s%s\n", info.atlas_width, info.atlas_height, frames.c_str(),
             part.c_str(), info.atlas_wraps ? ", wrapping" : "", info.atlas_frames ? " with inter frames" : "",

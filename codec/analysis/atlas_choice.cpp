@@ -45,9 +45,9 @@ Image top_left_crop(const Image& example, int scale) {
 class LevelSearch {
 public:
     LevelSearch(const Image& example, Image atlas, bool wraps, const AtlasChoiceOptions& o, uint32_t* attempts,
-                int speed = AtlasEncodeOptions{}.speed)
+                int speed = AtlasEncodeOptions{}.speed, std::array<int, 2> origin = {0, 0})
         : example_(example), atlas_(std::move(atlas)), wraps_(wraps), options_(o), attempts_(attempts),
-          speed_(speed) {
+          speed_(speed), origin_(origin) {
         const int deepest = coherent_levels(atlas_.width, atlas_.height);
         levels_ = o.levels ? std::min(o.levels, deepest) : deepest;
     }
@@ -66,6 +66,8 @@ public:
         h.channels = uint8_t(example_.channels);
         h.levels = uint8_t(levels_);
         h.seed = options_.seed;
+        h.atlas_x = uint32_t(origin_[0]);
+        h.atlas_y = uint32_t(origin_[1]);
         // The engine's defaults, as vqtex_synthesize runs it (synth_api.cpp).
         AtlasSynthesisParams sp;
         sp.example_tileable = wraps_;
@@ -77,18 +79,9 @@ public:
         return finest_fitting_level(options_.budget, [this](int cq) { return uint64_t(file_at(cq).size()); });
     }
 
-    // The finest fitting level, found near `guess` (a level that fitted at
-    // a faster speed, whose sizes are within a few percent of these): a few
-    // encodes instead of a bisection's seven.
+    // The finest fitting level near `guess` (finest_fitting_near).
     int finest_fitting_near(int guess) {
-        auto fits = [this](int cq) { return uint64_t(file_at(cq).size()) <= options_.budget; };
-        int cq = std::clamp(guess, 0, 63);
-        if (!fits(cq)) {
-            while (cq < 63 && !fits(cq)) ++cq;
-            return fits(cq) ? cq : -1;
-        }
-        while (cq > 0 && fits(cq - 1)) --cq;
-        return cq;
+        return vqtex::finest_fitting_near(options_.budget, guess, [this](int cq) { return uint64_t(file_at(cq).size()); });
     }
 
     AtlasChoice choice(int cq) {
@@ -108,16 +101,13 @@ private:
     AtlasChoiceOptions options_;
     uint32_t* attempts_;
     int speed_ = 4;
+    std::array<int, 2> origin_{};  // where the atlas lies in the example
     int levels_ = 0;
     std::map<int, std::vector<uint8_t>> files_;
 };
 
-// What the encoder can measure of a file: the texture the decoder makes
-// from it (2x2 the example, a seed of its own), against the example.
-struct ProxyScores {
-    double completeness = 0, swd = 0, coherence = 0;
-};
-
+// The texture the decoder makes from a candidate file (a seed of its own),
+// scored against the example.
 ProxyScores proxy_scores(const vqtex_metrics::Image& reference, const std::vector<uint8_t>& file, int width,
                          int height, int max_windows = 262144, int threads = 1) {
     vqtex_decode_params p;
@@ -130,9 +120,16 @@ ProxyScores proxy_scores(const vqtex_metrics::Image& reference, const std::vecto
     vqtex_error err{};
     if (vqtex_decode(&p, file.data(), file.size(), &out, &err) != VQTEX_OK)
         fail(VQTEX_ERROR_INTERNAL, std::string("a candidate atlas did not decode: ") + err.detail);
-    vqtex_metrics::Image texture{int(out.width), int(out.height), int(out.channels),
-                                 std::vector<uint8_t>(out.pixels, out.pixels + std::size_t(out.width) * out.height * out.channels)};
+    const vqtex_metrics::Image texture{int(out.width), int(out.height), int(out.channels),
+                                       std::vector<uint8_t>(out.pixels, out.pixels + std::size_t(out.width) * out.height * out.channels)};
     vqtex_image_free(&out);
+    return proxy_scores_of(reference, texture, max_windows);
+}
+
+}  // namespace
+
+ProxyScores proxy_scores_of(const vqtex_metrics::Image& reference, const vqtex_metrics::Image& texture,
+                            int max_windows) {
     ProxyScores s;
     s.completeness = vqtex_metrics::completeness(reference, texture, 7, 256, vqtex_metrics::kDefaultSeed, max_windows);
     s.swd = vqtex_metrics::sliced_wasserstein(texture, reference).mean;
@@ -140,7 +137,42 @@ ProxyScores proxy_scores(const vqtex_metrics::Image& reference, const std::vecto
     return s;
 }
 
-}  // namespace
+std::vector<int> large_part_sides(uint64_t budget, int limit) {
+    std::vector<int> sides;
+    for (double per_128x128 : {4000.0, 2000.0, 1000.0}) {
+        int s = int(std::lround(128.0 * std::sqrt(double(budget) / per_128x128) / 8.0)) * 8;
+        s = std::clamp(s, 4 * kMinAtlasSide, limit);
+        if (std::find(sides.begin(), sides.end(), s) == sides.end()) sides.push_back(s);
+    }
+    return sides;
+}
+
+int best_relative(const std::vector<std::vector<ProxyScores>>& scores) {
+    std::vector<ProxyScores> least;
+    for (const std::vector<ProxyScores>& c : scores) {
+        if (least.size() < c.size()) least.resize(c.size(), ProxyScores{1e300, 1e300, 1e300});
+        for (std::size_t m = 0; m < c.size(); ++m) {
+            least[m].completeness = std::min(least[m].completeness, c[m].completeness);
+            least[m].swd = std::min(least[m].swd, c[m].swd);
+            least[m].coherence = std::min(least[m].coherence, c[m].coherence);
+        }
+    }
+    int best = -1;
+    double best_score = 1e300;
+    for (std::size_t i = 0; i < scores.size(); ++i) {
+        if (scores[i].empty()) continue;
+        double score = 0;
+        for (std::size_t m = 0; m < scores[i].size(); ++m)
+            score += scores[i][m].completeness / std::max(least[m].completeness, 1e-9) +
+                     scores[i][m].swd / std::max(least[m].swd, 1e-9) +
+                     scores[i][m].coherence / std::max(least[m].coherence, 1e-9);
+        if (score < best_score) {
+            best_score = score;
+            best = int(i);
+        }
+    }
+    return best;
+}
 
 namespace {
 
@@ -187,7 +219,8 @@ AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, bool
                     continue;
                 }
                 const auto [x, y, s] = regions[i];
-                LevelSearch search(example, source.crop(x, y, s, s), false, options, &crop_attempts[i]);
+                LevelSearch search(example, source.crop(x, y, s, s), false, options, &crop_attempts[i],
+                                   AtlasEncodeOptions{}.speed, {x, y});
                 const int cq = search.finest_fitting();
                 if (cq < 0) continue;
                 crops[i] = search.choice(cq);
@@ -246,33 +279,13 @@ std::array<double, 8> colour_moments(const Image& img, int x0, int y0, int w, in
     return m;
 }
 
-// libaom's speeds on the large path: sizes at the fast one are within a
-// few percent of the fine one's at the same level, at a tenth of the time,
-// so the bisection runs fast and a few fine encodes settle the level
-// (docs/ATLAS.md "Large examples" has the measurements).
-constexpr int kSearchSpeed = 8;
-constexpr int kFinalSpeed = 6;
-
-// The proxy's output side on the large path: enough for the example's
-// windows to recur, far less than the example; and the windows its nearest
-// neighbours are sought among (every second or fourth of a large
-// example's), which keeps each index near 10 MB.
-constexpr int kLargeProxySide = 512;
-constexpr int kLargeProxyWindows = 65536;
-constexpr std::size_t kProxiesTogetherPixels = 1024 * 1024;
-
 // An example above kLargeExamplePixels: square parts of `source` at
 // sides the budget sets, coded at their finest fitting level, compete on
 // the proxy's scores, each relative to the best candidate's.
 AtlasChoice choose_part(const Image& example, const Image& source, bool source_wraps,
                         const AtlasChoiceOptions& options) {
-    const int limit = std::min({source.width, source.height, kMaxAtlasSide});
-    std::vector<int> sides;
-    for (double per_128x128 : {4000.0, 2000.0, 1000.0}) {
-        int s = int(std::lround(128.0 * std::sqrt(double(options.budget) / per_128x128) / 8.0)) * 8;
-        s = std::clamp(s, 4 * kMinAtlasSide, limit);
-        if (std::find(sides.begin(), sides.end(), s) == sides.end()) sides.push_back(s);
-    }
+    const std::vector<int> sides =
+        large_part_sides(options.budget, std::min({source.width, source.height, kMaxAtlasSide}));
     std::vector<AtlasChoice> candidates(sides.size());
     std::vector<ProxyScores> scores(sides.size());
     std::vector<uint32_t> attempts(sides.size(), 0);
@@ -285,9 +298,9 @@ AtlasChoice choose_part(const Image& example, const Image& source, bool source_w
             const std::array<int, 2> at = whole ? std::array<int, 2>{0, 0} : representative_place(source, s);
             const Image part = source.crop(at[0], at[1], s, s);
             const bool wraps = whole && source_wraps;
-            LevelSearch fast(example, part, wraps, options, &attempts[i], kSearchSpeed);
+            LevelSearch fast(example, part, wraps, options, &attempts[i], kSearchSpeed, at);
             const int guess = fast.finest_fitting();
-            LevelSearch fine(example, part, wraps, options, &attempts[i], kFinalSpeed);
+            LevelSearch fine(example, part, wraps, options, &attempts[i], kFinalSpeed, at);
             const int cq = fine.finest_fitting_near(guess < 0 ? 63 : guess);
             if (cq < 0) continue;
             candidates[i] = fine.choice(cq);
@@ -295,10 +308,7 @@ AtlasChoice choose_part(const Image& example, const Image& source, bool source_w
             candidates[i].y = at[1];
         }
     });
-    // The proxies' metrics hold copies of the example at several scales:
-    // up to 1024x1024 they run on the threads, above it one at a time (each
-    // decode on the threads), which keeps the encoder within four times the
-    // example plus 64 MB.
+    // Together on the threads or one at a time (kProxiesTogetherPixels).
     const vqtex_metrics::Image reference = as_metrics_image(source);
     const bool together = source.pixel_count() <= kProxiesTogetherPixels;
     parallel_for(together ? options.threads : 1, sides.size(), 1, [&](std::size_t begin, std::size_t end) {
@@ -309,27 +319,13 @@ AtlasChoice choose_part(const Image& example, const Image& source, bool source_w
                                      together ? 1 : options.threads);
         }
     });
-    ProxyScores least{1e300, 1e300, 1e300};
-    for (std::size_t i = 0; i < sides.size(); ++i) {
-        if (candidates[i].file.empty()) continue;
-        least.completeness = std::min(least.completeness, scores[i].completeness);
-        least.swd = std::min(least.swd, scores[i].swd);
-        least.coherence = std::min(least.coherence, scores[i].coherence);
-    }
-    int best = -1;
-    double best_score = 1e300;
     uint32_t total_attempts = 0;
+    std::vector<std::vector<ProxyScores>> relative(sides.size());
     for (std::size_t i = 0; i < sides.size(); ++i) {
         total_attempts += attempts[i];
-        if (candidates[i].file.empty()) continue;
-        const double score = scores[i].completeness / std::max(least.completeness, 1e-9) +
-                             scores[i].swd / std::max(least.swd, 1e-9) +
-                             scores[i].coherence / std::max(least.coherence, 1e-9);
-        if (score < best_score) {
-            best_score = score;
-            best = int(i);
-        }
+        if (!candidates[i].file.empty()) relative[i] = {scores[i]};
     }
+    const int best = best_relative(relative);
     if (best < 0)
         fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no atlas fits in " + std::to_string(options.budget) +
                                              " bytes (the smallest needs more): raise --target-size or --quality");

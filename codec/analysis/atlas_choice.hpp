@@ -6,7 +6,9 @@
 // is taken.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -57,6 +59,22 @@ int finest_fitting_level(uint64_t budget, SizeAt&& size_at) {
     return best;
 }
 
+// The finest fitting level found near `guess`, a level that fitted at a
+// faster libaom speed (whose sizes are within a few percent of a finer
+// speed's): a few encodes instead of a bisection's seven. -1 when even 63
+// does not fit.
+template <typename SizeAt>
+int finest_fitting_near(uint64_t budget, int guess, SizeAt&& size_at) {
+    auto fits = [&](int cq) { return uint64_t(size_at(cq)) <= budget; };
+    int cq = guess < 0 ? 63 : std::min(guess, 63);
+    if (!fits(cq)) {
+        while (cq < 63 && !fits(cq)) ++cq;
+        return fits(cq) ? cq : -1;
+    }
+    while (cq > 0 && fits(cq - 1)) --cq;
+    return cq;
+}
+
 // The byte budget of a quality preset for an example of `pixels` pixels:
 // 1000 bytes per 128x128 at quality 0, doubling every 25 points (4 KB at
 // the default 50, 16 KB at 100), and never under 512 bytes, so that a tiny
@@ -100,5 +118,42 @@ vqtex_metrics::Image as_metrics_image(const Image& img);
 // spread are nearest the whole's. On a stationary texture any place would
 // do; on a lit or graded one this keeps the middle of its range.
 std::array<int, 2> representative_place(const Image& source, int s);
+
+// libaom's speeds on the large path: sizes at the fast one are within a
+// few percent of the fine one's at the same level, at a tenth of the time,
+// so the bisection runs fast and a few fine encodes settle the level
+// (docs/ATLAS.md "Large examples" has the measurements).
+inline constexpr int kSearchSpeed = 8;
+inline constexpr int kFinalSpeed = 6;
+
+// The proxy's output side on the large path: enough for the example's
+// windows to recur, far less than the example; and the windows its nearest
+// neighbours are sought among (every second or fourth of a large
+// example's), which keeps each index near 10 MB.
+inline constexpr int kLargeProxySide = 512;
+inline constexpr int kLargeProxyWindows = 65536;
+// The proxies' metrics hold copies of the example at several scales: up
+// to this many example pixels they run on the threads, above it one at a
+// time (each decode on the threads), which keeps the encoder within four
+// times the example plus 64 MB.
+inline constexpr std::size_t kProxiesTogetherPixels = 1024 * 1024;
+
+// The sides of the square parts a large example's budget pays for: about
+// 4, 2 and 1 KB per 128x128 of part, multiples of 8, at most `limit`
+// (distinct, largest first).
+std::vector<int> large_part_sides(uint64_t budget, int limit);
+
+// What the encoder can measure of a candidate file: the texture it decodes
+// to, against the example.
+struct ProxyScores {
+    double completeness = 0, swd = 0, coherence = 0;
+};
+ProxyScores proxy_scores_of(const vqtex_metrics::Image& reference, const vqtex_metrics::Image& texture,
+                            int max_windows);
+
+// The candidate whose scores, each relative to the least any candidate has
+// (per map, for a set: scores[candidate][map]), add up to the least; an
+// empty entry is a candidate that did not fit. -1 when none fitted.
+int best_relative(const std::vector<std::vector<ProxyScores>>& scores);
 
 }  // namespace vqtex

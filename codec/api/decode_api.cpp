@@ -169,7 +169,16 @@ std::vector<NamedMap> decode_atlas_maps(const vqtex_decode_params* p, const uint
     }
     CoherentResult r =
         synthesize_coherent(f.atlas, f.header.levels, f.params.example_tileable, f.params.coherence, opt, {}, readouts);
-    if (coords) *coords = std::move(r.maps.back().image16);
+    if (coords) {
+        // The atlas's pixels as the exemplar's: a part of it is moved by
+        // its origin (versions 13 and 14; the exemplar is at most 65536
+        // wide, so the sums fit).
+        *coords = std::move(r.maps.back().image16);
+        for (std::size_t i = 0; i < coords->pixels.size(); i += 2) {
+            coords->pixels[i] = uint16_t(coords->pixels[i] + f.header.atlas_x);
+            coords->pixels[i + 1] = uint16_t(coords->pixels[i + 1] + f.header.atlas_y);
+        }
+    }
     for (std::size_t i = 0; i < maps.size(); ++i) {
         const AtlasMap& m = maps[i];
         NamedMap named;
@@ -361,7 +370,7 @@ vqtex_status vqtex_decode_coords(const vqtex_decode_params* params, const uint8_
         *coords = vqtex_image16{};
         validate(params);
         if (!is_atlas_file(data, size))
-            fail(VQTEX_ERROR_INVALID_ARGUMENT, "only an atlas file (format 3 to 9) decodes through coordinates; "
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "only a still atlas file (format 3 to 11, 13, 14) decodes through coordinates; "
                                                "this is a trees or animation file");
         Image16 grid;
         decode_atlas_maps(params, data, size, &grid);
@@ -409,6 +418,8 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
             for (int l = 0; l < f.header.levels; ++l) info->codewords[l] = uint32_t(f.atlas.pixel_count());
             info->atlas_width = uint32_t(f.atlas.width);
             info->atlas_height = uint32_t(f.atlas.height);
+            info->atlas_x = f.header.atlas_x;
+            info->atlas_y = f.header.atlas_y;
             info->blend = uint32_t(f.params.blend);
             info->relocate = uint32_t(f.params.relocate);
             info->edge_guard = uint32_t(f.params.edge_guard);

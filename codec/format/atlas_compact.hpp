@@ -1,5 +1,5 @@
-// atlas_compact.hpp - the compact layout of atlas files, versions 4 to 8
-// (docs/FORMAT.md §2 and §A.1-§A.3): the packed byte after the version and the
+// atlas_compact.hpp - the compact layout of atlas files, versions 4 to 14
+// (docs/FORMAT.md §2, §6 and §A.1-§A.3): the packed byte after the version and the
 // parameters such a file leaves out. Shared by the reader
 // (atlas_file.cpp) and the writer (writer/atlas_writer.cpp).
 #pragma once
@@ -90,6 +90,23 @@ inline void read_exemplar_size_and_seed(ByteReader& r, uint8_t packed, int aw, i
         h.exemplar_height = uint32_t(ah);
     }
     h.seed = r.varint("seed");
+}
+
+// Versions 13 and 14, after the seed: where the atlas lies in the
+// exemplar, which it must fit inside; an origin needs the exemplar size
+// stored, and (0, 0) is written as version 10 or 11 (CORRUPT otherwise).
+inline void read_atlas_origin(ByteReader& r, uint16_t version, uint8_t packed, int aw, int ah, FileHeader& h) {
+    if (!stores_origin(version)) return;
+    if (!(packed & kPackedExemplarSize))
+        r.corrupt("a version " + std::to_string(version) + " file's atlas is a part of the exemplar, whose size "
+                  "must then be stored (packed bit 5)");
+    const auto room = [](uint32_t exemplar, int atlas) { return exemplar > uint32_t(atlas) ? exemplar - uint32_t(atlas) : 0u; };
+    h.atlas_x = uint32_t(r.varint_in("atlas x", 0, room(h.exemplar_width, aw)));
+    h.atlas_y = uint32_t(r.varint_in("atlas y", 0, room(h.exemplar_height, ah)));
+    if (h.atlas_x == 0 && h.atlas_y == 0)
+        r.corrupt("the atlas's origin is stored but is (0, 0) (the file must then be version " +
+                  std::to_string(version == kOriginAtlasFormatVersion ? kCoverAtlasFormatVersion
+                                                                      : kCoverMaterialFormatVersion) + ")");
 }
 
 inline bool are_compact_defaults(const AtlasSynthesisParams& p, uint16_t version) {

@@ -171,6 +171,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
     const int aw = int(r.varint_in("atlas width", kMinAtlasSide, kMaxAtlasSide));
     const int ah = int(r.varint_in("atlas height", kMinAtlasSide, kMaxAtlasSide));
     read_exemplar_size_and_seed(r, packed, aw, ah, h);
+    read_atlas_origin(r, version, packed, aw, ah, h);
     AtlasSynthesisParams& p = f.params;
     p.example_tileable = (packed & kPackedTileable) != 0;
     p.blend = default_blend(version);

@@ -31,8 +31,10 @@ uint16_t read_format_version(const uint8_t* data, std::size_t size) {
                  std::to_string(kFormatVersion) + " (still textures), " + std::to_string(kVolumeFormatVersion) +
                  " (animations), " + std::to_string(kAtlasFormatVersion) + ", " +
                  std::to_string(kCompactAtlasFormatVersion) + ", " + std::to_string(kBlendAtlasFormatVersion) +
-                 " to " + std::to_string(kCoverMaterialFormatVersion) + " (atlas textures) and " +
-                 std::to_string(kAnimationAtlasFormatVersion) + " (atlas animations): use a matching vqtex release");
+                 " to " + std::to_string(kCoverMaterialFormatVersion) + ", " +
+                 std::to_string(kOriginAtlasFormatVersion) + ", " + std::to_string(kOriginMaterialFormatVersion) +
+                 " (atlas textures) and " + std::to_string(kAnimationAtlasFormatVersion) +
+                 " (atlas animations): use a matching vqtex release");
     return version;
 }
 

@@ -63,13 +63,29 @@ inline constexpr uint16_t kCoverMaterialFormatVersion = 11;
 // versions 4 to 11 with the atlas's frame count; the encoder writes it for
 // every animation (version 2 stays, for the paper's trees).
 inline constexpr uint16_t kAnimationAtlasFormatVersion = 12;
+// Versions 13 and 14 (docs/FORMAT.md §2.5): versions 10 and 11 with where
+// the atlas lies in the exemplar, so that the coordinates a decode reads
+// its texture from are the exemplar's own pixels. The decoded pixels do not
+// depend on it. The encoder writes them, in place of 10 and 11, when its
+// atlas is a part of the example that does not start at its top-left
+// corner.
+inline constexpr uint16_t kOriginAtlasFormatVersion = 13;
+inline constexpr uint16_t kOriginMaterialFormatVersion = 14;
+// Versions 4 to 11, 13 and 14: one still atlas or a set of maps behind the
+// compact header.
 inline bool is_compact_atlas_version(uint16_t version) {
-    return version >= kCompactAtlasFormatVersion && version <= kCoverMaterialFormatVersion;
+    return (version >= kCompactAtlasFormatVersion && version <= kCoverMaterialFormatVersion) ||
+           version == kOriginAtlasFormatVersion || version == kOriginMaterialFormatVersion;
 }
-// Whether a compact version's file holds a set of maps (9 and 11) rather
-// than one atlas.
+// Whether a compact version's file holds a set of maps (9, 11 and 14)
+// rather than one atlas.
 inline bool holds_maps(uint16_t version) {
-    return version == kMaterialAtlasFormatVersion || version == kCoverMaterialFormatVersion;
+    return version == kMaterialAtlasFormatVersion || version == kCoverMaterialFormatVersion ||
+           version == kOriginMaterialFormatVersion;
+}
+// Whether a compact version's file stores the atlas's origin (13 and 14).
+inline bool stores_origin(uint16_t version) {
+    return version == kOriginAtlasFormatVersion || version == kOriginMaterialFormatVersion;
 }
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;
@@ -93,6 +109,9 @@ struct FileHeader {
     uint8_t init = 0;       // 0 parent, 1 noise
     uint8_t backtrack = 1;  // TSVQ leaves visited per search
     uint64_t seed = 0;      // default seed
+    // Compact atlas files: where the atlas lies in the exemplar (stored by
+    // versions 13 and 14; 0, 0 otherwise).
+    uint32_t atlas_x = 0, atlas_y = 0;
     uint32_t section_count = 0;
     uint32_t reserved = 0;  // must be 0 (read_container checks it)
 };

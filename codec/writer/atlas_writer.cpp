@@ -1,6 +1,8 @@
-// atlas_writer.cpp - writing format versions 10 and 11 (docs/FORMAT.md §2),
-// the atlas files the encoder makes: the compact header, the parameters
-// only when they are not the defaults, the atlas bitstream (version 11: the
+// atlas_writer.cpp - writing format versions 10 and 11, or 13 and 14 when
+// the atlas is a part of the example away from its top-left corner
+// (docs/FORMAT.md §2), the atlas files the encoder makes: the compact
+// header, the atlas's origin when it is not (0, 0), the parameters only
+// when they are not the defaults, the atlas bitstream (version 11: the
 // maps, the guide's matrix and their bitstreams), CRC-32.
 // format/atlas_file.cpp reads them.
 #include "writer/atlas_writer.hpp"
@@ -29,13 +31,29 @@ void check_fields(const FileHeader& header, int atlas_width, int atlas_height, c
              "encode_atlas_file: fields outside what format version " + std::to_string(version) + " can hold");
 }
 
-// Everything before the bitstreams that versions 10 and 11 share.
+// The version a file of one image (10, 13) or of a set (11, 14) is written
+// as: 13 and 14 only when the atlas does not start at the exemplar's
+// top-left corner, so that its origin has one encoding.
+uint16_t version_for(const FileHeader& header, int atlas_width, int atlas_height, bool set) {
+    const bool origin = header.atlas_x != 0 || header.atlas_y != 0;
+    if (origin && (uint64_t(header.atlas_x) + uint64_t(atlas_width) > header.exemplar_width ||
+                   uint64_t(header.atlas_y) + uint64_t(atlas_height) > header.exemplar_height))
+        fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: the atlas does not lie inside the exemplar");
+    if (set) return origin ? kOriginMaterialFormatVersion : kCoverMaterialFormatVersion;
+    return origin ? kOriginAtlasFormatVersion : kCoverAtlasFormatVersion;
+}
+
+// Everything before the bitstreams that versions 10, 11, 13 and 14 share.
 void write_header(ByteWriter& w, uint16_t version, uint8_t channel_bits, const FileHeader& header, int atlas_width,
                   int atlas_height, const AtlasSynthesisParams& params) {
     const bool parameters = !are_compact_defaults(params, version);
     write_compact_start(w, version, channel_bits, header, atlas_width, atlas_height, parameters,
                         params.example_tileable);
     write_exemplar_size_and_seed(w, header, atlas_width, atlas_height);
+    if (stores_origin(version)) {
+        w.varint(header.atlas_x);
+        w.varint(header.atlas_y);
+    }
     if (parameters) {
         w.varint(uint64_t(params.passes));
         w.varint(uint64_t(params.coarse_passes));
@@ -78,12 +96,12 @@ void write_exemplar_size_and_seed(ByteWriter& w, const FileHeader& header, int a
 
 std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
                                        const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params) {
-    check_fields(header, atlas_width, atlas_height, params, kCoverAtlasFormatVersion);
+    const uint16_t version = version_for(header, atlas_width, atlas_height, false);
+    check_fields(header, atlas_width, atlas_height, params, version);
     if (header.channels < 1 || header.channels > 4 || atlas_bitstream.empty())
         fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: no bitstream, or channels outside 1..4");
     ByteWriter w;
-    write_header(w, kCoverAtlasFormatVersion, uint8_t(header.channels - 1), header, atlas_width, atlas_height,
-                 params);
+    write_header(w, version, uint8_t(header.channels - 1), header, atlas_width, atlas_height, params);
     w.bytes(atlas_bitstream);
     w.u32(crc32(w.data().data(), w.size()));
     return std::move(w.data());
@@ -92,7 +110,8 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
 std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_width, int atlas_height,
                                           const std::vector<CodedMap>& maps, const GuideMatrix& guide,
                                           const AtlasSynthesisParams& params) {
-    check_fields(header, atlas_width, atlas_height, params, kCoverMaterialFormatVersion);
+    const uint16_t version = version_for(header, atlas_width, atlas_height, true);
+    check_fields(header, atlas_width, atlas_height, params, version);
     int channels = 0;
     for (const CodedMap& m : maps) {
         if (!is_map_name(m.name) || m.channels < 1 || m.channels > 4 || m.bitstream.empty() ||
@@ -107,7 +126,7 @@ std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_wi
         guide.offsets.size() != std::size_t(guide.channels))
         fail(VQTEX_ERROR_INTERNAL, "encode_material_file: the maps or their guide cannot be stored");
     ByteWriter w;
-    write_header(w, kCoverMaterialFormatVersion, 0, header, atlas_width, atlas_height, params);
+    write_header(w, version, 0, header, atlas_width, atlas_height, params);
     w.varint(maps.size());
     for (const CodedMap& m : maps) {
         w.varint(m.name.size());

@@ -1,5 +1,6 @@
-// atlas_writer.hpp - the atlas files the encoder writes, format version 8
-// for one colour image and 9 for a set of maps (docs/FORMAT.md §2);
+// atlas_writer.hpp - the atlas files the encoder writes, format version 10
+// for one colour image and 11 for a set of maps, 13 and 14 when the atlas
+// is a part away from the example's corner (docs/FORMAT.md §2);
 // format/atlas_file.hpp reads them.
 #pragma once
 
@@ -23,10 +24,12 @@ void write_compact_start(ByteWriter& w, uint16_t version, uint8_t channel_bits, 
 // The exemplar size when it is not the atlas's, then the seed.
 void write_exemplar_size_and_seed(ByteWriter& w, const FileHeader& header, int atlas_width, int atlas_height);
 
-// A version 8 file (what the encoder writes for one colour image): the exemplar size, channels,
-// levels and seed of `header` (its other fields are not stored), the coded
-// atlas and the parameters. The exemplar size is stored only when it is
-// not the atlas's, the parameters only when they are not the defaults.
+// A version 10 file (what the encoder writes for one colour image; 13 when
+// the atlas's origin in the exemplar, header.atlas_x and atlas_y, is not
+// (0, 0)): the exemplar size, channels, levels, seed and origin of
+// `header` (its other fields are not stored), the coded atlas and the
+// parameters. The exemplar size is stored only when it is not the atlas's,
+// the parameters only when they are not the defaults.
 std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
                                        const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params);
 
@@ -39,8 +42,9 @@ struct CodedMap {
     std::vector<uint8_t> bitstream;
 };
 
-// A version 9 file: the levels, exemplar size and seed of `header`, the
-// maps and, for more than one, the guide's matrix (§4.15).
+// A version 11 file (14 with an origin): the levels, exemplar size, seed
+// and origin of `header`, the maps and, for more than one, the guide's
+// matrix (§4.15).
 std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_width, int atlas_height,
                                           const std::vector<CodedMap>& maps, const GuideMatrix& guide,
                                           const AtlasSynthesisParams& params);

@@ -451,14 +451,17 @@ VQTEX_API vqtex_status vqtex_decode_maps(const vqtex_decode_params* params, cons
                                          vqtex_map_image* maps, uint32_t capacity, uint32_t* count,
                                          vqtex_error* error);
 
-/* The coordinates a decode of an atlas file (format 3 to 9) reads its
- * texture from: a 2-channel image of the output's size holding, for every
- * output pixel, the (x, y) of the atlas pixel that its copy puts there
- * (the atlas is the exemplar, or a crop of it: a material set's is its
- * top-left corner, so the coordinates are the exemplar's). The decoder
- * blends neighbouring copies over a few pixels at seams; the coordinates
- * are each pixel's own copy. For applying one layout to maps of your own
- * (free with vqtex_image16_free). */
+/* The coordinates a decode of a still atlas file (format 3 to 11, 13, 14)
+ * reads its texture from: a 2-channel image of the output's size holding,
+ * for every output pixel, the (x, y) of the exemplar pixel that its copy
+ * puts there. The atlas is the exemplar or a part of it; the file says
+ * where the part lies (format 13 and 14; vqtex_file_info's atlas_x,
+ * atlas_y), so the coordinates are the exemplar's own pixels. (A file of
+ * format 10 or 11 whose part was not the exemplar's top-left corner, as
+ * encoders before format 13 wrote for large examples, gives the part's
+ * pixels.) The decoder blends neighbouring copies over a few pixels at
+ * seams; the coordinates are each pixel's own copy. For applying one
+ * layout to maps of your own (free with vqtex_image16_free). */
 VQTEX_API vqtex_status vqtex_decode_coords(const vqtex_decode_params* params, const uint8_t* data, size_t size,
                                            vqtex_image16* coords, vqtex_error* error);
 
@@ -527,6 +530,9 @@ typedef struct vqtex_file_info {
         uint32_t bits;                             /* bits a sample in the file: 8, or 12 for a 16-bit map */
         uint64_t bytes;                            /* its coded atlas */
     } maps[VQTEX_MAX_MAPS];
+    uint32_t atlas_x, atlas_y;                     /* atlas texture: where the atlas lies in the exemplar (its
+                                                      top-left corner; 0, 0 when it is the whole exemplar or
+                                                      its top-left corner, and in files before format 13) */
 } vqtex_file_info;
 
 /* Verifies and describes a file (everything the decoder checks). */
