@@ -452,6 +452,59 @@ TEST(Material, CoordinatesAreWhereEachPixelIsRead) {
     }
 }
 
+// Above 2 x 256x256 pixels the atlas is a part of the example: the file
+// says where it lies (format 13, 14), and the coordinates of a decode are
+// then the exemplar's own pixels, for a single image and for a set. A
+// brightness ramp across the surface puts the part that looks most like
+// the whole away from the corner.
+TEST(Material, CoordinatesOfAPartAreTheExemplarsPixels) {
+    Surface s = make_surface(400, 11);
+    for (int y = 0; y < 400; ++y)
+        for (int x = 0; x < 400; ++x) s.albedo.at(x, y)[2] = uint8_t(std::min(255, s.albedo.at(x, y)[2] + x / 2));
+    vqtex_encode_params ep;
+    vqtex_encode_params_init(&ep);
+    ep.threads = 2;
+    ep.target_size = 6000;
+    const std::vector<vqtex_map> maps = {{"albedo", VQTEX_MAP_COLOUR, 0, view(s.albedo), nullptr},
+                                         {"gloss", VQTEX_MAP_DATA, 0, view(s.gloss), nullptr}};
+    const vqtex_cpp::Buffer set = vqtex_cpp::encode_maps(ep, maps);
+    const std::vector<uint8_t> single = vqtex_test::encode(s.albedo, ep);
+    const std::vector<uint8_t> pair(set.data(), set.data() + set.size());
+    for (const std::vector<uint8_t>* file : {&single, &pair}) {
+        const vqtex_file_info info = vqtex_cpp::inspect(file->data(), file->size());
+        EXPECT_EQ(info.format_version, file == &single ? 13u : 14u);
+        ASSERT_LT(info.atlas_width, 400u);
+        ASSERT_GT(info.atlas_x + info.atlas_y, 0u) << "the part is the corner: nothing is tested";
+        const vqtex_decode_params p = decode_params(160, 120, 4, 2);
+        vqtex_image16 raw{};
+        vqtex_error err{};
+        ASSERT_EQ(vqtex_decode_coords(&p, file->data(), file->size(), &raw, &err), VQTEX_OK) << err.detail;
+        const vqtex_cpp::Image16 coords(raw);
+        const Image texture = vqtex_test::decode(*file, p);
+        // The texture's pixels against the exemplar's at the coordinates,
+        // and against where they would point without the origin: the ramp
+        // puts those at least x / 2 levels of blue away.
+        double moved = 0, unmoved = 0;
+        for (std::size_t i = 0; i < 160 * 120; ++i) {
+            const int x = coords.data()[2 * i], y = coords.data()[2 * i + 1];
+            ASSERT_GE(x, int(info.atlas_x));
+            ASSERT_LT(x, int(info.atlas_x + info.atlas_width));
+            ASSERT_GE(y, int(info.atlas_y));
+            ASSERT_LT(y, int(info.atlas_y + info.atlas_height));
+            for (int c = 0; c < 3; ++c) {
+                const int t = texture.pixels[i * 3 + std::size_t(c)];
+                moved += std::abs(t - int(s.albedo.at(x, y)[c]));
+                unmoved += std::abs(t - int(s.albedo.at(x - int(info.atlas_x), y - int(info.atlas_y))[c]));
+            }
+        }
+        moved /= 160 * 120 * 3;
+        unmoved /= 160 * 120 * 3;
+        EXPECT_LT(moved, 4.0) << info.format_version;
+        EXPECT_GT(unmoved, 2 * moved) << info.format_version << ": the part at " << info.atlas_x << ", "
+                                      << info.atlas_y;
+    }
+}
+
 // Pins format version 9 and its decoder (tests/golden/README.md): an 8-bit
 // colour map (corpus/bricks_128.png) and a 12-bit data map (a 16-bit height
 // field from corpus/clouds_128.png, box-filtered 5x5) at a 4000-byte

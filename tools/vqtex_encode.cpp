@@ -25,6 +25,28 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A still atlas's size and place in the report: in the JSON always, in the
+// text when it is not the whole example.
+void add_atlas_json(const vqtex_encode_stats& stats, FileReport& r) {
+    static const char* const kAtlasKinds[] = {"whole", "part", "tile"};
+    if (stats.atlas_width)
+        r.json["atlas"] = {{"width", stats.atlas_width},
+                           {"height", stats.atlas_height},
+                           {"x", stats.atlas_x},
+                           {"y", stats.atlas_y},
+                           {"kind", kAtlasKinds[std::min(stats.atlas_kind, 2u)]}};
+}
+
+void add_atlas_text(const vqtex_encode_stats& stats, FileReport& r) {
+    if (!stats.atlas_width || stats.atlas_kind == 0) return;
+    char line[256];
+    std::snprintf(line, sizeof line, "atlas %ux%u: %s\n", stats.atlas_width, stats.atlas_height,
+                  stats.atlas_kind == 2 ? "the tile the example repeats"
+                                        : ("the part at (" + std::to_string(stats.atlas_x) + ", " +
+                                           std::to_string(stats.atlas_y) + ")").c_str());
+    r.text += line;
+}
+
 // The animated-texture path (paper section 5.2): a frame sequence in, a
 // .vqt file out.
 FileReport encode_animation(const std::string& input, const std::string& output, vqtex_volume_encode_params p,
@@ -318,6 +340,7 @@ FileReport encode_loaded_set(const Settings& s, const std::vector<MapInput>& map
     j["quality"] = preset_free ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(quality);
     j["attempts"] = stats.attempts;
     j["encode_seconds"] = seconds;
+    add_atlas_json(stats, r);
     if (!notices.empty()) j["notices"] = notices;
     char line[2048];
     if (single) {
@@ -346,6 +369,7 @@ FileReport encode_loaded_set(const Settings& s, const std::vector<MapInput>& map
         std::snprintf(line, sizeof line, "%zu bytes, %.3f bits per example pixel, quality %d, %.3f s\n", size,
                       8.0 * double(size) / pixels, quality, seconds);
     r.text += line;
+    add_atlas_text(stats, r);
     return r;
 }
 
@@ -455,13 +479,7 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
               {"encode_seconds", seconds},
               {"codewords", std::vector<uint32_t>(stats.codewords, stats.codewords + stats.levels)},
               {"entries", std::vector<uint32_t>(stats.entries, stats.entries + stats.levels)}};
-    static const char* const kAtlasKinds[] = {"whole", "part", "tile"};
-    if (stats.atlas_width)
-        r.json["atlas"] = {{"width", stats.atlas_width},
-                           {"height", stats.atlas_height},
-                           {"x", stats.atlas_x},
-                           {"y", stats.atlas_y},
-                           {"kind", kAtlasKinds[std::min(stats.atlas_kind, 2u)]}};
+    add_atlas_json(stats, r);
     if (!notices.empty()) r.json["notices"] = notices;
     std::snprintf(line, sizeof line, "%s (%ux%u, %u channels) -> %s\n", input.c_str(), example.width,
                   example.height, example.channels, output.c_str());
@@ -473,13 +491,7 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
         std::snprintf(line, sizeof line, "%zu bytes, %.3f bits per example pixel, quality %d%s, %.3f s\n", size,
                       8.0 * double(size) / pixels, quality, p.target_size ? " (target-size search)" : "", seconds);
     r.text += line;
-    if (stats.atlas_width && stats.atlas_kind != 0) {
-        std::snprintf(line, sizeof line, "atlas %ux%u: %s\n", stats.atlas_width, stats.atlas_height,
-                      stats.atlas_kind == 2 ? "the tile the example repeats"
-                                            : ("the part at (" + std::to_string(stats.atlas_x) + ", " +
-                                               std::to_string(stats.atlas_y) + ")").c_str());
-        r.text += line;
-    }
+    add_atlas_text(stats, r);
     return r;
 }
 

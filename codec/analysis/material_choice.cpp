@@ -3,6 +3,7 @@
 #include "analysis/material_choice.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -13,6 +14,7 @@
 #include "format/atlas_coder.hpp"
 #include "writer/atlas_encoder.hpp"
 #include "writer/atlas_writer.hpp"
+#include "vqtex/vqtex.h"
 
 namespace vqtex {
 namespace {
@@ -170,6 +172,172 @@ GuideMatrix guide_matrix(const std::vector<MaterialMap>& maps) {
     return g;
 }
 
+namespace {
+
+// The files of one part of a set's maps (each map's atlas at the same
+// place) at the levels tried so far. The maps code independently (libaom
+// on one thread each), so the bytes do not depend on the thread count.
+class SetLevelSearch {
+public:
+    SetLevelSearch(const std::vector<MaterialMap>& maps, const GuideMatrix& guide, const std::vector<int>& offsets,
+                   std::array<int, 4> part, const AtlasChoiceOptions& options, int threads, uint32_t* attempts,
+                   int speed = AtlasEncodeOptions{}.speed)
+        : maps_(maps), guide_(guide), offsets_(offsets), part_(part), options_(options), threads_(threads),
+          attempts_(attempts), speed_(speed) {
+        const auto [x, y, w, h] = part;
+        for (const MaterialMap& m : maps) {
+            atlases_.push_back(m.image.crop(x, y, w, h));
+            atlases16_.push_back(m.bits > 8 ? m.image16.crop(x, y, w, h) : Image16());
+        }
+        const int deepest = coherent_levels(w, h);
+        levels_ = options.levels ? std::min(options.levels, deepest) : deepest;
+    }
+
+    const std::vector<uint8_t>& file_at(int cq) {
+        auto it = files_.find(cq);
+        if (it != files_.end()) return it->second;
+        std::vector<CodedMap> coded(maps_.size());
+        parallel_for(threads_, maps_.size(), 1, [&](std::size_t i0, std::size_t i1) {
+            for (std::size_t i = i0; i < i1; ++i) {
+                const MaterialMap& m = maps_[i];
+                AtlasEncodeOptions ao;
+                ao.cq_level = std::clamp(cq + offsets_[i], 0, 63);
+                ao.speed = speed_;
+                coded[i] = {m.name, m.kind, atlases_[i].channels, m.bits,
+                            m.bits > 8 ? encode_atlas_high(atlases16_[i], m.bits, ao) : encode_atlas(atlases_[i], ao)};
+            }
+        });
+        ++*attempts_;
+        FileHeader hd;
+        hd.exemplar_width = uint32_t(maps_[0].image.width);
+        hd.exemplar_height = uint32_t(maps_[0].image.height);
+        hd.levels = uint8_t(levels_);
+        hd.seed = options_.seed;
+        hd.atlas_x = uint32_t(part_[0]);
+        hd.atlas_y = uint32_t(part_[1]);
+        AtlasSynthesisParams sp;
+        sp.example_tileable = options_.example_tileable && part_[2] == maps_[0].image.width &&
+                              part_[3] == maps_[0].image.height;
+        return files_.emplace(cq, encode_material_file(hd, part_[2], part_[3], coded, guide_, sp)).first->second;
+    }
+
+    uint64_t size_at(int cq) { return file_at(cq).size(); }
+
+    MaterialChoice choice(int cq) {
+        MaterialChoice c;
+        c.file = file_at(cq);
+        c.cq = cq;
+        c.levels = levels_;
+        c.atlas_x = part_[0];
+        c.atlas_y = part_[1];
+        c.atlas_width = part_[2];
+        c.atlas_height = part_[3];
+        return c;
+    }
+
+private:
+    const std::vector<MaterialMap>& maps_;
+    const GuideMatrix& guide_;
+    const std::vector<int>& offsets_;
+    std::array<int, 4> part_;  // x, y, w, h
+    AtlasChoiceOptions options_;
+    int threads_ = 1;
+    uint32_t* attempts_;
+    int speed_ = 4;
+    int levels_ = 0;
+    std::vector<Image> atlases_;
+    std::vector<Image16> atlases16_;
+    std::map<int, std::vector<uint8_t>> files_;
+};
+
+// The set a candidate file decodes to (side x side, a seed of its own),
+// each map scored against its example.
+std::vector<ProxyScores> set_proxy_scores(const std::vector<MaterialMap>& maps,
+                                          const std::vector<vqtex_metrics::Image>& references,
+                                          const std::vector<uint8_t>& file, int side, int threads) {
+    vqtex_decode_params p;
+    vqtex_decode_params_init(&p);
+    p.width = p.height = uint32_t(side);
+    p.seed = 2;
+    p.threads = uint32_t(threads);
+    std::vector<vqtex_map_image> decoded(VQTEX_MAX_MAPS);
+    uint32_t count = 0;
+    vqtex_error err{};
+    if (vqtex_decode_maps(&p, file.data(), file.size(), decoded.data(), VQTEX_MAX_MAPS, &count, &err) != VQTEX_OK)
+        fail(VQTEX_ERROR_INTERNAL, std::string("a candidate set did not decode: ") + err.detail);
+    std::vector<vqtex_metrics::Image> textures;
+    for (uint32_t i = 0; i < count; ++i) {
+        vqtex_map_image& d = decoded[i];
+        if (d.bits == 8) {
+            const std::size_t n = std::size_t(d.image.width) * d.image.height * d.image.channels;
+            textures.push_back({int(d.image.width), int(d.image.height), int(d.image.channels),
+                                std::vector<uint8_t>(d.image.pixels, d.image.pixels + n)});
+        } else {
+            // The guide's view of a deep map: its top 8 bits.
+            const std::size_t n = std::size_t(d.image16.width) * d.image16.height * d.image16.channels;
+            std::vector<uint8_t> top(n);
+            for (std::size_t k = 0; k < n; ++k) top[k] = uint8_t(d.image16.pixels[k] >> 8);
+            textures.push_back({int(d.image16.width), int(d.image16.height), int(d.image16.channels), std::move(top)});
+        }
+        vqtex_image_free(&d.image);
+        vqtex_image16_free(&d.image16);
+    }
+    if (textures.size() != maps.size()) fail(VQTEX_ERROR_INTERNAL, "a candidate set decoded to the wrong map count");
+    std::vector<ProxyScores> scores;
+    for (std::size_t i = 0; i < maps.size(); ++i)
+        scores.push_back(proxy_scores_of(references[i], textures[i], kLargeProxyWindows));
+    return scores;
+}
+
+// A set above kLargeExamplePixels: square parts at the sides each map's
+// share of the budget pays for (the stills' large path, atlas_choice.hpp),
+// every map's atlas at the same place, each part coded at its finest
+// fitting level; they compete on the proxy's scores of every map, each
+// relative to the best candidate's.
+MaterialChoice choose_material_part(const std::vector<MaterialMap>& maps, const GuideMatrix& guide,
+                                    const std::vector<int>& offsets, const AtlasChoiceOptions& options) {
+    const Image& first = maps[0].image;
+    const std::vector<int> sides = large_part_sides(options.budget / maps.size(),
+                                                    std::min({first.width, first.height, kMaxAtlasSide}));
+    std::vector<MaterialChoice> candidates(sides.size());
+    std::vector<uint32_t> attempts(sides.size(), 0);
+    parallel_for(options.threads, sides.size(), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const int s = sides[i];
+            const bool whole = s == first.width && s == first.height;
+            const std::array<int, 2> at = whole ? std::array<int, 2>{0, 0} : representative_place(first, s);
+            const std::array<int, 4> part{at[0], at[1], s, s};
+            SetLevelSearch fast(maps, guide, offsets, part, options, 1, &attempts[i], kSearchSpeed);
+            const int guess = finest_fitting_level(options.budget, [&](int cq) { return fast.size_at(cq); });
+            SetLevelSearch fine(maps, guide, offsets, part, options, 1, &attempts[i], kFinalSpeed);
+            const int cq = finest_fitting_near(options.budget, guess, [&](int q) { return fine.size_at(q); });
+            if (cq >= 0) candidates[i] = fine.choice(cq);
+        }
+    });
+    std::vector<vqtex_metrics::Image> references;
+    for (const MaterialMap& m : maps) references.push_back(as_metrics_image(m.image));
+    std::vector<std::vector<ProxyScores>> scores(sides.size());
+    const bool together = first.pixel_count() <= kProxiesTogetherPixels;
+    parallel_for(together ? options.threads : 1, sides.size(), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            if (candidates[i].file.empty()) continue;
+            const int side = std::min(kLargeProxySide, 2 * sides[i]);
+            scores[i] = set_proxy_scores(maps, references, candidates[i].file, side, together ? 1 : options.threads);
+        }
+    });
+    const int best = best_relative(scores);
+    if (best < 0)
+        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no atlas of the " + std::to_string(maps.size()) + " maps fits in " +
+                                             std::to_string(options.budget) +
+                                             " bytes (the smallest needs more): raise --target-size or --quality");
+    MaterialChoice chosen = std::move(candidates[std::size_t(best)]);
+    chosen.attempts = 0;
+    for (uint32_t a : attempts) chosen.attempts += a;
+    return chosen;
+}
+
+}  // namespace
+
 MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const AtlasChoiceOptions& options) {
     const Image& first = maps.at(0).image;
     if (first.width < kMinAtlasSide || first.height < kMinAtlasSide)
@@ -189,52 +357,16 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
     std::vector<int> offsets;
     for (const double d : deviation)
         offsets.push_back(std::clamp(int(std::lround(6.0 * std::log2(d / most))), -24, 0));
+    if (options.compaction && first.pixel_count() > kLargeExamplePixels)
+        return choose_material_part(maps, guide, offsets, options);
     uint32_t attempts = 0;
     for (int scale = 16; scale >= 1; scale = scale == 16 ? 12 : scale * 3 / 4) {
         const int w = std::min({kMaxAtlasSide, first.width, std::max(kMinAtlasSide, first.width * scale / 16)});
         const int h = std::min({kMaxAtlasSide, first.height, std::max(kMinAtlasSide, first.height * scale / 16)});
-        std::vector<Image> atlases;
-        std::vector<Image16> atlases16;
-        for (const MaterialMap& m : maps) {
-            atlases.push_back(m.image.crop(0, 0, w, h));
-            atlases16.push_back(m.bits > 8 ? m.image16.crop(0, 0, w, h) : Image16());
-        }
-        const int deepest = coherent_levels(w, h);
-        const int levels = options.levels ? std::min(options.levels, deepest) : deepest;
-        std::map<int, std::vector<uint8_t>> files;
-        const auto file_at = [&](int cq) -> const std::vector<uint8_t>& {
-            auto it = files.find(cq);
-            if (it != files.end()) return it->second;
-            std::vector<CodedMap> coded(maps.size());
-            // The maps code independently (libaom on one thread each), so
-            // the bytes do not depend on the thread count.
-            parallel_for(options.threads, maps.size(), 1, [&](std::size_t i0, std::size_t i1) {
-                for (std::size_t i = i0; i < i1; ++i) {
-                    AtlasEncodeOptions ao;
-                    ao.cq_level = std::clamp(cq + offsets[i], 0, 63);
-                    coded[i] = {maps[i].name, maps[i].kind, atlases[i].channels, maps[i].bits,
-                                maps[i].bits > 8 ? encode_atlas_high(atlases16[i], maps[i].bits, ao)
-                                                 : encode_atlas(atlases[i], ao)};
-                }
-            });
-            ++attempts;
-            FileHeader hd;
-            hd.exemplar_width = uint32_t(first.width);
-            hd.exemplar_height = uint32_t(first.height);
-            hd.levels = uint8_t(levels);
-            hd.seed = options.seed;
-            AtlasSynthesisParams sp;
-            sp.example_tileable = options.example_tileable;
-            return files.emplace(cq, encode_material_file(hd, w, h, coded, guide, sp)).first->second;
-        };
-        const int best = finest_fitting_level(options.budget, [&](int cq) { return uint64_t(file_at(cq).size()); });
+        SetLevelSearch search(maps, guide, offsets, {0, 0, w, h}, options, options.threads, &attempts);
+        const int best = finest_fitting_level(options.budget, [&](int cq) { return search.size_at(cq); });
         if (best >= 0) {
-            MaterialChoice c;
-            c.file = file_at(best);
-            c.cq = best;
-            c.levels = levels;
-            c.atlas_width = w;
-            c.atlas_height = h;
+            MaterialChoice c = search.choice(best);
             c.attempts = attempts;
             return c;
         }

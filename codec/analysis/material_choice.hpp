@@ -44,13 +44,17 @@ struct MaterialChoice {
     std::vector<uint8_t> file;  // a whole version 9 file
     int cq = 0;                 // libaom's level, 0..63, of every map
     int levels = 0;
+    int atlas_x = 0, atlas_y = 0;  // where the atlas lies in the example
     int atlas_width = 0, atlas_height = 0;
     uint32_t attempts = 0;      // AV1 encodes of the set tried
 };
 
-// The finest quantiser at which the whole example's maps fit the budget,
-// or failing that the largest top-left crop (12/16, 9/16... of each side)
-// that fits. Throws LIMIT_EXCEEDED when nothing fits. The bytes do not
+// Maps of at most kLargeExamplePixels: the finest quantiser at which the
+// whole example's maps fit the budget, or failing that the largest
+// top-left crop (12/16, 9/16... of each side) that fits. Larger maps take
+// the stills' large path: square parts at the sides the budget pays for,
+// each where the first map looks most like its whole, compete on the
+// decoded maps' scores. Throws LIMIT_EXCEEDED when nothing fits. The bytes do not
 // depend on the thread count.
 MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const AtlasChoiceOptions& options);
 

@@ -92,11 +92,13 @@ vqtex_status vqtex_encode_maps(const vqtex_encode_params* params, const vqtex_ma
         const ProgressFn progress = stage_progress(params->progress, params->progress_user, VQTEX_STAGE_ANALYSE);
         if (progress && !progress(0, 1)) fail(VQTEX_ERROR_CANCELLED, "encoding cancelled by the progress callback");
         AtlasChoiceOptions o;
-        // Each map a single image's budget at the quality, or the target
-        // size shared.
-        o.budget = params->target_size ? params->target_size
-                                       : atlas_budget_of_quality(int(params->quality), set[0].image.pixel_count()) *
-                                             uint64_t(set.size());
+        // Each map a single image's budget at the quality (which counts at
+        // most kBudgetedPixels, as for a single image), or the target size
+        // shared.
+        const uint64_t budgeted = std::min<uint64_t>(set[0].image.pixel_count(), kBudgetedPixels);
+        o.budget = params->target_size
+                       ? params->target_size
+                       : atlas_budget_of_quality(int(params->quality), budgeted) * uint64_t(set.size());
         o.levels = int(params->levels);
         o.example_tileable = params->example_tileable != 0;
         o.seed = params->seed;
@@ -113,6 +115,11 @@ vqtex_status vqtex_encode_maps(const vqtex_encode_params* params, const vqtex_ma
             stats->quality = params->target_size ? 0u : params->quality;
             stats->attempts = r.attempts;
             stats->seconds = seconds_since(t0, std::chrono::steady_clock::now());
+            stats->atlas_width = uint32_t(r.atlas_width);
+            stats->atlas_height = uint32_t(r.atlas_height);
+            stats->atlas_x = uint32_t(r.atlas_x);
+            stats->atlas_y = uint32_t(r.atlas_y);
+            stats->atlas_kind = r.atlas_width == set[0].image.width && r.atlas_height == set[0].image.height ? 0u : 1u;
         }
     });
 }
