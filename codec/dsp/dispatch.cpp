@@ -23,10 +23,11 @@ Available detect() {
         k && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
         __builtin_cpu_supports("avx512dq"))
         a.sets[a.count++] = k;
-    if (const Kernels* k = avx512vnni_kernels();
-        k && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+    // The CPU is asked first: the VNNI set is made at its first call by
+    // code compiled for AVX-512, which a CPU without it cannot run.
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
         __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vnni"))
-        a.sets[a.count++] = k;
+        if (const Kernels* k = avx512vnni_kernels()) a.sets[a.count++] = k;
 #endif
     return a;
 }
