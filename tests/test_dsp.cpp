@@ -299,50 +299,104 @@ TEST(Dsp, PackedPixelComparisonsEqualTheirDefinitionsOnEveryKernelSet) {
     }
 }
 
-TEST(Dsp, LinearKernelsEqualTheirDefinitionsModuloTheirWidthOnEveryKernelSet) {
-    // Lengths around every vector width and its tail; full-range values, so
-    // the 16-bit dot wraps modulo 2^32 and the 32-bit one comes near 2^63.
-    for (std::size_t n : {1u, 7u, 8u, 15u, 16u, 31u, 33u, 75u, 100u, 128u, 4096u, 4099u}) {
-        for (uint64_t seed = 0; seed < 6; ++seed) {
-            Rng rng(seed * 31 + n);
-            std::vector<int16_t> a(n), b(n), x(n);
-            std::vector<int32_t> c(n), d(n), acc(n);
-            for (std::size_t i = 0; i < n; ++i) {
-                a[i] = int16_t(int(rng.below(65536)) - 32768);
-                b[i] = int16_t(int(rng.below(65536)) - 32768);
-                x[i] = int16_t(int(rng.below(65536)) - 32768);
-                c[i] = int32_t(int64_t(rng.below(uint64_t(1) << 32)) - (int64_t(1) << 31));
-                d[i] = int32_t(int64_t(rng.below(uint64_t(1) << 32)) - (int64_t(1) << 31));
-                acc[i] = int32_t(int64_t(rng.below(uint64_t(1) << 32)) - (int64_t(1) << 31));
-            }
-            int16_t weight = int16_t(int(rng.below(65536)) - 32768);
-            // A second row and weight for axpy2_i16. With seed 0 both weights
-            // and both first values are -32768: that pair's sum, 2^31, wraps.
-            std::vector<int16_t> y(n);
-            for (std::size_t i = 0; i < n; ++i) y[i] = int16_t(int(rng.below(65536)) - 32768);
-            int16_t weight2 = int16_t(int(rng.below(65536)) - 32768);
-            if (seed == 0) weight = weight2 = x[0] = y[0] = int16_t(-32768);
-            uint32_t dot16 = 0;
-            uint64_t dot32 = 0;
-            std::vector<int32_t> expected_acc(n), expected_acc2(n);
-            for (std::size_t i = 0; i < n; ++i) {
-                dot16 += uint32_t(int32_t(a[i]) * int32_t(b[i]));
-                dot32 += uint64_t(int64_t(c[i]) * int64_t(d[i]));
-                expected_acc[i] = int32_t(uint32_t(acc[i]) + uint32_t(int32_t(weight) * x[i]));
-                expected_acc2[i] = int32_t(uint32_t(acc[i]) + uint32_t(int32_t(weight) * x[i]) +
-                                           uint32_t(int32_t(weight2) * y[i]));
-            }
+TEST(Dsp, GramProductsEqualTheirDefinitionModulo32BitsOnEveryKernelSet) {
+    // Column lengths around every register width and its tail, row counts
+    // around every block size; full-range values, so the sums wrap modulo
+    // 2^32 (with seed 0 the first pair is -32768 twice: its pair sum, 2^31,
+    // wraps in a multiply-add of pairs).
+    for (std::size_t count : {1u, 7u, 15u, 16u, 31u, 33u, 100u, 4096u, 4099u})
+        for (std::size_t dims : {1u, 2u, 3u, 4u, 5u, 7u, 9u, 75u}) {
+            if (count * dims > 100000) continue;
+            Rng rng(count * 131 + dims);
+            std::vector<int16_t> columns(count * dims);
+            for (auto& c : columns) c = int16_t(int(rng.below(65536)) - 32768);
+            if (count >= 2) columns[0] = columns[1] = int16_t(-32768);
+            std::vector<uint32_t> expected(dims * dims, 0xDEADBEEFu);
+            for (std::size_t i = 0; i < dims; ++i)
+                for (std::size_t j = i; j < dims; ++j) {
+                    uint32_t sum = 0;
+                    for (std::size_t s = 0; s < count; ++s)
+                        sum += uint32_t(int32_t(columns[i * count + s]) * int32_t(columns[j * count + s]));
+                    expected[i * dims + j] = sum;
+                }
             for (int k = 0; k < dsp::available_kernel_count(); ++k) {
                 const dsp::Kernels& kernels = dsp::available_kernels(k);
-                EXPECT_EQ(kernels.dot_i16(a.data(), b.data(), n), dot16) << kernels.name << " n=" << n;
-                EXPECT_EQ(kernels.dot_i32(c.data(), d.data(), n), int64_t(dot32)) << kernels.name << " n=" << n;
-                std::vector<int32_t> out = acc;
-                kernels.axpy_i16(out.data(), x.data(), weight, n);
-                EXPECT_EQ(out, expected_acc) << kernels.name << " n=" << n;
-                out = acc;
-                kernels.axpy2_i16(out.data(), x.data(), y.data(), weight, weight2, n);
-                EXPECT_EQ(out, expected_acc2) << kernels.name << " n=" << n;
+                // All rows at once, and in two ranges (as threads take them):
+                // nothing below the diagonal, nor outside the range, written.
+                std::vector<uint32_t> whole(dims * dims, 0xDEADBEEFu), split(dims * dims, 0xDEADBEEFu);
+                kernels.gram_i16(columns.data(), dims, count, 0, dims, whole.data());
+                EXPECT_EQ(whole, expected) << kernels.name << " count=" << count << " dims=" << dims;
+                const std::size_t middle = dims / 2;
+                kernels.gram_i16(columns.data(), dims, count, 0, middle, split.data());
+                for (std::size_t i = middle; i < dims; ++i)
+                    for (std::size_t j = 0; j < dims; ++j) EXPECT_EQ(split[i * dims + j], 0xDEADBEEFu) << kernels.name;
+                kernels.gram_i16(columns.data(), dims, count, middle, dims, split.data());
+                EXPECT_EQ(split, expected) << kernels.name << " count=" << count << " dims=" << dims << " split";
             }
         }
+}
+
+TEST(Dsp, MatrixVectorProductsEqualTheirDefinitionModulo64BitsOnEveryKernelSet) {
+    // Sizes around every register width and the passes of several
+    // registers; full-range values, so the 64-bit sums wrap.
+    for (std::size_t n : {1u, 2u, 7u, 8u, 9u, 15u, 16u, 17u, 33u, 75u, 96u, 100u, 130u}) {
+        Rng rng(n * 17 + 3);
+        std::vector<int32_t> m(n * n), v(n);
+        for (auto& x : m) x = int32_t(int64_t(rng.below(uint64_t(1) << 32)) - (int64_t(1) << 31));
+        for (auto& x : v) x = int32_t(int64_t(rng.below(uint64_t(1) << 32)) - (int64_t(1) << 31));
+        std::vector<int64_t> expected(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            uint64_t sum = 0;
+            for (std::size_t j = 0; j < n; ++j) sum += uint64_t(int64_t(m[j * n + i]) * int64_t(v[j]));
+            expected[i] = int64_t(sum);
+        }
+        for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+            const dsp::Kernels& kernels = dsp::available_kernels(k);
+            std::vector<int64_t> out(n, 12345);
+            kernels.matvec_i32(m.data(), v.data(), n, out.data());
+            EXPECT_EQ(out, expected) << kernels.name << " n=" << n;
+        }
     }
+}
+
+TEST(Dsp, ProjectedPairsEqualTheirDefinitionOnEveryKernelSet) {
+    // Values of bytes, as the appearance space projects, and full-range
+    // weights, with as many entries as keep the sums within the kernel's
+    // bounds; widths around every register's pixels and its tail; a limit
+    // that clamps and one that does not.
+    for (std::size_t n : {1u, 3u, 4u, 5u, 8u, 15u, 16u, 17u, 31u, 33u, 128u, 131u})
+        for (std::size_t count : {1u, 2u, 15u, 30u})
+            for (int32_t limit : {2047, 32767}) {
+                Rng rng(n * 1009 + count * 7 + uint64_t(limit));
+                std::vector<std::vector<int16_t>> rows(count, std::vector<int16_t>(2 * n));
+                std::vector<const int16_t*> pointers;
+                for (auto& row : rows) {
+                    for (auto& x : row) x = int16_t(rng.below(256));
+                    pointers.push_back(row.data());
+                }
+                std::vector<int32_t> weights(count * dsp::kWindowTapValues);
+                for (auto& x : weights) x = int32_t(uint32_t(rng.below(uint64_t(1) << 32)));
+                if (count == 1) weights[0] = int32_t(0x80008000u);  // -32768 twice
+                std::vector<int32_t> offset(dsp::kWindowTapValues);
+                for (auto& x : offset) x = int32_t(int64_t(rng.below(uint64_t(1) << 29)) - (int64_t(1) << 28));
+                std::vector<int16_t> expected(n * dsp::kWindowTapValues);
+                for (std::size_t i = 0; i < n; ++i)
+                    for (int a = 0; a < dsp::kWindowTapValues; ++a) {
+                        int64_t sum = 0;
+                        for (std::size_t e = 0; e < count; ++e) {
+                            const uint32_t w = uint32_t(weights[e * dsp::kWindowTapValues + std::size_t(a)]);
+                            sum += int64_t(int16_t(uint16_t(w))) * rows[e][2 * i] +
+                                   int64_t(int16_t(uint16_t(w >> 16))) * rows[e][2 * i + 1];
+                        }
+                        const int64_t v = (sum - offset[std::size_t(a)] + (1 << 14)) >> 15;
+                        expected[i * dsp::kWindowTapValues + std::size_t(a)] =
+                            int16_t(std::clamp<int64_t>(v, -limit, limit));
+                    }
+                for (int k = 0; k < dsp::available_kernel_count(); ++k) {
+                    const dsp::Kernels& kernels = dsp::available_kernels(k);
+                    std::vector<int16_t> out(n * dsp::kWindowTapValues, 12345);
+                    kernels.project_pairs(pointers.data(), weights.data(), count, n, offset.data(), limit, out.data());
+                    EXPECT_EQ(out, expected) << kernels.name << " n=" << n << " count=" << count << " limit=" << limit;
+                }
+            }
 }

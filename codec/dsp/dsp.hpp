@@ -126,15 +126,29 @@ struct Kernels {
                            std::ptrdiff_t row_step, int side, uint32_t bound);
     // The appearance space's linear algebra (engine/appearance.cpp,
     // linear_kernels.hpp), every sum modulo a power of two:
-    // sum of a[i] * b[i] modulo 2^32 (the PCA's covariance);
-    uint32_t (*dot_i16)(const int16_t* a, const int16_t* b, std::size_t n);
-    // acc[i] += weight * x[i] modulo 2^32 (projections on the axes);
-    void (*axpy_i16)(int32_t* acc, const int16_t* x, int16_t weight, std::size_t n);
-    // acc[i] += w0 * x0[i] + w1 * x1[i] modulo 2^32 (two rows in one pass
-    // over the sums);
-    void (*axpy2_i16)(int32_t* acc, const int16_t* x0, const int16_t* x1, int16_t w0, int16_t w1, std::size_t n);
-    // sum of the 64-bit products a[i] * b[i] modulo 2^64 (power iteration).
-    int64_t (*dot_i32)(const int32_t* a, const int32_t* b, std::size_t n);
+    // the sums of products of pairs of `dims` columns of `count` 16-bit
+    // values (column i at columns + i * count), modulo 2^32 (the PCA's
+    // covariance): products[i * dims + j] for the rows i in [first, last)
+    // and every j >= i (nothing below the diagonal is written);
+    void (*gram_i16)(const int16_t* columns, std::size_t dims, std::size_t count, std::size_t first, std::size_t last,
+                     uint32_t* products);
+    // the projection of n windows on kWindowTapValues axes: each of `count`
+    // entries is a row of n pairs of 16-bit values (rows[e][2i] and
+    // rows[e][2i + 1] for pixel i) and kWindowTapValues pairs of 16-bit
+    // weights (weights[e * kWindowTapValues + a], the low half for the
+    // pair's first value); axis a's sum over the entries, modulo 2^32, less
+    // offset[a], rounded from Q15 (+ 2^14, shifted right 15) and clamped to
+    // [-limit, limit], goes to out[i * kWindowTapValues + a]. The sum and
+    // the offset must lie within +-2^29 (the wider sets compute in 32 bits)
+    // and limit below 2^15;
+    void (*project_pairs)(const int16_t* const* rows, const int32_t* weights, std::size_t count, std::size_t n,
+                          const int32_t* offset, int32_t limit, int16_t* out);
+    // out[i] = the sum over j < n of the 64-bit products m[j * n + i] * v[j]
+    // modulo 2^64, for i < n: v times an n x n matrix, which for the power
+    // iteration's symmetric matrix is the matrix times v (the sums down the
+    // columns take a whole vector of products per multiply, where sums
+    // along the rows would end in a reduction each).
+    void (*matvec_i32)(const int32_t* m, const int32_t* v, std::size_t n, int64_t* out);
     // The seam covers' colour comparisons (engine/seam_cover.cpp,
     // packed_pixels.hpp) on pixels of 32 bits, a channel a byte and zeros
     // after the channels:

@@ -6,6 +6,7 @@
 #include "dsp/linear_kernels.hpp"
 
 #if defined(__AVX2__) && !defined(VQTEX_SCALAR_ONLY)
+#include "dsp/linear_kernels_simd.hpp"
 #include "dsp/packed_pixels_sse2.hpp"
 #include "dsp/window_ssd.hpp"
 #include <immintrin.h>
@@ -163,10 +164,9 @@ const Kernels kAvx2 = {
     rank_candidates_avx2,
     lowest_ranked_avx2,
     detail::window_ssd_sse2,
-    detail::dot_i16_portable,
-    detail::axpy_i16_portable,
-    detail::axpy2_i16_portable,
-    detail::dot_i32_portable,
+    detail::gram_i16_simd<detail::Avx2Lanes>,
+    detail::project_pairs_simd<detail::Avx2Lanes>,
+    detail::matvec_i32_simd<detail::Avx2Matvec>,
     detail::packed_ssd_sse2,
     detail::packed_differences_sse2,
 };

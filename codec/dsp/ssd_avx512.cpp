@@ -14,6 +14,8 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
 
+#include "dsp/linear_kernels_simd.hpp"
+
 namespace vqtex::dsp {
 namespace {
 
@@ -175,10 +177,9 @@ const Kernels kAvx512 = {
     rank_candidates_avx512,
     lowest_ranked_avx512,
     detail::window_ssd_sse2,
-    detail::dot_i16_portable,
-    detail::axpy_i16_portable,
-    detail::axpy2_i16_portable,
-    detail::dot_i32_portable,
+    detail::gram_i16_simd<detail::Avx512Lanes>,
+    detail::project_pairs_simd<detail::Avx512Lanes>,
+    detail::matvec_i32_simd<detail::Avx512Matvec>,
     detail::packed_ssd_sse2,
     detail::packed_differences_sse2,
 };

@@ -10,6 +10,8 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
 
+#include "dsp/linear_kernels_simd.hpp"
+
 namespace vqtex::dsp {
 namespace {
 
@@ -111,6 +113,8 @@ Kernels make_vnni() {
     k.name = "avx512vnni";
     k.dot2 = dot2_avx512vnni;
     k.descend = descend_avx512vnni;
+    k.gram_i16 = detail::gram_i16_simd<detail::Avx512VnniLanes>;
+    k.project_pairs = detail::project_pairs_simd<detail::Avx512VnniLanes>;
     return k;
 }
 

@@ -85,10 +85,9 @@ const Kernels kScalar = {
     detail::rank_candidates_portable,
     detail::lowest_ranked_portable,
     window_ssd_scalar,
-    detail::dot_i16_portable,
-    detail::axpy_i16_portable,
-    detail::axpy2_i16_portable,
-    detail::dot_i32_portable,
+    detail::gram_i16_portable,
+    detail::project_pairs_portable,
+    detail::matvec_i32_portable,
     detail::packed_ssd_portable,
     detail::packed_differences_portable,
 };

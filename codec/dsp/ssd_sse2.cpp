@@ -5,6 +5,7 @@
 #include "dsp/linear_kernels.hpp"
 
 #if defined(__SSE2__) && !defined(VQTEX_SCALAR_ONLY)
+#include "dsp/linear_kernels_simd.hpp"
 #include "dsp/packed_pixels_sse2.hpp"
 #include "dsp/window_ssd.hpp"
 #include <emmintrin.h>
@@ -103,10 +104,9 @@ const Kernels kSse2 = {
     detail::rank_candidates_portable,
     detail::lowest_ranked_portable,
     detail::window_ssd_sse2,
-    detail::dot_i16_portable,
-    detail::axpy_i16_portable,
-    detail::axpy2_i16_portable,
-    detail::dot_i32_portable,
+    detail::gram_i16_simd<detail::Sse2Lanes>,
+    detail::project_pairs_simd<detail::Sse2Lanes>,
+    detail::matvec_i32_portable,
     detail::packed_ssd_sse2,
     detail::packed_differences_sse2,
 };

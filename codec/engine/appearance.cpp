@@ -36,77 +36,100 @@ uint64_t isqrt(uint128 n) {
     }
 }
 
+// (n << kAxisShift) / d rounded toward zero, for |n| <= d (a component of
+// a vector of length d, so the quotient is at most 2^kAxisShift), with
+// scale = 2^kAxisShift / d: the power iteration's normalisation. A
+// floating-point estimate, off by at most one, then exact integer steps to
+// the quotient: the same integer on every machine, without a 128-bit
+// division per component (which made this the analysis's slowest loop).
+int64_t scaled_quotient(int64_t n, uint64_t d, double scale) {
+    const uint64_t m = n < 0 ? 0 - uint64_t(n) : uint64_t(n);
+    const uint128 target = uint128(m) << kAxisShift;
+    uint64_t q = uint64_t(double(m) * scale);
+    while (q > 0 && uint128(q) * d > target) --q;
+    while (uint128(q + 1) * d <= target) ++q;
+    return n < 0 ? -int64_t(q) : int64_t(q);
+}
+
 int fold(int i, int size, bool wraps) { return edge_index(i, size, wraps ? EdgeMode::Wrap : EdgeMode::Mirror); }
 
 // The appearance vectors of one stack level: every pixel's 5x5 window at
 // `spacing` projected on `axes` (Q15), less `offset` (the axes times the
 // mean window), rounded and clamped. Rather than gathering each pixel's
-// window, each (tap, channel) adds its weight times a whole row of the
-// level (a vector kernel), read from planes padded by two taps on each side
-// as the window reads past the edges.
+// window, the kernel (Kernels::project_pairs) reads whole rows of the
+// level, each value beside the value `spacing` to its right: a pair plane
+// per channel, padded by two taps on each side as the window reads past the
+// edges. A window row's five taps are three such pairs: columns 0-1, 2-3,
+// and 3-4 with no weight on column 3, so that no pair reads beyond the
+// window.
 void project_level(const Image& img, int spacing, bool wraps, const std::vector<std::vector<int32_t>>& axes,
                    const std::vector<int32_t>& offset, int threads, int16_t* features) {
     const int w = img.width, h = img.height, ch = img.channels;
     const int pad = 2 * spacing;
-    const std::size_t pw = std::size_t(w + 2 * pad), ph = std::size_t(h + 2 * pad);
-    std::vector<int16_t> planes(pw * ph * std::size_t(ch));
-    std::vector<std::size_t> source_x(pw);
-    for (std::size_t x = 0; x < pw; ++x) source_x[x] = std::size_t(fold(int(x) - pad, w, wraps)) * ch;
+    // Pair (x, y) holds plane values x and x + spacing of padded row y.
+    const std::size_t pw = std::size_t(w + 3 * spacing), ph = std::size_t(h + 2 * pad);
+    std::vector<int16_t> pairs(pw * ph * std::size_t(ch) * 2);
+    std::vector<std::size_t> source_x(pw + std::size_t(spacing));
+    for (std::size_t x = 0; x < source_x.size(); ++x) source_x[x] = std::size_t(fold(int(x) - pad, w, wraps)) * ch;
     for (int c = 0; c < ch; ++c)
         for (std::size_t y = 0; y < ph; ++y) {
             const uint8_t* source = img.at(0, fold(int(y) - pad, h, wraps)) + c;
-            int16_t* plane_row = planes.data() + (std::size_t(c) * ph + y) * pw;
-            for (std::size_t x = 0; x < pw; ++x) plane_row[x] = source[source_x[x]];
+            int16_t* pair_row = pairs.data() + (std::size_t(c) * ph + y) * pw * 2;
+            for (std::size_t x = 0; x < pw; ++x) {
+                pair_row[2 * x] = source[source_x[x]];
+                pair_row[2 * x + 1] = source[source_x[x + std::size_t(spacing)]];
+            }
         }
+    // The entries: per window row and channel, three pairs of columns, each
+    // with its eight axes' pairs of weights (the low half for the first
+    // column). A weight fits 16 bits but for a unit axis along one value
+    // (2^15 exactly): that pair goes in twice, with half the weight each
+    // time, the sums being the same integers modulo 2^32.
+    constexpr int kPairColumn[3] = {0, 2, 3};
+    struct Entry {
+        int row, channel, column;
+    };
+    std::vector<Entry> entries;
+    std::vector<int32_t> weights;
+    for (int r = 0; r < kWindow; ++r)
+        for (int k = 0; k < ch; ++k)
+            for (int p = 0; p < 3; ++p) {
+                const int c = kPairColumn[p];
+                int32_t first[kAppearanceDims], second[kAppearanceDims];
+                bool halve = false;
+                for (int a = 0; a < kAppearanceDims; ++a) {
+                    const std::vector<int32_t>& axis = axes[std::size_t(a)];
+                    first[a] = p == 2 ? 0 : axis[std::size_t((r * kWindow + c) * ch + k)];
+                    second[a] = axis[std::size_t((r * kWindow + c + 1) * ch + k)];
+                    halve = halve || first[a] == 32768 || second[a] == 32768;
+                }
+                // Part 0 (only when halved) takes half of each weight, part
+                // 1 the rest.
+                for (int part = halve ? 0 : 1; part < 2; ++part) {
+                    entries.push_back({r, k, c});
+                    for (int a = 0; a < kAppearanceDims; ++a) {
+                        const int32_t half0 = halve ? first[a] / 2 : 0, half1 = halve ? second[a] / 2 : 0;
+                        const int32_t w0 = part == 0 ? half0 : first[a] - half0;
+                        const int32_t w1 = part == 0 ? half1 : second[a] - half1;
+                        weights.push_back(
+                            int32_t(uint32_t(uint16_t(int16_t(w0))) | uint32_t(uint16_t(int16_t(w1))) << 16));
+                    }
+                }
+            }
     const dsp::Kernels& kernels = dsp::kernels();
     parallel_for(threads, std::size_t(h), 8, [&](std::size_t y0, std::size_t y1) {
-        std::vector<int32_t> acc(std::size_t(kAppearanceDims) * w);
-        std::vector<const int16_t*> rows(std::size_t(kWindowTaps * ch));
+        std::vector<const int16_t*> rows(entries.size());
         for (std::size_t y = y0; y < y1; ++y) {
-            std::fill(acc.begin(), acc.end(), 0);
-            // Tap value j = (r * kWindow + c) * ch + k reads row rows[j].
-            for (int r = 0; r < kWindow; ++r)
-                for (int c = 0; c < kWindow; ++c)
-                    for (int k = 0; k < ch; ++k)
-                        rows[std::size_t((r * kWindow + c) * ch + k)] =
-                            planes.data() + (std::size_t(k) * ph + y + std::size_t(r * spacing)) * pw +
-                            std::size_t(c * spacing);
-            // Tap values go two at a time (axpy2_i16: one pass over the sums
-            // for two rows, and half the calls; 8-10% of the analysis).
-            // Weights fit 16 bits but for a unit axis along one value (2^15
-            // exactly): added alone, as two halves.
-            const auto add_one = [&](int32_t* out, const int16_t* row, int32_t weight) {
-                if (weight == 32768 || weight == -32768) {
-                    const int16_t half = int16_t(weight / 2);
-                    kernels.axpy_i16(out, row, half, std::size_t(w));
-                    weight -= half;
-                }
-                kernels.axpy_i16(out, row, int16_t(weight), std::size_t(w));
-            };
-            const std::size_t dims = rows.size();
-            for (std::size_t j = 0; j < dims; j += 2)
-                for (int a = 0; a < kAppearanceDims; ++a) {
-                    int32_t* out = acc.data() + std::size_t(a) * w;
-                    const int32_t w0 = axes[std::size_t(a)][j];
-                    if (j + 1 == dims) {
-                        add_one(out, rows[j], w0);
-                        continue;
-                    }
-                    const int32_t w1 = axes[std::size_t(a)][j + 1];
-                    if (w0 == 32768 || w0 == -32768 || w1 == 32768 || w1 == -32768) {
-                        add_one(out, rows[j], w0);
-                        add_one(out, rows[j + 1], w1);
-                    } else {
-                        kernels.axpy2_i16(out, rows[j], rows[j + 1], int16_t(w0), int16_t(w1), std::size_t(w));
-                    }
-                }
-            int16_t* fv = features + y * std::size_t(w) * kAppearanceDims;
-            for (int x = 0; x < w; ++x)
-                for (int a = 0; a < kAppearanceDims; ++a) {
-                    const int64_t v = (int64_t(acc[std::size_t(a) * w + x]) - offset[std::size_t(a)] + (1 << 14)) >> 15;
-                    fv[std::size_t(x) * kAppearanceDims + a] =
-                        int16_t(std::clamp<int64_t>(v, -kAppearanceClamp, kAppearanceClamp));
-                }
+            for (std::size_t e = 0; e < entries.size(); ++e) {
+                const Entry& entry = entries[e];
+                rows[e] = pairs.data() +
+                          ((std::size_t(entry.channel) * ph + y + std::size_t(entry.row * spacing)) * pw +
+                           std::size_t(entry.column * spacing)) * 2;
+            }
+            // (Sums and offsets lie within 2^27, level_features says why:
+            // within the kernel's bounds.)
+            kernels.project_pairs(rows.data(), weights.data(), entries.size(), std::size_t(w), offset.data(),
+                                  kAppearanceClamp, features + y * std::size_t(w) * kAppearanceDims);
         }
     });
 }
@@ -160,7 +183,10 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& col
     std::vector<int64_t> sum(d, 0);
     std::vector<uint32_t> products(d * d, 0);
     const dsp::Kernels& kernels = dsp::kernels();
-    parallel_for(threads, d, 1, [&](std::size_t i0, std::size_t i1) {
+    // Rows in groups of 4 (the widest kernel's block), taken by the threads
+    // as they come free: the rows have fewer products down the triangle.
+    constexpr std::size_t kRowsAtOnce = 4;
+    parallel_for(threads, d, kRowsAtOnce, [&](std::size_t i0, std::size_t i1) {
         for (std::size_t i = i0; i < i1; ++i) {
             const int16_t* a = columns.data() + i * n;
             // 32-bit partial sums (65536 values of 16 bits fit) vectorise:
@@ -175,8 +201,8 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& col
                 total += part;
             }
             sum[i] = total;
-            for (std::size_t j = i; j < d; ++j) products[i * d + j] = kernels.dot_i16(a, columns.data() + j * n, n);
         }
+        kernels.gram_i16(columns.data(), d, n, i0, i1, products.data());
     });
     if (sums) *sums = sum;
     // count^2 times the covariance, exact, then scaled so that every entry
@@ -206,7 +232,8 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& col
         bool zero = false;
         for (int it = 0; it < kPowerIterations && !zero; ++it) {
             for (std::size_t i = 0; i < d; ++i) v32[i] = int32_t(v[i]);  // |v| <= 2^30
-            for (std::size_t i = 0; i < d; ++i) w[i] = kernels.dot_i32(k.data() + i * d, v32.data(), d) >> 24;
+            kernels.matvec_i32(k.data(), v32.data(), d, w.data());  // k is symmetric: v k = k v
+            for (std::size_t i = 0; i < d; ++i) w[i] >>= 24;
             for (const auto& e : found) {
                 int128 dot = 0;
                 for (std::size_t i = 0; i < d; ++i) dot += int128(e[i]) * w[i];
@@ -222,7 +249,8 @@ std::vector<std::vector<int32_t>> principal_axes(const std::vector<int16_t>& col
                 zero = true;
                 break;
             }
-            for (std::size_t i = 0; i < d; ++i) v[i] = int64_t((int128(w[i]) << kAxisShift) / int128(norm));
+            const double scale = double(int64_t(1) << kAxisShift) / double(norm);
+            for (std::size_t i = 0; i < d; ++i) v[i] = scaled_quotient(w[i], norm, scale);
         }
         if (zero) break;  // no variance left: this and later axes stay zero
         found.push_back(v);
@@ -263,18 +291,29 @@ void level_features(AppearanceSpace* spaces, std::size_t frames, int l, int thre
         for (int g = 0; g < grid_h; ++g)
             tap_y[std::size_t(t * grid_h + g)] = fold(g * stride + (t - 2) * spacing, h, wraps);
     }
+    // Where the spacing is a whole number of grid steps, tap column c reads
+    // at grid column gx the example pixel that tap column c - 1 reads at gx
+    // + shift (the same coordinate before folding): all but the last
+    // `shift` values of each of its grid rows are copied from the column of
+    // the tap before, and only those are read through the tables.
+    const int shift = spacing % stride == 0 && spacing / stride < grid_w ? spacing / stride : 0;
     std::vector<int16_t> columns(std::size_t(dims) * std::size_t(count));
     for (int r = 0; r < kWindow; ++r)
         for (int c = 0; c < kWindow; ++c)
             for (int k = 0; k < ch; ++k) {
                 int16_t* column = columns.data() + std::size_t((r * kWindow + c) * ch + k) * std::size_t(count);
+                const int16_t* left = column - std::size_t(ch) * std::size_t(count);  // tap (r, c - 1), channel k
+                const int copied = c > 0 ? shift : 0;
                 for (std::size_t f = 0; f < frames; f += frame_step) {
                     const Image& img = spaces[f].levels[std::size_t(l)].colours;
                     for (int gy = 0; gy < grid_h; ++gy) {
+                        if (copied > 0) std::copy_n(left + copied, grid_w - copied, column);
                         const uint8_t* row = img.at(0, tap_y[std::size_t(r * grid_h + gy)]);
                         const int* xs = tap_x.data() + std::size_t(c * grid_w);
                         const uint8_t* values = row + k;
-                        for (int gx = 0; gx < grid_w; ++gx) *column++ = values[xs[gx]];
+                        for (int gx = grid_w - (copied > 0 ? copied : grid_w); gx < grid_w; ++gx) column[gx] = values[xs[gx]];
+                        column += grid_w;
+                        left += grid_w;
                     }
                 }
             }
