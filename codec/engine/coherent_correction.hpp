@@ -24,7 +24,10 @@
 //     factor, in 1/65536, of a candidate's distance (the own position's
 //     with continues = true);
 //   Distance distance(const Window&, const int16_t* query, Position,
-//     Distance bound) const, which may stop once past `bound`.
+//     Distance bound) const, which may stop once past `bound`;
+//   and optionally Distance own_distance(const Window&, const int16_t*
+//     query, uint32_t departing) const: distance(window, query, own, the
+//     greatest Distance), exactly.
 #pragma once
 
 #include <algorithm>
@@ -66,8 +69,17 @@ typename Step::Position correct(const Step& step, const int* xs, const int* ys) 
         return Distance(std::min<uint64_t>(kFar, d * factor / 65536));
     };
     Position best = own;
-    Distance best_d =
-        step.barred(window, own) ? kFar : weighted(step.distance(window, query, own, kFar), step.weight(window, own, true));
+    Distance best_d = kFar;
+    if (!step.barred(window, own)) {
+        // A step may know the own position's distance more cheaply (the
+        // taps that continue it differ by nothing).
+        Distance d;
+        if constexpr (requires { step.own_distance(window, query, departing); })
+            d = step.own_distance(window, query, departing);
+        else
+            d = step.distance(window, query, own, kFar);
+        best_d = weighted(d, step.weight(window, own, true));
+    }
     for (int i = 0; i < count; ++i) {
         const uint64_t factor = step.weight(window, candidates[i], candidates.continues(i));
         const Distance bound = Distance(std::min<uint64_t>(kFar, uint64_t(best_d) * 65536 / factor));

@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 #include <vector>
 
 #include "common/parallel.hpp"
+#include "dsp/vector_distance.hpp"
 #include "engine/coherent_candidates.hpp"
 #include "engine/coherent_correction.hpp"
 #include "engine/copy_links.hpp"
@@ -122,6 +124,25 @@ struct PixelStep {
     }
     uint32_t distance(const Window&, const int16_t* query, uint32_t c, uint32_t bound) const {
         return v.distance(query, position_x(c), position_y(c), bound);
+    }
+    // The own position's window holds the query's own vector at every tap
+    // that continues it, so only settled's departing taps add to its
+    // distance (all taps are departing where the window reaches past the
+    // example's edge and folds: there the whole window is compared). The
+    // sums stay below 2^32 (25 taps of clamped vectors): the same as the
+    // whole window's.
+    uint32_t own_distance(const Window& win, const int16_t* query, uint32_t departing) const {
+        const uint32_t own = win.own();
+        if (departing == kAllTaps)
+            return v.distance(query, position_x(own), position_y(own), std::numeric_limits<uint32_t>::max());
+        uint32_t total = 0;
+        for (uint32_t taps = departing; taps != 0; taps &= taps - 1) {
+            const int t = __builtin_ctz(taps);
+            total += uint32_t(dsp::vector_distance(
+                query + t * kAppearanceDims,
+                v.feature(position_x(own) + tap_dx(t) * v.spacing, position_y(own) + tap_dy(t) * v.spacing)));
+        }
+        return total;
     }
 };
 

@@ -9,6 +9,7 @@
 #include "common/hash.hpp"
 #include "common/image.hpp"
 #include "common/parallel.hpp"
+#include "dsp/vector_distance.hpp"
 #include "engine/coherent_start.hpp"
 
 namespace vqtex {
@@ -52,15 +53,11 @@ void relocate_copies(const AppearanceSpace& space, int level, PositionMap& map, 
     // Vectors are clamped to +-kAppearanceClamp, so a distance fits 32 bits.
     static_assert(int64_t(kAppearanceDims) * (2 * kAppearanceClamp) * (2 * kAppearanceClamp) < (int64_t(1) << 31),
                   "an appearance distance must fit int32_t");
+    static_assert(2 * kAppearanceClamp < 32768, "dsp::vector_distance takes differences of 16 bits");
     const auto distance = [&](uint32_t a, uint32_t b) {
         const int16_t* u = features + (std::size_t(position_y(a)) * std::size_t(ew) + position_x(a)) * kAppearanceDims;
         const int16_t* v = features + (std::size_t(position_y(b)) * std::size_t(ew) + position_x(b)) * kAppearanceDims;
-        int32_t d = 0;
-        for (int i = 0; i < kAppearanceDims; ++i) {
-            const int32_t t = int32_t(u[i]) - int32_t(v[i]);
-            d += t * t;
-        }
-        return int64_t(d);
+        return int64_t(dsp::vector_distance(u, v));
     };
     const auto neighbour = [&](std::size_t i, int k) {
         const int x = int(i % std::size_t(w)), y = int(i / std::size_t(w));

@@ -27,26 +27,41 @@ constexpr int kWeights[kMaxBlendRadius + 1][2 * kMaxBlendRadius + 1] = {
 // and colour is weighted by each tap's alpha as well, so that a
 // transparent copy's colour (often black) does not darken an opaque one
 // where they meet; where every tap is transparent, colour is weighted as
-// alpha is.
-template <int C, bool kStraightAlpha, typename T, typename Source>
-void blend_pixel(int r, const Source& source, T* dst) {
+// alpha is. `continues(dx, dy)` (dx > -r) may say that the neighbour at
+// (dx, dy) holds the next pixel of the copy of the one before it in its
+// row, and so puts the same example pixel at (x, y): such taps add their
+// weight to a run, whose pixel is read once, for the same sums (weights
+// are factors of each tap's term).
+template <int C, bool kStraightAlpha, typename T, typename Source, typename Continues>
+void blend_pixel(int r, const Source& source, const Continues& continues, T* dst) {
     const int* weight = kWeights[r];
     // Sums of a tap's weight (at most 64 x 64) times a byte fit 32 bits;
     // times alpha and colour, or of 16-bit samples, they need 64.
     using Sum = std::conditional_t<kStraightAlpha || (sizeof(T) > 1), uint64_t, uint32_t>;
     Sum sum[C] = {}, weighted[C] = {}, total = 0, alpha = 0;
-    for (int dy = -r; dy <= r; ++dy)
-        for (int dx = -r; dx <= r; ++dx) {
-            const T* src = source(dx, dy);
-            if (!src) continue;
-            const Sum wt = Sum(weight[dx + r] * weight[dy + r]);
-            for (int c = 0; c < C; ++c) sum[c] += wt * src[c];
-            if constexpr (kStraightAlpha) {
-                for (int c = 0; c < C - 1; ++c) weighted[c] += wt * src[C - 1] * src[c];
-                alpha += wt * src[C - 1];
-            }
-            total += wt;
+    const auto add = [&](const T* src, Sum wt) {
+        if (!src) return;
+        for (int c = 0; c < C; ++c) sum[c] += wt * src[c];
+        if constexpr (kStraightAlpha) {
+            for (int c = 0; c < C - 1; ++c) weighted[c] += wt * src[C - 1] * src[c];
+            alpha += wt * src[C - 1];
         }
+        total += wt;
+    };
+    for (int dy = -r; dy <= r; ++dy) {
+        const T* run = source(-r, dy);
+        Sum run_weight = Sum(weight[0]);
+        for (int dx = -r + 1; dx <= r; ++dx) {
+            if (continues(dx, dy)) {
+                run_weight += Sum(weight[dx + r]);
+                continue;
+            }
+            add(run, run_weight * Sum(weight[dy + r]));
+            run = source(dx, dy);
+            run_weight = Sum(weight[dx + r]);
+        }
+        add(run, run_weight * Sum(weight[dy + r]));
+    }
     for (int c = 0; c < C; ++c) {
         const bool by_alpha = kStraightAlpha && c < C - 1 && alpha > 0;
         dst[c] = T(by_alpha ? (weighted[c] + alpha / 2) / alpha : (sum[c] + total / 2) / total);
@@ -55,15 +70,16 @@ void blend_pixel(int r, const Source& source, T* dst) {
 
 // blend_pixel for the channel count and alpha rule of `channels` and
 // `straight_alpha`.
-template <typename T, typename Source>
-void blend_any_pixel(int channels, bool straight_alpha, int r, const Source& source, T* dst) {
+template <typename T, typename Source, typename Continues>
+void blend_any_pixel(int channels, bool straight_alpha, int r, const Source& source, const Continues& continues,
+                     T* dst) {
     switch (channels + (straight_alpha ? 4 : 0)) {
-        case 1: case 5: blend_pixel<1, false>(r, source, dst); break;
-        case 2: blend_pixel<2, false>(r, source, dst); break;
-        case 3: case 7: blend_pixel<3, false>(r, source, dst); break;
-        case 4: blend_pixel<4, false>(r, source, dst); break;
-        case 6: blend_pixel<2, true>(r, source, dst); break;
-        default: blend_pixel<4, true>(r, source, dst); break;
+        case 1: case 5: blend_pixel<1, false>(r, source, continues, dst); break;
+        case 2: blend_pixel<2, false>(r, source, continues, dst); break;
+        case 3: case 7: blend_pixel<3, false>(r, source, continues, dst); break;
+        case 4: blend_pixel<4, false>(r, source, continues, dst); break;
+        case 6: blend_pixel<2, true>(r, source, continues, dst); break;
+        default: blend_pixel<4, true>(r, source, continues, dst); break;
     }
 }
 
@@ -103,6 +119,7 @@ void blend_rows_of(const BasicImage<T>& example, bool wraps, int radius,
     // A centre at least r inside the example: the window check below is
     // exact there (packed positions add without carrying across fields).
     const uint32_t inside_x = uint32_t(std::max(0, ew - 2 * r)), inside_y = uint32_t(std::max(0, eh - 2 * r));
+    const bool narrow = w < 2 * r + 1;  // the window's columns wrap more than once
     parallel_for(threads, std::size_t(count), 16, [&](std::size_t i0, std::size_t i1) {
         const int y0 = first + int(i0), y1 = first + int(i1);
         const int rows = y1 - y0 + 2 * r;  // map rows y0 - r .. y1 + r - 1
@@ -135,12 +152,23 @@ void blend_rows_of(const BasicImage<T>& example, bool wraps, int radius,
                     copy_pixel(dst, example.at(position_x(own), position_y(own)), example.channels);
                     continue;
                 }
-                for (int dx = -r; dx <= r; ++dx) xs[dx + r] = Image::wrap(x + dx, w);
+                // (Columns wrapped by a comparison where the output is
+                // wider than the window: a division each cost more.)
+                for (int dx = -r; dx <= r; ++dx) {
+                    const int c = x + dx;
+                    xs[dx + r] = !narrow ? (c < 0 ? c + w : c >= w ? c - w : c) : Image::wrap(c, w);
+                }
                 const uint32_t* const* window = row.data() + (local - r);
                 blend_any_pixel(example.channels, straight_alpha, r,
                                 [&](int dx, int dy) {
                                     const uint32_t p = window[dy + r][xs[dx + r]];
                                     return example_pixel(example, wraps, position_x(p) - dx, position_y(p) - dy);
+                                },
+                                [&](int dx, int dy) {
+                                    // The next pixel of the same copy: x one more,
+                                    // y the same (packed positions add, x < 2^16).
+                                    const uint32_t* taps = window[dy + r];
+                                    return taps[xs[dx + r]] == taps[xs[dx + r - 1]] + 1u;
                                 },
                                 dst);
             }
@@ -196,7 +224,7 @@ void blend_voxels(const std::vector<Image>& frames, bool wraps, int radius, cons
                                     return example_pixel(frames[std::size_t(voxel_t(v))], wraps, voxel_x(v) - dx,
                                                          voxel_y(v) - dy);
                                 },
-                                dst);
+                                [](int, int) { return false; }, dst);
             }
         }
     });
