@@ -140,7 +140,7 @@ inline constexpr std::size_t kProxiesTogetherPixels = 1024 * 1024;
 
 // The sides of the square parts a large example's budget pays for: about
 // 4, 2 and 1 KB per 128x128 of part, multiples of 8, at most `limit`
-// (distinct, largest first).
+// (distinct, smallest first).
 std::vector<int> large_part_sides(uint64_t budget, int limit);
 
 // What the encoder can measure of a candidate file: the texture it decodes
