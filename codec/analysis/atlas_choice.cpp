@@ -90,6 +90,8 @@ public:
         c.cq = cq;
         c.levels = levels_;
         c.atlas = atlas_;
+        c.x = origin_[0];
+        c.y = origin_[1];
         c.attempts = *attempts_;
         return c;
     }
@@ -145,6 +147,11 @@ std::vector<int> large_part_sides(uint64_t budget, int limit) {
         if (std::find(sides.begin(), sides.end(), s) == sides.end()) sides.push_back(s);
     }
     return sides;
+}
+
+void fail_nothing_fits(const std::string& what, uint64_t budget) {
+    fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no " + what + " fits in " + std::to_string(budget) +
+                                         " bytes (the smallest needs more): raise --target-size or --quality");
 }
 
 int best_relative(const std::vector<std::vector<ProxyScores>>& scores) {
@@ -224,8 +231,6 @@ AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, bool
                 const int cq = search.finest_fitting();
                 if (cq < 0) continue;
                 crops[i] = search.choice(cq);
-                crops[i].x = x;
-                crops[i].y = y;
                 scores[i] = proxy_scores(reference, crops[i].file, w2, h2);
             }
         });
@@ -253,8 +258,7 @@ AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, bool
         if (cq >= 0) return search.choice(cq);
         if (smallest) break;
     }
-    fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no atlas fits in " + std::to_string(options.budget) +
-                                         " bytes (the smallest needs more): raise --target-size or --quality");
+    fail_nothing_fits("atlas", options.budget);
 }
 
 // Per-channel mean and spread of `img` over a w x h window at (x, y), on
@@ -304,8 +308,6 @@ AtlasChoice choose_part(const Image& example, const Image& source, bool source_w
             const int cq = fine.finest_fitting_near(guess < 0 ? 63 : guess);
             if (cq < 0) continue;
             candidates[i] = fine.choice(cq);
-            candidates[i].x = at[0];
-            candidates[i].y = at[1];
         }
     });
     // Together on the threads or one at a time (kProxiesTogetherPixels).
@@ -327,8 +329,7 @@ AtlasChoice choose_part(const Image& example, const Image& source, bool source_w
     }
     const int best = best_relative(relative);
     if (best < 0)
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no atlas fits in " + std::to_string(options.budget) +
-                                             " bytes (the smallest needs more): raise --target-size or --quality");
+        fail_nothing_fits("atlas", options.budget);
     AtlasChoice chosen = std::move(candidates[std::size_t(best)]);
     chosen.attempts = total_attempts;
     return chosen;

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/image.hpp"
@@ -150,6 +151,10 @@ struct ProxyScores {
 };
 ProxyScores proxy_scores_of(const vqtex_metrics::Image& reference, const vqtex_metrics::Image& texture,
                             int max_windows);
+
+// Throws LIMIT_EXCEEDED: no `what` ("atlas", "atlas of the 3 maps") fits
+// the budget, with what to do about it.
+[[noreturn]] void fail_nothing_fits(const std::string& what, uint64_t budget);
 
 // The candidate whose scores, each relative to the least any candidate has
 // (per map, for a set: scores[candidate][map]), add up to the least; an

@@ -327,9 +327,7 @@ MaterialChoice choose_material_part(const std::vector<MaterialMap>& maps, const 
     });
     const int best = best_relative(scores);
     if (best < 0)
-        fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no atlas of the " + std::to_string(maps.size()) + " maps fits in " +
-                                             std::to_string(options.budget) +
-                                             " bytes (the smallest needs more): raise --target-size or --quality");
+        fail_nothing_fits("atlas of the " + std::to_string(maps.size()) + " maps", options.budget);
     MaterialChoice chosen = std::move(candidates[std::size_t(best)]);
     chosen.attempts = 0;
     for (uint32_t a : attempts) chosen.attempts += a;
@@ -372,9 +370,7 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
         }
         if ((w == kMinAtlasSide && h == kMinAtlasSide) || scale == 1) break;
     }
-    fail(VQTEX_ERROR_LIMIT_EXCEEDED, "no atlas of the " + std::to_string(maps.size()) + " maps fits in " +
-                                         std::to_string(options.budget) +
-                                         " bytes (the smallest needs more): raise --target-size or --quality");
+    fail_nothing_fits("atlas of the " + std::to_string(maps.size()) + " maps", options.budget);
 }
 
 }  // namespace vqtex
