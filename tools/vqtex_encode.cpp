@@ -34,10 +34,13 @@ void add_atlas_json(const vqtex_encode_stats& stats, FileReport& r) {
                            {"height", stats.atlas_height},
                            {"x", stats.atlas_x},
                            {"y", stats.atlas_y},
-                           {"kind", kAtlasKinds[std::min(stats.atlas_kind, 2u)]}};
+                           {"kind", kAtlasKinds[std::min(stats.atlas_kind, 2u)]},
+                           {"wraps", stats.atlas_wraps != 0}};
 }
 
 void add_atlas_text(const vqtex_encode_stats& stats, FileReport& r) {
+    if (stats.atlas_width && stats.atlas_kind == 0 && stats.atlas_wraps)
+        r.text += "atlas: the whole example, which tiles: it wraps\n";
     if (!stats.atlas_width || stats.atlas_kind == 0) return;
     char line[256];
     std::snprintf(line, sizeof line, "atlas %ux%u: %s\n", stats.atlas_width, stats.atlas_height,
@@ -411,7 +414,7 @@ FileReport encode_one(const Settings& s, const std::string& input, const std::st
             throw std::invalid_argument("--target-size takes an animation's atlas: drop --trees and the options "
                                         "that describe trees");
         vp.levels = p.levels;
-        vp.example_tileable = p.example_tileable;
+        vp.example_tileable = p.example_tileable == VQTEX_TILEABLE_YES ? 1u : 0u;
         vp.seed = p.seed;
         vp.threads = p.threads;
         const float train_fraction = vp.tsvq.train_fraction;
@@ -508,7 +511,8 @@ int main(int argc, char** argv) {
     uint32_t smoothing = 0, closing_divisor = 0, closing_window = 0;
     bool no_entry_keys = false;
     uint64_t target_size = 0, seed = 1;
-    bool json = false, quiet = false, no_closing = false, tileable = false, atlas = false, trees = false;
+    bool json = false, quiet = false, no_closing = false, tileable = false, not_tileable = false, atlas = false,
+         trees = false;
     bool animation = false, normal = false, data = false;
     std::vector<std::string> map_specs;
     app.add_option("files", files,
@@ -566,7 +570,11 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 255));
     app.add_option("--seed", seed, "default decoding seed stored in the file")->capture_default_str();
     app.add_flag("--no-seam-closing", no_closing, "omit the seam-closing trees (smaller, visible seam)");
-    app.add_flag("--tileable-example", tileable, "the example tiles: use wrap-around neighbourhoods");
+    auto* tileable_flag = app.add_flag("--tileable-example", tileable,
+                                       "the example tiles: use wrap-around neighbourhoods (an atlas of a still "
+                                       "image or a set wraps without it when the example is found to tile)");
+    app.add_flag("--no-tileable-example", not_tileable, "the example does not wrap, even if it is found to tile")
+        ->excludes(tileable_flag);
     app.add_option("-j,--threads", threads,
                    "threads (default: all cores), shared between the files of a batch; output is identical");
     app.add_flag("--json", json, "print machine-readable statistics on stdout (one JSON line per file)");
@@ -597,7 +605,9 @@ int main(int argc, char** argv) {
         }
         if (backtrack) t.backtrack = backtrack;
         if (no_closing) t.tsvq.seam_closing = 0;
-        p.example_tileable = tileable ? 1 : 0;
+        p.example_tileable = tileable       ? VQTEX_TILEABLE_YES
+                             : not_tileable ? VQTEX_TILEABLE_NO
+                                            : VQTEX_TILEABLE_DETECT;
         p.seed = seed;
         p.target_size = target_size;
         // Options that only a trees file has make no sense for an atlas.

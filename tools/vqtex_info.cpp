@@ -156,11 +156,15 @@ FileReport info_one(const std::string& input) {
             header.c_str());
         const std::string seams =
             info.blend ? "seams blended over " + std::to_string(info.blend) + " pixels" : "seams not blended";
-        const std::string copies = info.relocate ? ", copies relocated (" + std::to_string(info.relocate) +
-                                                       " positions tried each)"
-                                                 : std::string();
-        const std::string edges = info.edge_guard ? ", edge guard " + std::to_string(info.edge_guard) + " pixels"
-                                                  : std::string();
+        // A wrapping atlas has no edge to guard, and its copies are not
+        // relocated (FORMAT.md §4.9), whatever the parameters say.
+        const std::string copies = info.atlas_wraps ? ", no relocation or edge guard (the atlas wraps)"
+                                   : info.relocate  ? ", copies relocated (" + std::to_string(info.relocate) +
+                                                         " positions tried each)"
+                                                    : std::string();
+        const std::string edges = info.edge_guard && !info.atlas_wraps
+                                      ? ", edge guard " + std::to_string(info.edge_guard) + " pixels"
+                                      : std::string();
         const std::string cuts =
             info.cut ? ", borders cut within " + std::to_string(info.cut) + " pixels" : std::string();
         const std::string covers =

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "analysis/example_period.hpp"
+#include "analysis/example_wrap.hpp"
 #include "common/error.hpp"
 #include "common/parallel.hpp"
 #include "engine/coherent_synthesis.hpp"
@@ -369,7 +370,9 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
                                      ? find_example_period(example)
                                      : ExamplePeriod{};
     const Image source = period.repeats() ? example.crop(0, 0, period.width, period.height) : example;
-    const bool wraps = period.repeats() ? period.wraps() : options.example_tileable;
+    const bool wraps = period.repeats()
+                           ? period.wraps()
+                           : options.example_tileable || (options.detect_tileable && example_tiles(source));
     AtlasChoiceOptions o = options;
     if (o.budget == 0)
         o.budget = atlas_budget_of_quality(o.quality, std::min<uint64_t>(source.pixel_count(), kBudgetedPixels));
@@ -377,6 +380,7 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
                         ? choose_part(example, source, wraps, o)
                         : choose_whole_or_crop(example, source, wraps, o);
     c.tile = period.repeats() && c.atlas.width == source.width && c.atlas.height == source.height;
+    c.wraps = wraps && c.atlas.width == source.width && c.atlas.height == source.height;
     return c;
 }
 

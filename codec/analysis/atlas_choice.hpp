@@ -23,6 +23,9 @@ struct AtlasChoiceOptions {
     int quality = 50;               // the preset whose budget applies when budget is 0
     int levels = 0;                 // the engine's stack depth; 0 = the deepest the atlas allows
     bool example_tileable = false;  // the example wraps
+    // Otherwise, whether it wraps is found (example_wrap.hpp): when it
+    // tiles, an atlas that is the whole example wraps.
+    bool detect_tileable = false;
     uint64_t seed = 1;              // the file's default decoding seed
     int threads = 1;                // the file does not depend on it
     // false: the rule before large examples and periods, the whole example
@@ -39,6 +42,7 @@ struct AtlasChoice {
     uint32_t attempts = 0;      // AV1 encodes tried
     int x = 0, y = 0;           // where the atlas lies in the example
     bool tile = false;          // the atlas is the tile the example repeats
+    bool wraps = false;         // the atlas wraps (the file's example_tileable)
 };
 
 // The finest AV1 level, 0..63, at which `size_at(level)` (a file's bytes)

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <map>
 
+#include "analysis/example_wrap.hpp"
 #include "common/error.hpp"
 #include "common/parallel.hpp"
 #include "engine/coherent_synthesis.hpp"
@@ -216,8 +217,7 @@ public:
         hd.atlas_x = uint32_t(part_[0]);
         hd.atlas_y = uint32_t(part_[1]);
         AtlasSynthesisParams sp;
-        sp.example_tileable = options_.example_tileable && part_[2] == maps_[0].image.width &&
-                              part_[3] == maps_[0].image.height;
+        sp.example_tileable = wraps();
         return files_.emplace(cq, encode_material_file(hd, part_[2], part_[3], coded, guide_, sp)).first->second;
     }
 
@@ -232,10 +232,16 @@ public:
         c.atlas_y = part_[1];
         c.atlas_width = part_[2];
         c.atlas_height = part_[3];
+        c.wraps = wraps();
         return c;
     }
 
 private:
+    // The atlas wraps when the example does and the atlas is all of it.
+    bool wraps() const {
+        return options_.example_tileable && part_[2] == maps_[0].image.width && part_[3] == maps_[0].image.height;
+    }
+
     const std::vector<MaterialMap>& maps_;
     const GuideMatrix& guide_;
     const std::vector<int>& offsets_;
@@ -336,11 +342,16 @@ MaterialChoice choose_material_part(const std::vector<MaterialMap>& maps, const 
 
 }  // namespace
 
-MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const AtlasChoiceOptions& options) {
+MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const AtlasChoiceOptions& given) {
     const Image& first = maps.at(0).image;
     if (first.width < kMinAtlasSide || first.height < kMinAtlasSide)
         fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "an atlas needs maps of at least " + std::to_string(kMinAtlasSide) + "x" +
                                               std::to_string(kMinAtlasSide) + " pixels");
+    // One synthesis reads every map, so the set wraps when every map tiles.
+    AtlasChoiceOptions options = given;
+    if (options.detect_tileable && !options.example_tileable)
+        options.example_tileable =
+            std::all_of(maps.begin(), maps.end(), [](const MaterialMap& m) { return example_tiles(m.image); });
     const GuideMatrix guide = guide_matrix(maps);
     // AV1's quantiser steps are in sample units, so at one level a map of
     // low contrast loses more of its structure than a contrasty one (a

@@ -47,6 +47,7 @@ struct MaterialChoice {
     int atlas_x = 0, atlas_y = 0;  // where the atlas lies in the example
     int atlas_width = 0, atlas_height = 0;
     uint32_t attempts = 0;      // AV1 encodes of the set tried
+    bool wraps = false;         // the atlas wraps (the file's example_tileable)
 };
 
 // Maps of at most kLargeExamplePixels: the finest quantiser at which the

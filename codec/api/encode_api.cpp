@@ -33,7 +33,7 @@ EncodeResult encode_once(const vqtex_encode_params& p, const Image& example, int
                          const ProgressFn& progress) {
     const vqtex_trees_params& t = p.trees;
     EncodeResult r;
-    r.analysis = analyse_example(example, model_params_of(p.levels, p.example_tileable, t.shapes, t.tsvq),
+    r.analysis = analyse_example(example, model_params_of(p.levels, p.example_tileable == VQTEX_TILEABLE_YES, t.shapes, t.tsvq),
                                  VQTEX_SEARCH_TSVQ, t.backtrack, threads, progress);
     CodecModel model;
     model.channels = example.channels;
@@ -62,7 +62,8 @@ void encode_atlas(const vqtex_encode_params& p, const Image& ex, int threads, co
     o.budget = p.target_size;
     o.quality = int(p.quality);
     o.levels = int(p.levels);
-    o.example_tileable = p.example_tileable != 0;
+    o.example_tileable = p.example_tileable == VQTEX_TILEABLE_YES;
+    o.detect_tileable = p.example_tileable == VQTEX_TILEABLE_DETECT;
     o.seed = p.seed;
     o.threads = threads;
     const AtlasChoice r = choose_atlas(ex, o);
@@ -80,6 +81,7 @@ void encode_atlas(const vqtex_encode_params& p, const Image& ex, int threads, co
         stats->atlas_height = uint32_t(r.atlas.height);
         stats->atlas_x = uint32_t(r.x);
         stats->atlas_y = uint32_t(r.y);
+        stats->atlas_wraps = r.wraps ? 1u : 0u;
         stats->atlas_kind = r.tile ? 2u : (r.atlas.width == ex.width && r.atlas.height == ex.height) ? 0u : 1u;
     }
 }

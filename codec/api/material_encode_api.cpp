@@ -100,7 +100,8 @@ vqtex_status vqtex_encode_maps(const vqtex_encode_params* params, const vqtex_ma
                        ? params->target_size
                        : atlas_budget_of_quality(int(params->quality), budgeted) * uint64_t(set.size());
         o.levels = int(params->levels);
-        o.example_tileable = params->example_tileable != 0;
+        o.example_tileable = params->example_tileable == VQTEX_TILEABLE_YES;
+        o.detect_tileable = params->example_tileable == VQTEX_TILEABLE_DETECT;
         o.seed = params->seed;
         o.threads = resolve_threads(params->threads);
         const MaterialChoice r = choose_material_atlas(set, o);
@@ -119,6 +120,7 @@ vqtex_status vqtex_encode_maps(const vqtex_encode_params* params, const vqtex_ma
             stats->atlas_height = uint32_t(r.atlas_height);
             stats->atlas_x = uint32_t(r.atlas_x);
             stats->atlas_y = uint32_t(r.atlas_y);
+            stats->atlas_wraps = r.wraps ? 1u : 0u;
             stats->atlas_kind = r.atlas_width == set[0].image.width && r.atlas_height == set[0].image.height ? 0u : 1u;
         }
     });

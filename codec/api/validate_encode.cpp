@@ -130,6 +130,9 @@ void validate(const vqtex_encode_params* p) {
     if (!is_one_of(p->codebook, {VQTEX_CODEBOOK_TREES, VQTEX_CODEBOOK_ATLAS}))
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "unknown codebook kind: VQTEX_CODEBOOK_TREES or VQTEX_CODEBOOK_ATLAS");
     if (p->quality > 100) fail(VQTEX_ERROR_INVALID_ARGUMENT, "quality must be 0 to 100");
+    if (p->example_tileable > VQTEX_TILEABLE_NO)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "example_tileable must be VQTEX_TILEABLE_DETECT, _YES or _NO (got " +
+                                               std::to_string(p->example_tileable) + ")");
 }
 
 void validate(const vqtex_volume_encode_params* p) {

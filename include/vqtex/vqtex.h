@@ -324,6 +324,17 @@ typedef struct vqtex_trees_params {
     vqtex_init init;            /* how decoding starts each level */
 } vqtex_trees_params;
 
+/* Whether an example wraps (vqtex_encode_params.example_tileable). DETECT:
+ * an atlas file of a still image or a map set wraps when the example tiles
+ * (its wrap is no larger a step than the largest step inside it, in both
+ * directions; every map of a set) and the atlas is the whole example
+ * (docs/ATLAS.md "Examples that tile"); trees files and animations do not
+ * wrap. YES: the example wraps, as trees, animations and atlases. NO: it
+ * does not. */
+#define VQTEX_TILEABLE_DETECT 0u
+#define VQTEX_TILEABLE_YES 1u
+#define VQTEX_TILEABLE_NO 2u
+
 typedef struct vqtex_encode_params {
     uint32_t struct_size;       /* set by vqtex_encode_params_init */
     vqtex_codebook codebook;    /* what the file stores: an atlas (default) or TSVQ trees [--trees] */
@@ -335,7 +346,8 @@ typedef struct vqtex_encode_params {
     uint64_t target_size;       /* bytes; nonzero: instead of quality, the best atlas or trees preset
                                    whose file fits [--target-size] */
     uint32_t levels;            /* pyramid depth, 1 to VQTEX_MAX_LEVELS; 0 = automatic [--levels] */
-    uint32_t example_tileable;  /* 1: the example wraps [--tileable-example] */
+    uint32_t example_tileable;  /* VQTEX_TILEABLE_DETECT (0, default), _YES or _NO: whether the
+                                   example wraps [--tileable-example, --no-tileable-example] */
     uint64_t seed;              /* default decoding seed stored in the file [--seed] */
     uint32_t threads;           /* 0 = all cores [--threads] */
     vqtex_progress_fn progress;
@@ -371,6 +383,8 @@ typedef struct vqtex_encode_stats {
     /* An animation's atlas: its frames and the example frame it starts at
      * (0 for a still texture). */
     uint32_t atlas_frames, atlas_first_frame;
+    /* 1: the atlas wraps (the example tiles and the atlas is all of it). */
+    uint32_t atlas_wraps;
 } vqtex_encode_stats;
 
 /* Encodes an example into a new buffer (*data, *size), freed with

@@ -1,0 +1,123 @@
+// test_example_wrap.cpp - examples that tile wrap (docs/ATLAS.md "Examples
+// that tile"): the test that finds them, what the encoder does with it, and
+// what it buys the texture.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "analysis/example_wrap.hpp"
+#include "codec_support.hpp"
+#include "metrics.hpp"
+#include "test_support.hpp"
+#include "vqtex/vqtex.h"
+
+using namespace vqtex_test;
+
+namespace {
+
+vqtex_encode_params wrap_params(uint32_t tileable) {
+    vqtex_encode_params p;
+    vqtex_encode_params_init(&p);
+    p.threads = 1;
+    p.example_tileable = tileable;
+    return p;
+}
+
+// `ex` repeated 2x2: every window of it as it tiles, the wrap's included.
+vqtex_metrics::Image tiled_twice(const vqtex::Image& ex) {
+    vqtex_metrics::Image out{2 * ex.width, 2 * ex.height, ex.channels, {}};
+    out.pixels.resize(std::size_t(out.width) * out.height * ex.channels);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int c = 0; c < ex.channels; ++c)
+                out.pixels[(std::size_t(y) * out.width + x) * ex.channels + c] =
+                    ex.at(x % ex.width, y % ex.height)[c];
+    return out;
+}
+
+vqtex_metrics::Image metrics_image(const vqtex::Image& img) {
+    return {img.width, img.height, img.channels, img.pixels};
+}
+
+}  // namespace
+
+TEST(ExampleWrap, TexturesMadeToTilePass) {
+    // corpus/generate.py makes all of these on a torus.
+    for (const char* name : {"cellular_128.png", "clouds_128.png", "sand_256.png", "bricks_128.png",
+                             "grey_noise_64.png", "leaves_rgba_64.png"})
+        EXPECT_TRUE(vqtex::example_tiles(load_corpus(name))) << name;
+}
+
+TEST(ExampleWrap, ACropOfATilingTextureDoesNotPass) {
+    // Two rows that were never neighbours differ more than any two that were.
+    for (const char* name : {"cellular_128.png", "clouds_128.png"}) {
+        const vqtex::Image ex = load_corpus(name);
+        const vqtex::Image crop = ex.crop(13, 29, ex.width - 40, ex.height - 40);
+        const vqtex::WrapSteps s = vqtex::measure_wrap_steps(crop);
+        EXPECT_FALSE(s.tiles()) << name << ": wraps " << s.wrap[0] << ", " << s.wrap[1] << " against "
+                                << s.largest_inner[0] << ", " << s.largest_inner[1];
+        EXPECT_FALSE(vqtex::example_tiles(crop)) << name;
+    }
+    EXPECT_FALSE(vqtex::example_tiles(vqtex::Image(8, 8, 3))) << "too small to judge";
+    // Unless the texture is grain, whose neighbouring rows differ as much as
+    // any two: a crop of sand wraps as seamlessly as it holds together.
+    const vqtex::Image sand = load_corpus("sand_256.png");
+    EXPECT_TRUE(vqtex::example_tiles(sand.crop(13, 29, 216, 216)));
+}
+
+TEST(ExampleWrap, ASmallTileRepeatedPassesTheStepsButDoesNotWrap) {
+    // The weave repeats a 16x16 tile, the checks a 16x16 one in 64, the
+    // stripes an 8-pixel one: their wraps are seamless, but wrapped, their
+    // coarse levels are flat (example_wrap.hpp).
+    for (const char* name : {"weave_128.png", "checks_p16_64.png", "stripes_p8_128.png"}) {
+        const vqtex::Image ex = load_corpus(name);
+        EXPECT_TRUE(vqtex::measure_wrap_steps(ex).tiles()) << name;
+        EXPECT_FALSE(vqtex::example_tiles(ex)) << name;
+    }
+    // The bricks repeat too, but a tile of half the example across.
+    EXPECT_TRUE(vqtex::example_tiles(load_corpus("bricks_128.png")));
+}
+
+TEST(ExampleWrap, TheEncoderWrapsWhatTilesUnlessTold) {
+    const vqtex::Image ex = load_corpus("cellular_128.png");
+    const vqtex::Image crop = ex.crop(13, 29, 88, 88);
+    const auto wraps = [](const vqtex::Image& img, uint32_t tileable) {
+        vqtex_encode_stats stats{};
+        const std::vector<uint8_t> file = encode(img, wrap_params(tileable), &stats);
+        vqtex_file_info info{};
+        vqtex_error err{};
+        EXPECT_EQ(vqtex_inspect(file.data(), file.size(), 0, &info, &err), VQTEX_OK) << err.detail;
+        EXPECT_EQ(info.atlas_wraps, stats.atlas_wraps) << "the stats say what the file holds";
+        return stats.atlas_wraps;
+    };
+    EXPECT_EQ(wraps(ex, VQTEX_TILEABLE_DETECT), 1u);
+    EXPECT_EQ(wraps(ex, VQTEX_TILEABLE_NO), 0u);
+    EXPECT_EQ(wraps(crop, VQTEX_TILEABLE_DETECT), 0u);
+    EXPECT_EQ(wraps(crop, VQTEX_TILEABLE_YES), 1u);
+    const vqtex_encode_params bad = wrap_params(3);
+    vqtex_image in{uint32_t(ex.width), uint32_t(ex.height), uint32_t(ex.channels),
+                   const_cast<uint8_t*>(ex.pixels.data())};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_encode(&bad, &in, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(data, nullptr);
+}
+
+TEST(ExampleWrap, AWrappingAtlasLeavesNoStraightSeamsAtTheExamplesEdges) {
+    // The bricks unwrapped: copies end at the example's edges, and courses
+    // break along straight lines there (12.5 on the straight-seam measure,
+    // seeds 1-3); wrapped, the courses run on (2.6). Measured against the
+    // example as it tiles, so that a copy that runs across the wrap is not
+    // taken for a seam.
+    const vqtex::Image ex = load_corpus("bricks_128.png");
+    const vqtex_metrics::Image reference = tiled_twice(ex);
+    double seams[2];
+    for (int i = 0; i < 2; ++i) {
+        const std::vector<uint8_t> file = encode(ex, wrap_params(i ? VQTEX_TILEABLE_NO : VQTEX_TILEABLE_DETECT));
+        seams[i] = vqtex_metrics::seam_visibility(metrics_image(decode(file, decode_params(256, 256, 1))),
+                                                  reference, true, 2);
+    }
+    EXPECT_LT(seams[0] * 2, seams[1]) << "wrapped " << seams[0] << ", unwrapped " << seams[1];
+}
