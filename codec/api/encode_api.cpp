@@ -33,8 +33,9 @@ EncodeResult encode_once(const vqtex_encode_params& p, const Image& example, int
                          const ProgressFn& progress) {
     const vqtex_trees_params& t = p.trees;
     EncodeResult r;
-    r.analysis = analyse_example(example, model_params_of(p.levels, p.example_tileable == VQTEX_TILEABLE_YES, t.shapes, t.tsvq),
-                                 VQTEX_SEARCH_TSVQ, t.backtrack, threads, progress);
+    const bool tileable = p.example_tileable == VQTEX_TILEABLE_YES;  // trees files do not detect it
+    r.analysis = analyse_example(example, model_params_of(p.levels, tileable, t.shapes, t.tsvq), VQTEX_SEARCH_TSVQ,
+                                 t.backtrack, threads, progress);
     CodecModel model;
     model.channels = example.channels;
     model.exemplar_width = uint32_t(example.width);
