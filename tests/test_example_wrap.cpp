@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "analysis/example_period.hpp"
 #include "analysis/example_wrap.hpp"
 #include "codec_support.hpp"
 #include "metrics.hpp"
@@ -50,13 +51,16 @@ TEST(ExampleWrap, TexturesMadeToTilePass) {
 }
 
 TEST(ExampleWrap, ACropOfATilingTextureDoesNotPass) {
-    // Two rows that were never neighbours differ more than any two that were.
-    for (const char* name : {"cellular_128.png", "clouds_128.png"}) {
+    // Two rows that were never neighbours differ more than any two that
+    // were, or (the bricks: mortar inside, a step larger than the wrap's)
+    // more than two typical ones.
+    for (const char* name : {"cellular_128.png", "clouds_128.png", "bricks_128.png"}) {
         const vqtex::Image ex = load_corpus(name);
         const vqtex::Image crop = ex.crop(13, 29, ex.width - 40, ex.height - 40);
         const vqtex::WrapSteps s = vqtex::measure_wrap_steps(crop);
         EXPECT_FALSE(s.tiles()) << name << ": wraps " << s.wrap[0] << ", " << s.wrap[1] << " against "
-                                << s.largest_inner[0] << ", " << s.largest_inner[1];
+                                << s.largest_inner[0] << ", " << s.largest_inner[1] << " (largest), "
+                                << s.median_inner[0] << ", " << s.median_inner[1] << " (median)";
         EXPECT_FALSE(vqtex::example_tiles(crop)) << name;
     }
     EXPECT_FALSE(vqtex::example_tiles(vqtex::Image(8, 8, 3))) << "too small to judge";
@@ -66,17 +70,20 @@ TEST(ExampleWrap, ACropOfATilingTextureDoesNotPass) {
     EXPECT_TRUE(vqtex::example_tiles(sand.crop(13, 29, 216, 216)));
 }
 
-TEST(ExampleWrap, ASmallTileRepeatedPassesTheStepsButDoesNotWrap) {
+TEST(ExampleWrap, ASmallTileRepeatedIsSeamlessButDoesNotWrap) {
     // The weave repeats a 16x16 tile, the checks a 16x16 one in 64, the
     // stripes an 8-pixel one: their wraps are seamless, but wrapped, their
     // coarse levels are flat (example_wrap.hpp).
     for (const char* name : {"weave_128.png", "checks_p16_64.png", "stripes_p8_128.png"}) {
         const vqtex::Image ex = load_corpus(name);
-        EXPECT_TRUE(vqtex::measure_wrap_steps(ex).tiles()) << name;
+        EXPECT_TRUE(vqtex::find_example_period(ex, 4).wraps()) << name;
         EXPECT_FALSE(vqtex::example_tiles(ex)) << name;
     }
-    // The bricks repeat too, but a tile of half the example across.
-    EXPECT_TRUE(vqtex::example_tiles(load_corpus("bricks_128.png")));
+    // The bricks repeat too, a tile of half the example across: their wrap
+    // is a mortar edge, larger than a typical step, and seamless.
+    const vqtex::Image bricks = load_corpus("bricks_128.png");
+    EXPECT_FALSE(vqtex::measure_wrap_steps(bricks).tiles());
+    EXPECT_TRUE(vqtex::example_tiles(bricks));
 }
 
 TEST(ExampleWrap, TheEncoderWrapsWhatTilesUnlessTold) {
