@@ -279,7 +279,6 @@ TEST(AtlasFile, DecodingIsTheSameForAnyThreadCountAndIsTheEnginesSynthesis) {
     EXPECT_EQ(f.header.levels, 6) << "what vqtex_synthesize chooses for a 128x128 example";
     vqtex_synth_params sp = default_params(150, 110, 7);
     sp.engine = VQTEX_ENGINE_COHERENT;
-    sp.example_tileable = f.params.example_tileable;  // cellular_128 tiles, so the atlas wraps
     EXPECT_EQ(synthesize(f.atlas, sp).pixels, one.pixels);
 }
 
@@ -557,9 +556,7 @@ TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
     const vqtex::Image ex = load_corpus("cellular_128.png");
     // Above 0.13 bytes a pixel the atlas is the whole example (no crop to
     // compete), which is the layout checked here.
-    vqtex_encode_params ep = atlas_params(2200);
-    ep.example_tileable = VQTEX_TILEABLE_NO;  // (it tiles; the layout checked has no wrap bit)
-    const std::vector<uint8_t> file = encode(ex, ep);
+    const std::vector<uint8_t> file = encode(ex, atlas_params(2200));
     const std::vector<uint8_t> bits = bitstream_of(file);
     const uint8_t packed = 2 | 5 << 2;  // 3 channels, 6 levels, nothing else
     ASSERT_EQ(compact_file(packed, varints({128, 128, 1}), bits), file) << "the layout of docs/FORMAT.md 2.1";

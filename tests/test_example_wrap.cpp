@@ -1,8 +1,9 @@
-// test_example_wrap.cpp - examples that tile wrap (docs/ATLAS.md "Examples
-// that tile"): the test that finds them, what the encoder does with it, and
-// what it buys the texture.
+// test_example_wrap.cpp - examples that tile (docs/ATLAS.md "Examples that
+// tile"): the test that finds them, which wrap by default, and what
+// wrapping buys a brick wall.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -70,41 +71,46 @@ TEST(ExampleWrap, ACropOfATilingTextureDoesNotPass) {
     EXPECT_TRUE(vqtex::example_tiles(sand.crop(13, 29, 216, 216)));
 }
 
-TEST(ExampleWrap, ASmallTileRepeatedIsSeamlessButDoesNotWrap) {
-    // The weave repeats a 16x16 tile, the checks a 16x16 one in 64, the
-    // stripes an 8-pixel one: their wraps are seamless, but wrapped, their
-    // coarse levels are flat (example_wrap.hpp).
-    for (const char* name : {"weave_128.png", "checks_p16_64.png", "stripes_p8_128.png"}) {
-        const vqtex::Image ex = load_corpus(name);
-        EXPECT_TRUE(vqtex::find_example_period(ex, 4).wraps()) << name;
-        EXPECT_FALSE(vqtex::example_tiles(ex)) << name;
-    }
-    // The bricks repeat too, a tile of half the example across: their wrap
-    // is a mortar edge, larger than a typical step, and seamless.
+TEST(ExampleWrap, OnlyATextureThatRepeatsALargeTileWrapsByDefault) {
+    // The bricks repeat a tile of half the example across: their wrap is a
+    // mortar edge, larger than a typical step, and seamless.
     const vqtex::Image bricks = load_corpus("bricks_128.png");
     EXPECT_FALSE(vqtex::measure_wrap_steps(bricks).tiles());
     EXPECT_TRUE(vqtex::example_tiles(bricks));
+    EXPECT_TRUE(vqtex::example_repeats_its_tile(bricks));
+    // The weave repeats a 16x16 tile, the checks a 16x16 one in 64, the
+    // stripes an 8-pixel one: seamless, but small tiles (example_wrap.hpp).
+    for (const char* name : {"weave_128.png", "checks_p16_64.png", "stripes_p8_128.png"}) {
+        const vqtex::Image ex = load_corpus(name);
+        EXPECT_TRUE(vqtex::find_example_period(ex, 4).wraps()) << name;
+        EXPECT_TRUE(vqtex::example_tiles(ex)) << name;
+        EXPECT_FALSE(vqtex::example_repeats_its_tile(ex)) << name;
+    }
+    // A texture that tiles without repeating.
+    EXPECT_FALSE(vqtex::example_repeats_its_tile(load_corpus("cellular_128.png")));
 }
 
-TEST(ExampleWrap, TheEncoderWrapsWhatTilesUnlessTold) {
-    const vqtex::Image ex = load_corpus("cellular_128.png");
-    const vqtex::Image crop = ex.crop(13, 29, 88, 88);
-    const auto wraps = [](const vqtex::Image& img, uint32_t tileable) {
+TEST(ExampleWrap, TheEncoderWrapsWhatRepeatsItsTileUnlessTold) {
+    const vqtex::Image bricks = load_corpus("bricks_128.png"), cells = load_corpus("cellular_128.png");
+    const vqtex::Image crop = cells.crop(13, 29, 88, 88);
+    const auto coded = [](const vqtex::Image& img, uint32_t tileable) {
         vqtex_encode_stats stats{};
         const std::vector<uint8_t> file = encode(img, wrap_params(tileable), &stats);
         vqtex_file_info info{};
         vqtex_error err{};
         EXPECT_EQ(vqtex_inspect(file.data(), file.size(), 0, &info, &err), VQTEX_OK) << err.detail;
         EXPECT_EQ(info.atlas_wraps, stats.atlas_wraps) << "the stats say what the file holds";
-        return stats.atlas_wraps;
+        return std::array<uint32_t, 2>{stats.atlas_wraps, stats.example_tiles};
     };
-    EXPECT_EQ(wraps(ex, VQTEX_TILEABLE_DETECT), 1u);
-    EXPECT_EQ(wraps(ex, VQTEX_TILEABLE_NO), 0u);
-    EXPECT_EQ(wraps(crop, VQTEX_TILEABLE_DETECT), 0u);
-    EXPECT_EQ(wraps(crop, VQTEX_TILEABLE_YES), 1u);
+    EXPECT_EQ(coded(bricks, VQTEX_TILEABLE_DETECT), (std::array<uint32_t, 2>{1, 1}));
+    EXPECT_EQ(coded(bricks, VQTEX_TILEABLE_NO), (std::array<uint32_t, 2>{0, 1}));
+    EXPECT_EQ(coded(cells, VQTEX_TILEABLE_DETECT), (std::array<uint32_t, 2>{0, 1})) << "tiles, says so, wraps not";
+    EXPECT_EQ(coded(cells, VQTEX_TILEABLE_YES), (std::array<uint32_t, 2>{1, 1}));
+    EXPECT_EQ(coded(crop, VQTEX_TILEABLE_DETECT), (std::array<uint32_t, 2>{0, 0}));
+    EXPECT_EQ(coded(crop, VQTEX_TILEABLE_YES), (std::array<uint32_t, 2>{1, 0}));
     const vqtex_encode_params bad = wrap_params(3);
-    vqtex_image in{uint32_t(ex.width), uint32_t(ex.height), uint32_t(ex.channels),
-                   const_cast<uint8_t*>(ex.pixels.data())};
+    vqtex_image in{uint32_t(cells.width), uint32_t(cells.height), uint32_t(cells.channels),
+                   const_cast<uint8_t*>(cells.pixels.data())};
     uint8_t* data = nullptr;
     size_t size = 0;
     vqtex_error err{};

@@ -171,15 +171,14 @@ TEST(Tools, HelpWorks) {
 TEST(Tools, EncodeDecodeInfoRoundTrip) {
     const fs::path dir = scratch_dir();
     const std::string vqt = (dir / "c.vqt").string(), png = (dir / "c.png").string();
-    // (--no-tileable-example: the example tiles, and its whole would wrap
-    // and win; the crop is what this checks.)
-    ToolRun r = encode_tool(corpus + "/cellular_128.png " + vqt + " -q 10 --no-tileable-example --json");
+    ToolRun r = encode_tool(corpus + "/cellular_128.png " + vqt + " -q 10 --json");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("\"quality\":10,"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bytes\":"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bpp\":"), std::string::npos) << r.output;
     // What the atlas is: at -q 10, a crop of 96x96 at the corner.
-    EXPECT_NE(r.output.find("\"atlas\":{\"width\":96,\"height\":96,\"x\":0,\"y\":0,\"kind\":\"part\",\"wraps\":false}"),
+    EXPECT_NE(r.output.find("\"atlas\":{\"width\":96,\"height\":96,\"x\":0,\"y\":0,\"kind\":\"part\",\"wraps\":false,"
+                            "\"example_tiles\":true}"),
               std::string::npos)
         << r.output;
     r = decode_tool(vqt + " " + png + " --size 200x120 --seed 3 --json");

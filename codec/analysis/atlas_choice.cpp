@@ -372,7 +372,7 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
     const Image source = period.repeats() ? example.crop(0, 0, period.width, period.height) : example;
     const bool wraps = period.repeats()
                            ? period.wraps()
-                           : options.example_tileable || (options.detect_tileable && example_tiles(source));
+                           : options.example_tileable || (options.detect_tileable && example_repeats_its_tile(source));
     AtlasChoiceOptions o = options;
     if (o.budget == 0)
         o.budget = atlas_budget_of_quality(o.quality, std::min<uint64_t>(source.pixel_count(), kBudgetedPixels));

@@ -23,8 +23,8 @@ struct AtlasChoiceOptions {
     int quality = 50;               // the preset whose budget applies when budget is 0
     int levels = 0;                 // the engine's stack depth; 0 = the deepest the atlas allows
     bool example_tileable = false;  // the example wraps
-    // Otherwise, whether it wraps is found (example_wrap.hpp): when it
-    // tiles, an atlas that is the whole example wraps.
+    // Otherwise an atlas that is the whole example wraps when the example
+    // repeats its tile (example_wrap.hpp).
     bool detect_tileable = false;
     uint64_t seed = 1;              // the file's default decoding seed
     int threads = 1;                // the file does not depend on it

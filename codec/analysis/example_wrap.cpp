@@ -63,11 +63,15 @@ WrapSteps measure_wrap_steps(const Image& example) {
 bool example_tiles(const Image& example) {
     if (example.width < 16 || example.height < 16) return false;
     const WrapSteps steps = measure_wrap_steps(example);
+    if (steps.tiles()) return true;
     const ExamplePeriod period = find_example_period(example, 4);
-    if (!(steps.seamless(0) || period.across) || !(steps.seamless(1) || period.down)) return false;
-    const bool small_tile = period.across && period.down && 4 * period.width <= example.width &&
-                            4 * period.height <= example.height;
-    return !small_tile;
+    return (steps.seamless(0) || period.across) && (steps.seamless(1) || period.down);
+}
+
+bool example_repeats_its_tile(const Image& example) {
+    if (example.width < 16 || example.height < 16) return false;
+    const ExamplePeriod period = find_example_period(example, 4);
+    return period.wraps() && (4 * period.width > example.width || 4 * period.height > example.height);
 }
 
 }  // namespace vqtex

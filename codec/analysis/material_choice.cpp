@@ -347,11 +347,12 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
     if (first.width < kMinAtlasSide || first.height < kMinAtlasSide)
         fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "an atlas needs maps of at least " + std::to_string(kMinAtlasSide) + "x" +
                                               std::to_string(kMinAtlasSide) + " pixels");
-    // One synthesis reads every map, so the set wraps when every map tiles.
+    // One synthesis reads every map, so the set wraps unless told when
+    // every map repeats its tile.
     AtlasChoiceOptions options = given;
     if (options.detect_tileable && !options.example_tileable)
-        options.example_tileable =
-            std::all_of(maps.begin(), maps.end(), [](const MaterialMap& m) { return example_tiles(m.image); });
+        options.example_tileable = std::all_of(maps.begin(), maps.end(),
+                                               [](const MaterialMap& m) { return example_repeats_its_tile(m.image); });
     const GuideMatrix guide = guide_matrix(maps);
     // AV1's quantiser steps are in sample units, so at one level a map of
     // low contrast loses more of its structure than a contrasty one (a

@@ -325,12 +325,11 @@ typedef struct vqtex_trees_params {
 } vqtex_trees_params;
 
 /* Whether an example wraps (vqtex_encode_params.example_tileable). DETECT:
- * an atlas file of a still image or a map set wraps when the example tiles
- * (its wrap is no larger a step than the largest step inside it, in both
- * directions; every map of a set) and the atlas is the whole example
- * (docs/ATLAS.md "Examples that tile"); trees files and animations do not
- * wrap. YES: the example wraps, as trees, animations and atlases. NO: it
- * does not. */
+ * an atlas file of a still image or a map set wraps when the example (every
+ * map) repeats a tile both ways, of more than a quarter of its side one way
+ * at least, and the atlas is the whole example (docs/ATLAS.md "Examples
+ * that tile"); trees files and animations do not wrap. YES: the example
+ * wraps, as trees, animations and atlases. NO: it does not. */
 #define VQTEX_TILEABLE_DETECT 0u
 #define VQTEX_TILEABLE_YES 1u
 #define VQTEX_TILEABLE_NO 2u
@@ -385,6 +384,9 @@ typedef struct vqtex_encode_stats {
     uint32_t atlas_frames, atlas_first_frame;
     /* 1: the atlas wraps (the example tiles and the atlas is all of it). */
     uint32_t atlas_wraps;
+    /* 1: the example's wrap is seamless (every map's, for a set), whether
+     * or not the atlas wraps (docs/ATLAS.md "Examples that tile"). */
+    uint32_t example_tiles;
 } vqtex_encode_stats;
 
 /* Encodes an example into a new buffer (*data, *size), freed with
