@@ -8,9 +8,9 @@
 // Levoy 2000, section 3.2's toroidal neighbourhoods), so a copy that
 // reaches the edge need not end there in a straight seam with another copy.
 // A wrap that is not seamless would put a seam inside every copy that
-// crosses it, so the test of a seamless wrap is strict: a photograph cut from a larger one
-// fails it, since two rows that were never neighbours differ more than any
-// two that were. (Grain is the exception: its neighbouring rows differ as
+// crosses it, so the test of a seamless wrap is strict: a photograph cut
+// from a larger one fails it, since two rows that were never neighbours
+// differ more than any two that were. (Grain is the exception: its neighbouring rows differ as
 // much as any two, and so its wrap shows no more than its inside does.)
 #pragma once
 
@@ -51,7 +51,8 @@ bool example_tiles(const Image& example);
 //   then repeats the example on a grid. Measured on the corpus's 13 game
 //   textures that tile, decoded at twice their side, a judge shown both
 //   blind preferred the unwrapped output on 7 and the wrapped on 3, for
-//   that grid, though every metric favoured the wrapped.
+//   that grid, though completeness, coherence and the straight-seam
+//   measure favoured the wrapped.
 // - A small tile repeated (a weave of period 16 in 128, checks, stripes):
 //   wrapped, its coarse levels average the tile out to flat, so copies
 //   start at random phases which the finer levels do not reconcile:
