@@ -48,7 +48,7 @@ TEST(ExampleWrap, TexturesMadeToTilePass) {
     // corpus/generate.py makes all of these on a torus.
     for (const char* name : {"cellular_128.png", "clouds_128.png", "sand_256.png", "bricks_128.png",
                              "grey_noise_64.png", "leaves_rgba_64.png"})
-        EXPECT_TRUE(vqtex::example_tiles(load_corpus(name))) << name;
+        EXPECT_TRUE(vqtex::example_tiling(load_corpus(name)).tiles) << name;
 }
 
 TEST(ExampleWrap, ACropOfATilingTextureDoesNotPass) {
@@ -62,13 +62,13 @@ TEST(ExampleWrap, ACropOfATilingTextureDoesNotPass) {
         EXPECT_FALSE(s.tiles()) << name << ": wraps " << s.wrap[0] << ", " << s.wrap[1] << " against "
                                 << s.largest_inner[0] << ", " << s.largest_inner[1] << " (largest), "
                                 << s.median_inner[0] << ", " << s.median_inner[1] << " (median)";
-        EXPECT_FALSE(vqtex::example_tiles(crop)) << name;
+        EXPECT_FALSE(vqtex::example_tiling(crop).tiles) << name;
     }
-    EXPECT_FALSE(vqtex::example_tiles(vqtex::Image(8, 8, 3))) << "too small to judge";
+    EXPECT_FALSE(vqtex::example_tiling(vqtex::Image(8, 8, 3)).tiles) << "too small to judge";
     // Unless the texture is grain, whose neighbouring rows differ as much as
     // any two: a crop of sand wraps as seamlessly as it holds together.
     const vqtex::Image sand = load_corpus("sand_256.png");
-    EXPECT_TRUE(vqtex::example_tiles(sand.crop(13, 29, 216, 216)));
+    EXPECT_TRUE(vqtex::example_tiling(sand.crop(13, 29, 216, 216)).tiles);
 }
 
 TEST(ExampleWrap, OnlyATextureThatRepeatsALargeTileWrapsByDefault) {
@@ -76,18 +76,18 @@ TEST(ExampleWrap, OnlyATextureThatRepeatsALargeTileWrapsByDefault) {
     // mortar edge, larger than a typical step, and seamless.
     const vqtex::Image bricks = load_corpus("bricks_128.png");
     EXPECT_FALSE(vqtex::measure_wrap_steps(bricks).tiles());
-    EXPECT_TRUE(vqtex::example_tiles(bricks));
-    EXPECT_TRUE(vqtex::example_repeats_its_tile(bricks));
+    EXPECT_TRUE(vqtex::example_tiling(bricks).tiles);
+    EXPECT_TRUE(vqtex::example_tiling(bricks).repeats_its_tile);
     // The weave repeats a 16x16 tile, the checks a 16x16 one in 64, the
     // stripes an 8-pixel one: seamless, but small tiles (example_wrap.hpp).
     for (const char* name : {"weave_128.png", "checks_p16_64.png", "stripes_p8_128.png"}) {
         const vqtex::Image ex = load_corpus(name);
         EXPECT_TRUE(vqtex::find_example_period(ex, 4).wraps()) << name;
-        EXPECT_TRUE(vqtex::example_tiles(ex)) << name;
-        EXPECT_FALSE(vqtex::example_repeats_its_tile(ex)) << name;
+        EXPECT_TRUE(vqtex::example_tiling(ex).tiles) << name;
+        EXPECT_FALSE(vqtex::example_tiling(ex).repeats_its_tile) << name;
     }
     // A texture that tiles without repeating.
-    EXPECT_FALSE(vqtex::example_repeats_its_tile(load_corpus("cellular_128.png")));
+    EXPECT_FALSE(vqtex::example_tiling(load_corpus("cellular_128.png")).repeats_its_tile);
 }
 
 TEST(ExampleWrap, TheEncoderWrapsWhatRepeatsItsTileUnlessTold) {

@@ -370,9 +370,9 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
                                      ? find_example_period(example)
                                      : ExamplePeriod{};
     const Image source = period.repeats() ? example.crop(0, 0, period.width, period.height) : example;
-    const bool wraps = period.repeats()
-                           ? period.wraps()
-                           : options.example_tileable || (options.detect_tileable && example_repeats_its_tile(source));
+    const ExampleTiling tiling = example_tiling(example);
+    const bool wraps = period.repeats() ? period.wraps()
+                                        : options.example_tileable || (options.detect_tileable && tiling.repeats_its_tile);
     AtlasChoiceOptions o = options;
     if (o.budget == 0)
         o.budget = atlas_budget_of_quality(o.quality, std::min<uint64_t>(source.pixel_count(), kBudgetedPixels));
@@ -381,6 +381,7 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
                         : choose_whole_or_crop(example, source, wraps, o);
     c.tile = period.repeats() && c.atlas.width == source.width && c.atlas.height == source.height;
     c.wraps = wraps && c.atlas.width == source.width && c.atlas.height == source.height;
+    c.example_tiles = tiling.tiles;
     return c;
 }
 

@@ -43,6 +43,7 @@ struct AtlasChoice {
     int x = 0, y = 0;           // where the atlas lies in the example
     bool tile = false;          // the atlas is the tile the example repeats
     bool wraps = false;         // the atlas wraps (the file's example_tileable)
+    bool example_tiles = false; // the example's wrap is seamless (example_wrap.hpp)
 };
 
 // The finest AV1 level, 0..63, at which `size_at(level)` (a file's bytes)

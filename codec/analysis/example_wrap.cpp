@@ -60,18 +60,15 @@ WrapSteps measure_wrap_steps(const Image& example) {
     return t;
 }
 
-bool example_tiles(const Image& example) {
-    if (example.width < 16 || example.height < 16) return false;
+ExampleTiling example_tiling(const Image& example) {
+    ExampleTiling t;
+    if (example.width < 16 || example.height < 16) return t;
     const WrapSteps steps = measure_wrap_steps(example);
-    if (steps.tiles()) return true;
     const ExamplePeriod period = find_example_period(example, 4);
-    return (steps.seamless(0) || period.across) && (steps.seamless(1) || period.down);
-}
-
-bool example_repeats_its_tile(const Image& example) {
-    if (example.width < 16 || example.height < 16) return false;
-    const ExamplePeriod period = find_example_period(example, 4);
-    return period.wraps() && (4 * period.width > example.width || 4 * period.height > example.height);
+    t.tiles = (steps.seamless(0) || period.across) && (steps.seamless(1) || period.down);
+    t.repeats_its_tile =
+        period.wraps() && (4 * period.width > example.width || 4 * period.height > example.height);
+    return t;
 }
 
 }  // namespace vqtex

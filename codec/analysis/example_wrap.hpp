@@ -10,8 +10,9 @@
 // A wrap that is not seamless would put a seam inside every copy that
 // crosses it, so the test of a seamless wrap is strict: a photograph cut
 // from a larger one fails it, since two rows that were never neighbours
-// differ more than any two that were. (Grain is the exception: its neighbouring rows differ as
-// much as any two, and so its wrap shows no more than its inside does.)
+// differ more than any two that were. (Grain is the exception: its
+// neighbouring rows differ as much as any two, and so its wrap shows no
+// more than its inside does.)
 #pragma once
 
 #include "common/image.hpp"
@@ -36,27 +37,32 @@ inline constexpr double kTypicalStep = 1.7;
 // Examples under 16 pixels on a side do not tile by this test.
 WrapSteps measure_wrap_steps(const Image& example);
 
-// Whether the example's wrap is seamless: along each axis by the steps, or
-// because the example repeats along it (a periodic pattern, whose wrap is
-// a step like its sharpest).
-bool example_tiles(const Image& example);
+struct ExampleTiling {
+    // The example's wrap is seamless: along each axis by the steps, or
+    // because the example repeats along it (a periodic pattern, whose wrap
+    // is a step like its sharpest).
+    bool tiles = false;
+    // An atlas that is the whole example wraps unless told: the example
+    // repeats a tile both ways, of more than a quarter of its side one
+    // way at least (a brick wall's 64x32 in 128x128). Such a texture is its
+    // tile tiled, so copies that run across the wrap, and an output that tiles
+    // the tile, are the texture itself. Not wrapped by default:
+    // - A texture that tiles without repeating (a procedural noise, a game
+    //   texture): wrapped, its copies can run across the whole output, which
+    //   then repeats the example on a grid. Measured on the corpus's 13 game
+    //   textures that tile, decoded at twice their side, a judge shown both
+    //   blind preferred the unwrapped output on 7 and the wrapped on 3, for
+    //   that grid, though completeness, coherence and the straight-seam
+    //   measure favoured the wrapped.
+    // - A small tile repeated (a weave of period 16 in 128, checks, stripes):
+    //   wrapped, its coarse levels average the tile out to flat, so copies
+    //   start at random phases which the finer levels do not reconcile:
+    //   coherence 5.7 against 2.3 unwrapped (3 seeds; equal with 3 levels).
+    bool repeats_its_tile = false;
+};
 
-// Whether an atlas that is the whole example wraps unless told: the
-// example repeats a tile both ways, of more than a quarter of its side one
-// way at least (a brick wall's 64x32 in 128x128). Such a texture is its
-// tile tiled, so copies that run across the wrap, and an output that tiles
-// the tile, are the texture itself. Not wrapped by default:
-// - A texture that tiles without repeating (a procedural noise, a game
-//   texture): wrapped, its copies can run across the whole output, which
-//   then repeats the example on a grid. Measured on the corpus's 13 game
-//   textures that tile, decoded at twice their side, a judge shown both
-//   blind preferred the unwrapped output on 7 and the wrapped on 3, for
-//   that grid, though completeness, coherence and the straight-seam
-//   measure favoured the wrapped.
-// - A small tile repeated (a weave of period 16 in 128, checks, stripes):
-//   wrapped, its coarse levels average the tile out to flat, so copies
-//   start at random phases which the finer levels do not reconcile:
-//   coherence 5.7 against 2.3 unwrapped (3 seeds; equal with 3 levels).
-bool example_repeats_its_tile(const Image& example);
+// Both, from one look at the steps and one period search; neither for an
+// example under 16 pixels on a side.
+ExampleTiling example_tiling(const Image& example);
 
 }  // namespace vqtex

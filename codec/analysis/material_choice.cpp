@@ -349,10 +349,14 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
                                               std::to_string(kMinAtlasSide) + " pixels");
     // One synthesis reads every map, so the set wraps unless told when
     // every map repeats its tile.
+    bool tiles = true, repeats = true;
+    for (const MaterialMap& m : maps) {
+        const ExampleTiling t = example_tiling(m.image);
+        tiles = tiles && t.tiles;
+        repeats = repeats && t.repeats_its_tile;
+    }
     AtlasChoiceOptions options = given;
-    if (options.detect_tileable && !options.example_tileable)
-        options.example_tileable = std::all_of(maps.begin(), maps.end(),
-                                               [](const MaterialMap& m) { return example_repeats_its_tile(m.image); });
+    if (options.detect_tileable && !options.example_tileable) options.example_tileable = repeats;
     const GuideMatrix guide = guide_matrix(maps);
     // AV1's quantiser steps are in sample units, so at one level a map of
     // low contrast loses more of its structure than a contrasty one (a
@@ -367,8 +371,11 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
     std::vector<int> offsets;
     for (const double d : deviation)
         offsets.push_back(std::clamp(int(std::lround(6.0 * std::log2(d / most))), -24, 0));
-    if (options.compaction && first.pixel_count() > kLargeExamplePixels)
-        return choose_material_part(maps, guide, offsets, options);
+    if (options.compaction && first.pixel_count() > kLargeExamplePixels) {
+        MaterialChoice c = choose_material_part(maps, guide, offsets, options);
+        c.example_tiles = tiles;
+        return c;
+    }
     uint32_t attempts = 0;
     for (int scale = 16; scale >= 1; scale = scale == 16 ? 12 : scale * 3 / 4) {
         const int w = std::min({kMaxAtlasSide, first.width, std::max(kMinAtlasSide, first.width * scale / 16)});
@@ -377,6 +384,7 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
         const int best = finest_fitting_level(options.budget, [&](int cq) { return search.size_at(cq); });
         if (best >= 0) {
             MaterialChoice c = search.choice(best);
+            c.example_tiles = tiles;
             c.attempts = attempts;
             return c;
         }

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "analysis/example_wrap.hpp"
 #include "analysis/material_choice.hpp"
 #include "api/api_support.hpp"
 #include "api/encode_support.hpp"
@@ -122,8 +121,7 @@ vqtex_status vqtex_encode_maps(const vqtex_encode_params* params, const vqtex_ma
             stats->atlas_x = uint32_t(r.atlas_x);
             stats->atlas_y = uint32_t(r.atlas_y);
             stats->atlas_wraps = r.wraps ? 1u : 0u;
-            stats->example_tiles =
-                std::all_of(set.begin(), set.end(), [](const MaterialMap& m) { return example_tiles(m.image); });
+            stats->example_tiles = r.example_tiles ? 1u : 0u;
             stats->atlas_kind = r.atlas_width == set[0].image.width && r.atlas_height == set[0].image.height ? 0u : 1u;
         }
     });
