@@ -182,6 +182,13 @@ int main(int argc, char** argv) {
                 const std::vector<uint8_t> v7 = vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, sp);
                 write(out / "decode" / (name + "_fields.vqt"), v7.data(), v7.size());
                 ++files;
+                // Version 15: the same wrapping atlas with the period bar.
+                vqtex::AtlasSynthesisParams barred = sp;
+                barred.period_bar = true;
+                const std::vector<uint8_t> v15 =
+                    vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, barred);
+                write(out / "decode" / (name + "_v15.vqt"), v15.data(), v15.size());
+                ++files;
                 // Version 13: the atlas a part of a larger exemplar, its
                 // origin stored.
                 h.atlas_x = 3;
@@ -231,6 +238,14 @@ int main(int argc, char** argv) {
                     at += m.bytes;
                 }
                 vqtex::FileHeader h = f.header;
+                // Version 16: the set wrapping, with the period bar.
+                vqtex::AtlasSynthesisParams barred = f.params;
+                barred.example_tileable = true;
+                barred.period_bar = true;
+                const std::vector<uint8_t> v16 =
+                    vqtex::encode_material_file(h, f.atlas.width, f.atlas.height, coded, f.guide, barred);
+                write(out / "decode" / ("set_" + std::to_string(count) + "_maps_v16.vqt"), v16.data(), v16.size());
+                ++files;
                 h.exemplar_width += 4;
                 h.exemplar_height += 2;
                 h.atlas_x = 4;

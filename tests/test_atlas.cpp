@@ -97,12 +97,12 @@ std::size_t atlas_payload_offset(const std::vector<uint8_t>& file) {
 }
 
 // The atlas bitstream of a v10 file (v13 when the atlas is a crop away
-// from the corner), and the same content as a v3 file (the encoder writes
-// v10; v3 must go on decoding), which has no blend, no relocation, no edge
-// guard, no cuts and no covers.
+// from the corner, v15 when it wraps with the period bar), and the same
+// content as a v3 file (the encoder writes v10; v3 must go on decoding),
+// which has no blend, no relocation, no edge guard, no cuts and no covers.
 std::vector<uint8_t> bitstream_of(const std::vector<uint8_t>& file) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(file.data(), file.size(), 1u << 30);
-    EXPECT_TRUE(f.header.version == 10 || f.header.version == 13) << f.header.version;
+    EXPECT_TRUE(f.header.version == 10 || f.header.version == 13 || f.header.version == 15) << f.header.version;
     return std::vector<uint8_t>(file.begin() + std::ptrdiff_t(f.bitstream_offset),
                                 file.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
 }
@@ -279,6 +279,10 @@ TEST(AtlasFile, DecodingIsTheSameForAnyThreadCountAndIsTheEnginesSynthesis) {
     EXPECT_EQ(f.header.levels, 6) << "what vqtex_synthesize chooses for a 128x128 example";
     vqtex_synth_params sp = default_params(150, 110, 7);
     sp.engine = VQTEX_ENGINE_COHERENT;
+    // The example tiles, so the file wraps with the period bar, as
+    // vqtex_synthesize synthesises a wrapping example that does not repeat.
+    EXPECT_TRUE(f.params.example_tileable && f.params.period_bar);
+    sp.example_tileable = 1;
     EXPECT_EQ(synthesize(f.atlas, sp).pixels, one.pixels);
 }
 
@@ -556,7 +560,9 @@ TEST(AtlasFile, CompactFileHostileFieldsAreCorruptOrOverTheLimitNeverACrash) {
     const vqtex::Image ex = load_corpus("cellular_128.png");
     // Above 0.13 bytes a pixel the atlas is the whole example (no crop to
     // compete), which is the layout checked here.
-    const std::vector<uint8_t> file = encode(ex, atlas_params(2200));
+    vqtex_encode_params ap = atlas_params(2200);
+    ap.example_tileable = VQTEX_TILEABLE_NO;  // the layout of version 10
+    const std::vector<uint8_t> file = encode(ex, ap);
     const std::vector<uint8_t> bits = bitstream_of(file);
     const uint8_t packed = 2 | 5 << 2;  // 3 channels, 6 levels, nothing else
     ASSERT_EQ(compact_file(packed, varints({128, 128, 1}), bits), file) << "the layout of docs/FORMAT.md 2.1";
@@ -842,6 +848,20 @@ TEST(AtlasFile, GoldenCoverFileDecodesToKnownPixels) {
     EXPECT_EQ(f.params.cut, 8);
     EXPECT_EQ(f.params.cover, 8);
     EXPECT_TRUE(f.maps.empty());
+}
+
+// Pins format version 15 and its decoder, the period bar included. The
+// file is cellular_v10.vqt with the version 15 and the wrap bit (packed bit
+// 7), so the two decodes differ by the bar alone: the previous decode is
+// the same bytes as a wrapping version 10 file, which decodes without it
+// (and as it did before version 15 existed).
+TEST(AtlasFile, GoldenPeriodBarFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes =
+        check_golden_compact("cellular_v15.vqt", 15, 0xb29f381b5bd1654full, 0xaa79ec8ea243df6eull, 256, 256, 10);
+    if (bytes.empty()) return;
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
+    EXPECT_TRUE(f.params.example_tileable);
+    EXPECT_TRUE(f.params.period_bar);
 }
 
 TEST(AtlasFile, ParametersOutsideTheAtlasPathAreRefused) {

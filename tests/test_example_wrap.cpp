@@ -9,6 +9,7 @@
 
 #include "analysis/example_period.hpp"
 #include "analysis/example_wrap.hpp"
+#include "common/checksum.hpp"
 #include "codec_support.hpp"
 #include "metrics.hpp"
 #include "test_support.hpp"
@@ -42,6 +43,26 @@ vqtex_metrics::Image metrics_image(const vqtex::Image& img) {
     return {img.width, img.height, img.channels, img.pixels};
 }
 
+// The checksum of a file whose bytes a test changed, made right again.
+void fix_crc(std::vector<uint8_t>& file) {
+    const uint32_t crc = vqtex::crc32(file.data(), file.size() - 4);
+    for (int i = 0; i < 4; ++i) file[file.size() - 4 + std::size_t(i)] = uint8_t(crc >> (8 * i));
+}
+
+// The share of an output's pixels equal, every channel, to the pixel
+// `period` on (across and down, averaged; the output wraps).
+double share_repeated(const vqtex::Image& img, int period) {
+    std::size_t same = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            for (const auto [dx, dy] : {std::array<int, 2>{period, 0}, std::array<int, 2>{0, period}}) {
+                const uint8_t* a = img.at(x, y);
+                const uint8_t* b = img.at((x + dx) % img.width, (y + dy) % img.height);
+                same += std::equal(a, a + img.channels, b) ? 1 : 0;
+            }
+    return double(same) / (2.0 * double(img.pixel_count()));
+}
+
 }  // namespace
 
 TEST(ExampleWrap, TexturesMadeToTilePass) {
@@ -71,7 +92,7 @@ TEST(ExampleWrap, ACropOfATilingTextureDoesNotPass) {
     EXPECT_TRUE(vqtex::example_tiling(sand.crop(13, 29, 216, 216)).tiles);
 }
 
-TEST(ExampleWrap, OnlyATextureThatRepeatsALargeTileWrapsByDefault) {
+TEST(ExampleWrap, WhatWrapsByDefault) {
     // The bricks repeat a tile of half the example across: their wrap is a
     // mortar edge, larger than a typical step, and seamless.
     const vqtex::Image bricks = load_corpus("bricks_128.png");
@@ -85,12 +106,21 @@ TEST(ExampleWrap, OnlyATextureThatRepeatsALargeTileWrapsByDefault) {
         EXPECT_TRUE(vqtex::find_example_period(ex, 4).wraps()) << name;
         EXPECT_TRUE(vqtex::example_tiling(ex).tiles) << name;
         EXPECT_FALSE(vqtex::example_tiling(ex).repeats_its_tile) << name;
+        EXPECT_TRUE(vqtex::example_tiling(ex).repeats_a_small_tile) << name;
+        EXPECT_FALSE(vqtex::example_tiling(ex).wraps()) << name;
     }
-    // A texture that tiles without repeating.
-    EXPECT_FALSE(vqtex::example_tiling(load_corpus("cellular_128.png")).repeats_its_tile);
+    // A texture that tiles without repeating wraps, with the period bar;
+    // the bricks wrap without it.
+    const vqtex::ExampleTiling cells = vqtex::example_tiling(load_corpus("cellular_128.png"));
+    EXPECT_FALSE(cells.repeats_its_tile);
+    EXPECT_FALSE(cells.repeats);
+    EXPECT_TRUE(cells.wraps());
+    EXPECT_TRUE(cells.period_bar());
+    EXPECT_TRUE(vqtex::example_tiling(bricks).wraps());
+    EXPECT_FALSE(vqtex::example_tiling(bricks).period_bar());
 }
 
-TEST(ExampleWrap, TheEncoderWrapsWhatRepeatsItsTileUnlessTold) {
+TEST(ExampleWrap, TheEncoderWrapsWhatTilesUnlessTold) {
     const vqtex::Image bricks = load_corpus("bricks_128.png"), cells = load_corpus("cellular_128.png");
     const vqtex::Image crop = cells.crop(13, 29, 88, 88);
     const auto coded = [](const vqtex::Image& img, uint32_t tileable) {
@@ -100,14 +130,18 @@ TEST(ExampleWrap, TheEncoderWrapsWhatRepeatsItsTileUnlessTold) {
         vqtex_error err{};
         EXPECT_EQ(vqtex_inspect(file.data(), file.size(), 0, &info, &err), VQTEX_OK) << err.detail;
         EXPECT_EQ(info.atlas_wraps, stats.atlas_wraps) << "the stats say what the file holds";
-        return std::array<uint32_t, 2>{stats.atlas_wraps, stats.example_tiles};
+        EXPECT_EQ(info.period_bar, stats.period_bar) << "the stats say what the file holds";
+        EXPECT_EQ(info.format_version, stats.period_bar ? 15u : 10u);
+        return std::array<uint32_t, 3>{stats.atlas_wraps, stats.example_tiles, stats.period_bar};
     };
-    EXPECT_EQ(coded(bricks, VQTEX_TILEABLE_DETECT), (std::array<uint32_t, 2>{1, 1}));
-    EXPECT_EQ(coded(bricks, VQTEX_TILEABLE_NO), (std::array<uint32_t, 2>{0, 1}));
-    EXPECT_EQ(coded(cells, VQTEX_TILEABLE_DETECT), (std::array<uint32_t, 2>{0, 1})) << "tiles, says so, wraps not";
-    EXPECT_EQ(coded(cells, VQTEX_TILEABLE_YES), (std::array<uint32_t, 2>{1, 1}));
-    EXPECT_EQ(coded(crop, VQTEX_TILEABLE_DETECT), (std::array<uint32_t, 2>{0, 0}));
-    EXPECT_EQ(coded(crop, VQTEX_TILEABLE_YES), (std::array<uint32_t, 2>{1, 0}));
+    using Coded = std::array<uint32_t, 3>;  // wraps, tiles, period bar
+    EXPECT_EQ(coded(bricks, VQTEX_TILEABLE_DETECT), (Coded{1, 1, 0})) << "repeats its tile: no bar";
+    EXPECT_EQ(coded(bricks, VQTEX_TILEABLE_NO), (Coded{0, 1, 0}));
+    EXPECT_EQ(coded(cells, VQTEX_TILEABLE_DETECT), (Coded{1, 1, 1})) << "tiles without repeating: the bar";
+    EXPECT_EQ(coded(cells, VQTEX_TILEABLE_NO), (Coded{0, 1, 0}));
+    EXPECT_EQ(coded(load_corpus("weave_128.png"), VQTEX_TILEABLE_DETECT), (Coded{0, 1, 0})) << "a small tile";
+    EXPECT_EQ(coded(crop, VQTEX_TILEABLE_DETECT), (Coded{0, 0, 0}));
+    EXPECT_EQ(coded(crop, VQTEX_TILEABLE_YES), (Coded{1, 0, 1}));
     const vqtex_encode_params bad = wrap_params(3);
     vqtex_image in{uint32_t(cells.width), uint32_t(cells.height), uint32_t(cells.channels),
                    const_cast<uint8_t*>(cells.pixels.data())};
@@ -116,6 +150,31 @@ TEST(ExampleWrap, TheEncoderWrapsWhatRepeatsItsTileUnlessTold) {
     vqtex_error err{};
     EXPECT_EQ(vqtex_encode(&bad, &in, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(data, nullptr);
+}
+
+// A wrapping atlas lets one copy run across the whole output, which then
+// repeats the example on a grid; the period bar (format 15) keeps every
+// copy from showing the example again a period on. The same bytes as
+// version 10, whose wrapping files keep decoding without the bar, repeat.
+TEST(ExampleWrap, ThePeriodBarKeepsTheOutputFromRepeatingTheExample) {
+    const std::vector<uint8_t> barred = encode(load_corpus("cellular_128.png"), wrap_params(VQTEX_TILEABLE_DETECT));
+    ASSERT_EQ(barred[8], 15) << "the example tiles without repeating";
+    std::vector<uint8_t> free = barred;
+    free[8] = 10;
+    fix_crc(free);
+    const vqtex::Image with_bar = decode(barred, decode_params(512, 512, 1, 1));
+    const vqtex::Image without = decode(free, decode_params(512, 512, 1, 1));
+    const double repeated = share_repeated(with_bar, 128), repeated_free = share_repeated(without, 128);
+    EXPECT_LT(repeated, 0.02) << "with the bar";
+    EXPECT_GT(repeated_free, 2 * repeated + 0.02) << "without: " << repeated_free << ", with: " << repeated;
+    EXPECT_EQ(decode(barred, decode_params(512, 512, 1, 2)).pixels, with_bar.pixels) << "2 threads";
+    // A version 15 file whose atlas does not wrap has no meaning: refused.
+    std::vector<uint8_t> unwrapped = barred;
+    unwrapped[10] = uint8_t(unwrapped[10] & 0x7F);
+    fix_crc(unwrapped);
+    vqtex_status st = VQTEX_OK;
+    decode(unwrapped, decode_params(64, 64), &st);
+    EXPECT_EQ(st, VQTEX_ERROR_CORRUPT);
 }
 
 TEST(ExampleWrap, AWrappingAtlasLeavesNoStraightSeamsAtTheExamplesEdges) {

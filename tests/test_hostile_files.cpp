@@ -558,6 +558,7 @@ TEST(HostileFiles, AtlasFilesStayWithinTheMemoryLimit) {
     ep.codebook = VQTEX_CODEBOOK_ATLAS;
     ep.threads = 1;
     ep.target_size = 1500;
+    ep.example_tileable = VQTEX_TILEABLE_NO;  // the layout of version 10
     const std::vector<uint8_t> v7 = encode(load_corpus("cellular_128.png"), ep);
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(v7.data(), v7.size(), 1u << 30);
     ASSERT_EQ(f.header.version, 10);

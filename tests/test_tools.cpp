@@ -176,9 +176,10 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     EXPECT_NE(r.output.find("\"quality\":10,"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bytes\":"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bpp\":"), std::string::npos) << r.output;
-    // What the atlas is: at -q 10, a crop of 96x96 at the corner.
-    EXPECT_NE(r.output.find("\"atlas\":{\"width\":96,\"height\":96,\"x\":0,\"y\":0,\"kind\":\"part\",\"wraps\":false,"
-                            "\"example_tiles\":true}"),
+    // What the atlas is: at -q 10, the whole example, which tiles, so it
+    // wraps with the period bar.
+    EXPECT_NE(r.output.find("\"atlas\":{\"width\":128,\"height\":128,\"x\":0,\"y\":0,\"kind\":\"whole\",\"wraps\":true,"
+                            "\"period_bar\":true,\"example_tiles\":true}"),
               std::string::npos)
         << r.output;
     r = decode_tool(vqt + " " + png + " --size 200x120 --seed 3 --json");
@@ -190,19 +191,18 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     r = info_tool(vqt);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("checksum OK"), std::string::npos) << r.output;
-    // A still texture is an atlas by default (format 10, whose parts inspect
-    // names as format 3's sections); --trees stores the paper's codebooks
-    // (format 1).
-    EXPECT_NE(r.output.find("format 10"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("seams blended over 2 pixels, copies relocated (64 positions tried each), edge guard "
-                            "8 pixels"),
+    // A still texture is an atlas by default (format 10, or 15 for an
+    // example that tiles, whose parts inspect names as format 3's sections);
+    // --trees stores the paper's codebooks (format 1).
+    EXPECT_NE(r.output.find("format 15"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("seams blended over 2 pixels, no relocation or edge guard (the atlas wraps)"),
               std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("ATLS"), std::string::npos) << r.output;
     // (Which atlas, the whole example or a crop of it, the encoder chooses
     // by scoring decodes: docs/ATLAS.md.)
-    EXPECT_NE(r.output.find("atlas     96x96 (a part of the example, 56% of its area), coded as AV1; compact header "
-                            "(format 10)"),
+    EXPECT_NE(r.output.find("atlas     128x128 (the whole example, wrapping, no repeat of it a period on), coded as "
+                            "AV1; compact header (format 15)"),
               std::string::npos)
         << r.output;
     const std::string trees = (dir / "t.vqt").string();

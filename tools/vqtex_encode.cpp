@@ -36,15 +36,17 @@ void add_atlas_json(const vqtex_encode_stats& stats, FileReport& r) {
                            {"y", stats.atlas_y},
                            {"kind", kAtlasKinds[std::min(stats.atlas_kind, 2u)]},
                            {"wraps", stats.atlas_wraps != 0},
+                           {"period_bar", stats.period_bar != 0},
                            {"example_tiles", stats.example_tiles != 0}};
 }
 
 void add_atlas_text(const vqtex_encode_stats& stats, FileReport& r) {
     if (stats.atlas_width && stats.atlas_kind == 0 && stats.atlas_wraps)
-        r.text += "atlas: the whole example, which repeats its tile: it wraps\n";
+        r.text += stats.period_bar ? "atlas: the whole example, which tiles: it wraps, and no copy repeats it a period on\n"
+                                   : "atlas: the whole example, which repeats its tile: it wraps\n";
     else if (stats.atlas_width && stats.atlas_kind == 0 && stats.example_tiles)
-        r.text += "note: the example tiles; --tileable-example lets copies run across its edges: fewer straight "
-                  "seams, but the texture may repeat the example on a grid (docs/ATLAS.md)\n";
+        r.text += "note: the example tiles but repeats a small tile; --tileable-example lets copies run across "
+                  "its edges (docs/ATLAS.md)\n";
     if (!stats.atlas_width || stats.atlas_kind == 0) return;
     char line[256];
     std::snprintf(line, sizeof line, "atlas %ux%u: %s\n", stats.atlas_width, stats.atlas_height,

@@ -91,6 +91,7 @@ FileReport info_one(const std::string& input) {
         j["cut"] = info.cut;
         j["cover"] = info.cover;
         j["atlas_wraps"] = info.atlas_wraps != 0;
+        j["period_bar"] = info.period_bar != 0;
         if (info.atlas_frames) j["atlas_frames"] = info.atlas_frames;
         j["atlas_share"] = double(info.atlas_width) * info.atlas_height /
                            (double(info.exemplar_width) * info.exemplar_height);
@@ -152,7 +153,7 @@ FileReport info_one(const std::string& input) {
                                              std::to_string(int(share + 0.5)) + "% of its area";
         const std::string frames = info.atlas_frames ? "x" + std::to_string(info.atlas_frames) : std::string();
         add(t, "atlas     %ux%u%s%s%s), coded as AV1%s%s\n", info.atlas_width, info.atlas_height, frames.c_str(),
-            part.c_str(), info.atlas_wraps ? ", wrapping" : "", info.atlas_frames ? " with inter frames" : "",
+            part.c_str(), info.atlas_wraps ? (info.period_bar ? ", wrapping, no repeat of it a period on" : ", wrapping") : "", info.atlas_frames ? " with inter frames" : "",
             header.c_str());
         const std::string seams =
             info.blend ? "seams blended over " + std::to_string(info.blend) + " pixels" : "seams not blended";

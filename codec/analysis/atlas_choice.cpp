@@ -45,9 +45,9 @@ Image top_left_crop(const Image& example, int scale) {
 // atlas holds.
 class LevelSearch {
 public:
-    LevelSearch(const Image& example, Image atlas, bool wraps, const AtlasChoiceOptions& o, uint32_t* attempts,
+    LevelSearch(const Image& example, Image atlas, AtlasWrap wrap, const AtlasChoiceOptions& o, uint32_t* attempts,
                 int speed = AtlasEncodeOptions{}.speed, std::array<int, 2> origin = {0, 0})
-        : example_(example), atlas_(std::move(atlas)), wraps_(wraps), options_(o), attempts_(attempts),
+        : example_(example), atlas_(std::move(atlas)), wrap_(wrap), options_(o), attempts_(attempts),
           speed_(speed), origin_(origin) {
         const int deepest = coherent_levels(atlas_.width, atlas_.height);
         levels_ = o.levels ? std::min(o.levels, deepest) : deepest;
@@ -71,7 +71,8 @@ public:
         h.atlas_y = uint32_t(origin_[1]);
         // The engine's defaults, as vqtex_synthesize runs it (synth_api.cpp).
         AtlasSynthesisParams sp;
-        sp.example_tileable = wraps_;
+        sp.example_tileable = wrap_.wraps;
+        sp.period_bar = wrap_.wraps && wrap_.period_bar;
         return files_.emplace(cq, encode_atlas_file(h, atlas_.width, atlas_.height, bits, sp)).first->second;
     }
 
@@ -100,7 +101,7 @@ public:
 private:
     const Image& example_;
     Image atlas_;
-    bool wraps_ = false;
+    AtlasWrap wrap_;
     AtlasChoiceOptions options_;
     uint32_t* attempts_;
     int speed_ = 4;
@@ -190,12 +191,12 @@ constexpr double kCropBytesPerPixel = 0.13;
 
 // An example up to kLargeExamplePixels (`source`: the example, or the tile
 // it repeats): the whole of it, or at small budgets a crop of it.
-AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, bool wraps,
+AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, AtlasWrap wrap,
                                  const AtlasChoiceOptions& options) {
     uint32_t attempts = 0;
     AtlasChoice whole;
     {
-        LevelSearch search(example, source, wraps, options, &attempts);
+        LevelSearch search(example, source, wrap, options, &attempts);
         const int cq = search.finest_fitting();
         if (cq >= 0) whole = search.choice(cq);
     }
@@ -227,7 +228,7 @@ AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, bool
                     continue;
                 }
                 const auto [x, y, s] = regions[i];
-                LevelSearch search(example, source.crop(x, y, s, s), false, options, &crop_attempts[i],
+                LevelSearch search(example, source.crop(x, y, s, s), AtlasWrap{}, options, &crop_attempts[i],
                                    AtlasEncodeOptions{}.speed, {x, y});
                 const int cq = search.finest_fitting();
                 if (cq < 0) continue;
@@ -254,7 +255,7 @@ AtlasChoice choose_whole_or_crop(const Image& example, const Image& source, bool
     for (int scale = 12; scale >= 1; scale = scale * 3 / 4) {
         Image atlas = top_left_crop(source, scale);
         const bool smallest = (atlas.width == kMinAtlasSide && atlas.height == kMinAtlasSide) || scale == 1;
-        LevelSearch search(example, std::move(atlas), false, options, &attempts);
+        LevelSearch search(example, std::move(atlas), AtlasWrap{}, options, &attempts);
         const int cq = search.finest_fitting();
         if (cq >= 0) return search.choice(cq);
         if (smallest) break;
@@ -302,7 +303,7 @@ AtlasChoice choose_part(const Image& example, const Image& source, bool source_w
             const bool whole = s == source.width && s == source.height;
             const std::array<int, 2> at = whole ? std::array<int, 2>{0, 0} : representative_place(source, s);
             const Image part = source.crop(at[0], at[1], s, s);
-            const bool wraps = whole && source_wraps;
+            const AtlasWrap wraps{whole && source_wraps, false};
             LevelSearch fast(example, part, wraps, options, &attempts[i], kSearchSpeed, at);
             const int guess = fast.finest_fitting();
             LevelSearch fine(example, part, wraps, options, &attempts[i], kFinalSpeed, at);
@@ -371,16 +372,22 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
                                      : ExamplePeriod{};
     const Image source = period.repeats() ? example.crop(0, 0, period.width, period.height) : example;
     const ExampleTiling tiling = example_tiling(example);
+    // An example that repeats its tile is the tile tiled: its atlas wraps
+    // freely. One that tiles without repeating wraps with the period bar,
+    // so that copies run across its edges but the output does not repeat it
+    // on a grid (docs/ATLAS.md "Examples that tile").
     const bool wraps = period.repeats() ? period.wraps()
-                                        : options.example_tileable || (options.detect_tileable && tiling.repeats_its_tile);
+                                        : options.example_tileable || (options.detect_tileable && tiling.wraps());
+    const AtlasWrap wrap{wraps, !period.repeats() && tiling.period_bar()};
     AtlasChoiceOptions o = options;
     if (o.budget == 0)
         o.budget = atlas_budget_of_quality(o.quality, std::min<uint64_t>(source.pixel_count(), kBudgetedPixels));
     AtlasChoice c = options.compaction && source.pixel_count() > kLargeExamplePixels
                         ? choose_part(example, source, wraps, o)
-                        : choose_whole_or_crop(example, source, wraps, o);
+                        : choose_whole_or_crop(example, source, wrap, o);
     c.tile = period.repeats() && c.atlas.width == source.width && c.atlas.height == source.height;
     c.wraps = wraps && c.atlas.width == source.width && c.atlas.height == source.height;
+    c.period_bar = c.wraps && wrap.period_bar;
     c.example_tiles = tiling.tiles;
     return c;
 }

@@ -18,6 +18,13 @@
 
 namespace vqtex {
 
+// Whether an atlas wraps, and whether it is then decoded with the period
+// bar (CoherentOptions::period_bar).
+struct AtlasWrap {
+    bool wraps = false;
+    bool period_bar = false;
+};
+
 struct AtlasChoiceOptions {
     uint64_t budget = 0;            // bytes the whole file may take; 0: the quality's
     int quality = 50;               // the preset whose budget applies when budget is 0
@@ -43,6 +50,7 @@ struct AtlasChoice {
     int x = 0, y = 0;           // where the atlas lies in the example
     bool tile = false;          // the atlas is the tile the example repeats
     bool wraps = false;         // the atlas wraps (the file's example_tileable)
+    bool period_bar = false;    // decoded with the period bar (format 15)
     bool example_tiles = false; // the example's wrap is seamless (example_wrap.hpp)
 };
 

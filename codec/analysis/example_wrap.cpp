@@ -68,6 +68,9 @@ ExampleTiling example_tiling(const Image& example) {
     t.tiles = (steps.seamless(0) || period.across) && (steps.seamless(1) || period.down);
     t.repeats_its_tile =
         period.wraps() && (4 * period.width > example.width || 4 * period.height > example.height);
+    t.repeats = period.repeats();
+    t.repeats_a_small_tile = !t.repeats_its_tile && ((period.across && 4 * period.width <= example.width) ||
+                                                     (period.down && 4 * period.height <= example.height));
     return t;
 }
 

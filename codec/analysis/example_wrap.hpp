@@ -42,23 +42,33 @@ struct ExampleTiling {
     // because the example repeats along it (a periodic pattern, whose wrap
     // is a step like its sharpest).
     bool tiles = false;
-    // An atlas that is the whole example wraps unless told: the example
-    // repeats a tile both ways, of more than a quarter of its side one
-    // way at least (a brick wall's 64x32 in 128x128). Such a texture is its
-    // tile tiled, so copies that run across the wrap, and an output that tiles
-    // the tile, are the texture itself. Not wrapped by default:
-    // - A texture that tiles without repeating (a procedural noise, a game
-    //   texture): wrapped, its copies can run across the whole output, which
-    //   then repeats the example on a grid. Measured on the corpus's 13 game
-    //   textures that tile, decoded at twice their side, a judge shown both
-    //   blind preferred the unwrapped output on 7 and the wrapped on 3, for
-    //   that grid, though completeness, coherence and the straight-seam
-    //   measure favoured the wrapped.
-    // - A small tile repeated (a weave of period 16 in 128, checks, stripes):
-    //   wrapped, its coarse levels average the tile out to flat, so copies
-    //   start at random phases which the finer levels do not reconcile:
-    //   coherence 5.7 against 2.3 unwrapped (3 seeds; equal with 3 levels).
+    // The example repeats a tile both ways, of more than a quarter of its
+    // side one way at least (a brick wall's 64x32 in 128x128). Such a
+    // texture is its tile tiled, so copies that run across the wrap, and an
+    // output that tiles the tile, are the texture itself: its atlas wraps
+    // without the period bar.
     bool repeats_its_tile = false;
+    // The example repeats a tile of at most a quarter of its side along an
+    // axis (a weave of period 16 in 128, checks, stripes), and not a larger
+    // one both ways. It does not wrap unless told: wrapped, its coarse
+    // levels average the tile out to flat, so copies start at random phases
+    // which the finer levels do not reconcile (weave coherence 5.7 against
+    // 2.3 unwrapped, 3 seeds).
+    bool repeats_a_small_tile = false;
+    // The example repeats a tile along an axis, of any size.
+    bool repeats = false;
+    // Whether an atlas that is the whole example wraps unless told: every
+    // example that tiles, but a small tile repeated. Wrapped without the
+    // period bar, a texture that tiles without repeating (a game texture)
+    // let one copy cover the whole output, which then repeated the example
+    // on a grid: a judge preferred such outputs unwrapped on 7 of 13 game
+    // textures; with the bar, wrapped on most (docs/ATLAS.md "Examples that
+    // tile").
+    bool wraps() const { return repeats_its_tile || (tiles && !repeats_a_small_tile); }
+    // Whether a wrapping atlas of the whole example is decoded with the
+    // period bar: unless the example repeats a tile, when an output that
+    // repeats it is the texture itself.
+    bool period_bar() const { return !repeats; }
 };
 
 // Both, from one look at the steps and one period search; neither for an

@@ -218,6 +218,7 @@ public:
         hd.atlas_y = uint32_t(part_[1]);
         AtlasSynthesisParams sp;
         sp.example_tileable = wraps();
+        sp.period_bar = wraps() && period_bar_;
         return files_.emplace(cq, encode_material_file(hd, part_[2], part_[3], coded, guide_, sp)).first->second;
     }
 
@@ -233,8 +234,12 @@ public:
         c.atlas_width = part_[2];
         c.atlas_height = part_[3];
         c.wraps = wraps();
+        c.period_bar = wraps() && period_bar_;
         return c;
     }
+
+    // Whether a wrapping atlas is decoded with the period bar.
+    void bar_period(bool bar) { period_bar_ = bar; }
 
 private:
     // The atlas wraps when the example does and the atlas is all of it.
@@ -247,6 +252,7 @@ private:
     const std::vector<int>& offsets_;
     std::array<int, 4> part_;  // x, y, w, h
     AtlasChoiceOptions options_;
+    bool period_bar_ = false;
     int threads_ = 1;
     uint32_t* attempts_;
     int speed_ = 4;
@@ -348,15 +354,17 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
         fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "an atlas needs maps of at least " + std::to_string(kMinAtlasSide) + "x" +
                                               std::to_string(kMinAtlasSide) + " pixels");
     // One synthesis reads every map, so the set wraps unless told when
-    // every map repeats its tile.
-    bool tiles = true, repeats = true;
+    // every map's atlas would (ExampleTiling::wraps), with the period bar
+    // unless a map repeats a tile.
+    bool tiles = true, wraps = true, bar = true;
     for (const MaterialMap& m : maps) {
         const ExampleTiling t = example_tiling(m.image);
         tiles = tiles && t.tiles;
-        repeats = repeats && t.repeats_its_tile;
+        wraps = wraps && t.wraps();
+        bar = bar && t.period_bar();
     }
     AtlasChoiceOptions options = given;
-    if (options.detect_tileable && !options.example_tileable) options.example_tileable = repeats;
+    if (options.detect_tileable && !options.example_tileable) options.example_tileable = wraps;
     const GuideMatrix guide = guide_matrix(maps);
     // AV1's quantiser steps are in sample units, so at one level a map of
     // low contrast loses more of its structure than a contrasty one (a
@@ -381,6 +389,7 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
         const int w = std::min({kMaxAtlasSide, first.width, std::max(kMinAtlasSide, first.width * scale / 16)});
         const int h = std::min({kMaxAtlasSide, first.height, std::max(kMinAtlasSide, first.height * scale / 16)});
         SetLevelSearch search(maps, guide, offsets, {0, 0, w, h}, options, options.threads, &attempts);
+        search.bar_period(bar);
         const int best = finest_fitting_level(options.budget, [&](int cq) { return search.size_at(cq); });
         if (best >= 0) {
             MaterialChoice c = search.choice(best);

@@ -48,6 +48,7 @@ struct MaterialChoice {
     int atlas_width = 0, atlas_height = 0;
     uint32_t attempts = 0;      // AV1 encodes of the set tried
     bool wraps = false;         // the atlas wraps (the file's example_tileable)
+    bool period_bar = false;    // decoded with the period bar (format 16)
     bool example_tiles = false; // every map's wrap is seamless (example_wrap.hpp)
 };
 

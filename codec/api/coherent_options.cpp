@@ -22,6 +22,7 @@ CoherentOptions coherent_options(const AtlasSynthesisParams& params, int width, 
     opt.clamp_children = clamps_children(params);
     opt.cut = params.cut;
     opt.cover = params.cover;
+    opt.period_bar = params.period_bar && params.example_tileable;
     opt.blend_straight_alpha = params.blend_straight_alpha;
     return opt;
 }

@@ -83,6 +83,7 @@ void encode_atlas(const vqtex_encode_params& p, const Image& ex, int threads, co
         stats->atlas_x = uint32_t(r.x);
         stats->atlas_y = uint32_t(r.y);
         stats->atlas_wraps = r.wraps ? 1u : 0u;
+        stats->period_bar = r.period_bar ? 1u : 0u;
         stats->example_tiles = r.example_tiles ? 1u : 0u;
         stats->atlas_kind = r.tile ? 2u : (r.atlas.width == ex.width && r.atlas.height == ex.height) ? 0u : 1u;
     }

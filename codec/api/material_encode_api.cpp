@@ -121,6 +121,7 @@ vqtex_status vqtex_encode_maps(const vqtex_encode_params* params, const vqtex_ma
             stats->atlas_x = uint32_t(r.atlas_x);
             stats->atlas_y = uint32_t(r.atlas_y);
             stats->atlas_wraps = r.wraps ? 1u : 0u;
+            stats->period_bar = r.period_bar ? 1u : 0u;
             stats->example_tiles = r.example_tiles ? 1u : 0u;
             stats->atlas_kind = r.atlas_width == set[0].image.width && r.atlas_height == set[0].image.height ? 0u : 1u;
         }

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <new>
 
+#include "analysis/example_wrap.hpp"
 #include "analysis/texture_model.hpp"
 #include "api/api_support.hpp"
 #include "api/coherent_options.hpp"
@@ -44,6 +45,11 @@ void synthesize_coherent_api(const vqtex_synth_params& params, const Image& exam
     engine.edge_guard = int(c.edge_guard);
     engine.cut = int(c.cut);
     engine.cover = int(c.cover);
+    // A wrapping example is synthesised as a file of it would be decoded:
+    // with the period bar, unless it repeats a tile (docs/ATLAS.md
+    // "Examples that tile").
+    engine.example_tileable = params.example_tileable != 0;
+    engine.period_bar = engine.example_tileable && example_tiling(example).period_bar();
     CoherentOptions opt = coherent_options(engine, int(params.width), int(params.height), params.seed);
     opt.margin = int(c.margin);
     opt.threads = threads;

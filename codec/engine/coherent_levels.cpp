@@ -43,7 +43,7 @@ void LevelPasses::run(int l, PositionMap& map, const Band* band, int own_rows) {
     const LevelView view = level_view(space, sets, l);
     Revisit revisit(map.positions.size());
     for (int pass = 0; pass < passes_at(l); ++pass) {
-        skip_coherent(view, map, revisit, band, options.threads);
+        skip_coherent(view, map, revisit, band, options.threads, options.period_bar);
         correction_pass(view, map, options, &revisit, band);
         progress.add(uint64_t(map.width) * uint64_t(band ? own_rows : map.height));
     }

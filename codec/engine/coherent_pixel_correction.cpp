@@ -14,9 +14,30 @@
 #include "engine/coherent_candidates.hpp"
 #include "engine/coherent_correction.hpp"
 #include "engine/copy_links.hpp"
+#include "engine/coherent_start.hpp"
 
 namespace vqtex::coherent {
 namespace {
+
+// Whether position c at (x, y) of a map w wide would show the example again
+// a whole number of periods (px across, py down; 0: none) to the right of
+// or below a pixel before it, or one period on along either diagonal
+// (down and to the right or left): the period bar bars the later of two
+// such pixels, so that the first keeps its copy. Without the diagonals,
+// copies kept off the axes lined up along them (a 2x2 output showing one
+// copy in two opposite quarters).
+bool repeats_period(const uint32_t* map, int w, int x, int y, int px, int py, uint32_t c) {
+    const auto holds = [&](int bx, int by) { return map[std::size_t(by) * std::size_t(w) + std::size_t(bx)] == c; };
+    for (int before = x - px; px > 0 && before >= 0; before -= px)
+        if (holds(before, y)) return true;
+    for (int before = y - py; py > 0 && before >= 0; before -= py)
+        if (holds(x, before)) return true;
+    if (px > 0 && py > 0 && y >= py) {
+        if (x >= px && holds(x - px, y - py)) return true;
+        if (x + px < w && holds(x + px, y - py)) return true;
+    }
+    return false;
+}
 
 // The four nearest neighbours' taps.
 constexpr int kNearest[4] = {kTaps / 2 - kSide, kTaps / 2 - 1, kTaps / 2 + 1, kTaps / 2 + kSide};
@@ -33,6 +54,8 @@ struct PixelStep {
         // Where a nearest neighbour's copy would go on past the example's
         // edge (the edge guard's cuts).
         int cut_x[4], cut_y[4], cuts = 0;
+        int cx = 0, cy = 0;     // the pixel's place in the map
+        bool periodic = false;  // its own position is barred (repeats_period)
         uint32_t own() const { return sources[kTaps / 2]; }
     };
 
@@ -40,10 +63,26 @@ struct PixelStep {
     const uint32_t* cur;
     int w;
     int bias, link_bias, edge_guard;
+    // The period bar's periods in the level's pixels (level_period; 0:
+    // none), and the seed of the positions it offers.
+    int period_x = 0, period_y = 0;
+    uint64_t seed = 0;
 
-    void gather(const int* xs, const int* ys, Window& win) const { gather_window(cur, w, xs, ys, win.sources); }
+    bool repeats_period(const Window& win, uint32_t c) const {
+        return coherent::repeats_period(cur, w, win.cx, win.cy, period_x, period_y, c);
+    }
+    void gather(const int* xs, const int* ys, Window& win) const {
+        gather_window(cur, w, xs, ys, win.sources);
+        win.cx = xs[kRadius];
+        win.cy = ys[kRadius];
+        win.periodic = (period_x > 0 || period_y > 0) && repeats_period(win, win.own());
+    }
     // With k = 1 a pixel inside its neighbours' copy has nothing to compare.
     bool settled(const Window& win, uint32_t& departing) const {
+        if (win.periodic) {
+            departing = kAllTaps;
+            return false;
+        }
         departing = departing_taps<PixelPositions>(v.space, v.spacing, win.sources, win.own());
         return departing == 0 && v.k == 1;
     }
@@ -63,7 +102,9 @@ struct PixelStep {
                 return true;
         return false;
     }
-    bool barred(const Window& win, uint32_t c) const { return repeats_a_neighbour(win, c) || beside_a_cut(win, c); }
+    bool barred(const Window& win, uint32_t c) const {
+        return repeats_a_neighbour(win, c) || beside_a_cut(win, c) || (win.periodic && repeats_period(win, c));
+    }
     template <typename List>
     void propose(Window& win, uint32_t departing, List& candidates) const {
         // Where a nearest neighbour's copy would go on past the example's
@@ -81,6 +122,15 @@ struct PixelStep {
                 }
             }
         const uint32_t own = win.own();
+        // A pixel the period bar moves needs a position no neighbour offers
+        // where it sits inside one copy with them: one drawn at random
+        // (seeded, per pixel), which its neighbours then continue.
+        if (win.periodic) {
+            const uint64_t r = pixel_hash(seed, v.level, kPeriodPurpose, win.cx, win.cy);
+            const uint32_t c = pack_position(int((r & 0xFFFFFFFF) % uint64_t(v.space.width)),
+                                             int((r >> 32) % uint64_t(v.space.height)));
+            if (!barred(win, c)) candidates.add(c, false);
+        }
         const int k = std::min(v.k, kMaxCandidates / kTaps);
         const uint32_t ex_w = uint32_t(v.space.width);
         // With k = 1 only the departing neighbours are visited: a neighbour
@@ -157,16 +207,37 @@ LevelView polish_view(const AppearanceSpace& space, const CoherenceSets& sets) {
     return LevelView{space, sets, 0, 1, space.pixels.data(), 1, dsp::kernels()};
 }
 
-void correction_pass(const LevelView& view, PositionMap& map, const CoherentOptions& options, Revisit* revisit,
-                     const Band* band) {
-    correction_pass(options.threads, map.width, map.height, map.positions,
-                    PixelStep{view, map.positions.data(), map.width, options.coherence_bias, options.link_bias,
-                              options.edge_guard},
-                    revisit, band);
+// The example's period in the level's pixels, across and down (0: none),
+// where the period bar applies: a wrapping example, a level above the
+// finest (never in bands), a spacing that divides the example's side and
+// an output of more than one period. At the finest level the copies keep
+// the extents the coarser levels gave them, give or take the few pixels a
+// correction moves a border.
+static void level_period(const LevelView& view, const PositionMap& map, const Band* band, bool period_bar, int& px,
+                         int& py) {
+    px = py = 0;
+    if (!period_bar || !view.space.wraps || band || view.level < 1 || view.spacing <= 1) return;
+    if (view.space.width % view.spacing == 0 && map.width > view.space.width / view.spacing)
+        px = view.space.width / view.spacing;
+    if (view.space.height % view.spacing == 0 && map.height > view.space.height / view.spacing)
+        py = view.space.height / view.spacing;
 }
 
-// That is most of a level (83% of the finest level's pixels on
-// stk_granite, in each of its two passes), and checking a window in its
+void correction_pass(const LevelView& view, PositionMap& map, const CoherentOptions& options, Revisit* revisit,
+                     const Band* band) {
+    PixelStep step{view, map.positions.data(), map.width, options.coherence_bias, options.link_bias,
+                   options.edge_guard};
+    level_period(view, map, band, options.period_bar, step.period_x, step.period_y);
+    step.seed = options.seed;
+    correction_pass(options.threads, map.width, map.height, map.positions, step, revisit, band);
+}
+
+namespace {
+
+// Finds the pixels whose 5x5 window lies inside one copy, which a
+// correction with k = 1 leaves as they are. That is most of a level (83%
+// of the finest level's pixels on stk_granite, in each of its two passes),
+// and checking a window in its
 // correction costs 25 gathered positions and a call per pixel. Here it is
 // found for the whole map from the links between adjacent pixels, a few
 // byte operations a pixel that vectorise: the window continues its centre
@@ -177,10 +248,9 @@ void correction_pass(const LevelView& view, PositionMap& map, const CoherentOpti
 // Skipped pixels keep the position a correction would have given them, so
 // the bytes are the same; a later change in a window marks it due again
 // (interleaved_pass).
-void skip_coherent(const LevelView& v, const PositionMap& map, Revisit& revisit, const Band* band, int threads) {
+void skip_inside_copies(const LevelView& v, const PositionMap& map, Revisit& revisit, const Band* band, int threads) {
     const int w = map.width, h = map.height;
     const int reach = kRadius * v.spacing;
-    if (v.k != 1 || w < kSide || h < kSide || v.space.width <= 2 * reach || v.space.height <= 2 * reach) return;
     const uint32_t* pos = map.positions.data();
     const uint32_t step_x = uint32_t(v.spacing), step_y = uint32_t(v.spacing) << 16;
     const uint32_t inside_x = uint32_t(v.space.width - 2 * reach), inside_y = uint32_t(v.space.height - 2 * reach);
@@ -208,6 +278,28 @@ void skip_coherent(const LevelView& v, const PositionMap& map, Revisit& revisit,
             uint8_t* due = revisit.due.data() + std::size_t(y) * w;
             for (int x = 0; x < w; ++x) due[x] &= uint8_t(whole[std::size_t(x)] ^ 1);
         }
+    });
+}
+
+}  // namespace
+
+void skip_coherent(const LevelView& v, const PositionMap& map, Revisit& revisit, const Band* band, int threads,
+                   bool period_bar) {
+    const int w = map.width, h = map.height;
+    const int reach = kRadius * v.spacing;
+    if (v.k == 1 && w >= kSide && h >= kSide && v.space.width > 2 * reach && v.space.height > 2 * reach)
+        skip_inside_copies(v, map, revisit, band, threads);
+    // A pixel that repeats the example one period on is due whatever its
+    // window: the correction has to move it.
+    int px, py;
+    level_period(v, map, band, period_bar, px, py);
+    if (px == 0 && py == 0) return;
+    const uint32_t* pos = map.positions.data();
+    parallel_for(threads, std::size_t(h), 32, [&](std::size_t r0, std::size_t r1) {
+        for (int y = int(r0); y < int(r1); ++y)
+            for (int x = 0; x < w; ++x)
+                if (repeats_period(pos, w, x, y, px, py, pos[std::size_t(y) * w + x]))
+                    revisit.due[std::size_t(y) * w + x] = 1;
     });
 }
 

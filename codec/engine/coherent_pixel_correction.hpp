@@ -45,7 +45,8 @@ LevelView polish_view(const AppearanceSpace& space, const CoherenceSets& sets);
 // Clears the revisit flag of every pixel whose correction would keep its
 // position at once (with k = 1: its source lies at least the window's reach
 // inside the example and its whole window continues it).
-void skip_coherent(const LevelView& view, const PositionMap& map, Revisit& revisit, const Band* band, int threads);
+void skip_coherent(const LevelView& view, const PositionMap& map, Revisit& revisit, const Band* band, int threads,
+                   bool period_bar = false);
 
 // One correction pass over the whole level, or over a band of its rows
 // (interleaved_pass).

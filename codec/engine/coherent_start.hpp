@@ -30,6 +30,7 @@ inline uint64_t pixel_hash(uint64_t seed, int level, int purpose, int x, int y) 
 inline constexpr int kStartPurpose = 0;   // the coarsest level's x and y
 inline constexpr int kJitterPurpose = 1;  // a level's jitter
 inline constexpr int kFramePurpose = 2;   // the coarsest level's example frame
+inline constexpr int kPeriodPurpose = 3;  // a position offered where the period bar moves a pixel
 
 // A child's coordinate from its parent's. With `clamp` false, a parent
 // whose second child would fall past the example's edge has its block of

@@ -67,6 +67,11 @@ struct CoherentOptions : CoherentRun {
     // Whether the blend weights colour by straight alpha (blend_rows; the
     // last channel of a 2- or 4-channel example).
     bool blend_straight_alpha = false;
+    // On a wrapping example, whether no copy may show the example again one
+    // period (or a multiple) further on, at every level above the finest,
+    // so that the output does not repeat the example on a grid (the period
+    // bar, coherent_pixel_correction.cpp; docs/FORMAT.md §4.8).
+    bool period_bar = false;
     // The frame, in example pixels, that the copies are laid out inside of
     // (copy_margin), so that a cut always has that much of each copy to
     // move into; 0: none.

@@ -174,6 +174,12 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
     read_atlas_origin(r, version, packed, aw, ah, h);
     AtlasSynthesisParams& p = f.params;
     p.example_tileable = (packed & kPackedTileable) != 0;
+    p.period_bar = bars_period(version);
+    if (p.period_bar && !p.example_tileable)
+        r.corrupt("a version " + std::to_string(version) + " file's atlas must wrap (packed bit 7): the period bar "
+                  "applies only there, and an atlas that does not wrap is written as version " +
+                  std::to_string(version == kPeriodBarAtlasFormatVersion ? kCoverAtlasFormatVersion
+                                                                         : kCoverMaterialFormatVersion));
     p.blend = default_blend(version);
     p.relocate = default_relocation(version);
     p.edge_guard = default_edge_guard(version);

@@ -86,6 +86,9 @@ struct AtlasSynthesisParams {
     // Reach of the covers over long borders, 0..kMaxCoverReach (versions
     // 10 and 11; files of versions 3 to 9: 0).
     int cover = kV10DefaultCover;
+    // Whether a wrapping atlas is decoded with the period bar (versions 15
+    // and 16; CoherentOptions::period_bar).
+    bool period_bar = false;
     // Whether the blend weights colour by straight alpha (version 8; files
     // of versions 3 to 7 blend every channel alike).
     bool blend_straight_alpha = true;

@@ -71,17 +71,28 @@ inline constexpr uint16_t kAnimationAtlasFormatVersion = 12;
 // corner.
 inline constexpr uint16_t kOriginAtlasFormatVersion = 13;
 inline constexpr uint16_t kOriginMaterialFormatVersion = 14;
-// Versions 4 to 11, 13 and 14: one still atlas or a set of maps behind the
-// compact header.
+// Versions 15 and 16 (docs/FORMAT.md §2.6): versions 10 and 11 whose atlas
+// wraps, decoded with the period bar (§4.8), so that no copy shows the
+// example again a period further on and the output does not repeat it on a
+// grid. The encoder writes them, in place of 10 and 11, for an atlas that
+// wraps and is not the tile of an example that repeats it.
+inline constexpr uint16_t kPeriodBarAtlasFormatVersion = 15;
+inline constexpr uint16_t kPeriodBarMaterialFormatVersion = 16;
+// Versions 4 to 11 and 13 to 16: one still atlas or a set of maps behind
+// the compact header.
 inline bool is_compact_atlas_version(uint16_t version) {
     return (version >= kCompactAtlasFormatVersion && version <= kCoverMaterialFormatVersion) ||
-           version == kOriginAtlasFormatVersion || version == kOriginMaterialFormatVersion;
+           (version >= kOriginAtlasFormatVersion && version <= kPeriodBarMaterialFormatVersion);
 }
-// Whether a compact version's file holds a set of maps (9, 11 and 14)
+// Whether a compact version's file holds a set of maps (9, 11, 14 and 16)
 // rather than one atlas.
 inline bool holds_maps(uint16_t version) {
     return version == kMaterialAtlasFormatVersion || version == kCoverMaterialFormatVersion ||
-           version == kOriginMaterialFormatVersion;
+           version == kOriginMaterialFormatVersion || version == kPeriodBarMaterialFormatVersion;
+}
+// Whether a compact version's file is decoded with the period bar (15, 16).
+inline bool bars_period(uint16_t version) {
+    return version == kPeriodBarAtlasFormatVersion || version == kPeriodBarMaterialFormatVersion;
 }
 // Whether a compact version's file stores the atlas's origin (13 and 14).
 inline bool stores_origin(uint16_t version) {

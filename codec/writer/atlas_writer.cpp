@@ -31,14 +31,21 @@ void check_fields(const FileHeader& header, int atlas_width, int atlas_height, c
              "encode_atlas_file: fields outside what format version " + std::to_string(version) + " can hold");
 }
 
-// The version a file of one image (10, 13) or of a set (11, 14) is written
-// as: 13 and 14 only when the atlas does not start at the exemplar's
-// top-left corner, so that its origin has one encoding.
-uint16_t version_for(const FileHeader& header, int atlas_width, int atlas_height, bool set) {
+// The version a file of one image (10, 13, 15) or of a set (11, 14, 16) is
+// written as: 13 and 14 only when the atlas does not start at the
+// exemplar's top-left corner, so that its origin has one encoding; 15 and
+// 16 for a wrapping atlas decoded with the period bar.
+uint16_t version_for(const FileHeader& header, int atlas_width, int atlas_height, bool set,
+                     const AtlasSynthesisParams& params) {
     const bool origin = header.atlas_x != 0 || header.atlas_y != 0;
     if (origin && (uint64_t(header.atlas_x) + uint64_t(atlas_width) > header.exemplar_width ||
                    uint64_t(header.atlas_y) + uint64_t(atlas_height) > header.exemplar_height))
         fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: the atlas does not lie inside the exemplar");
+    if (params.period_bar) {
+        if (origin || !params.example_tileable)
+            fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: the period bar needs a wrapping atlas at the origin");
+        return set ? kPeriodBarMaterialFormatVersion : kPeriodBarAtlasFormatVersion;
+    }
     if (set) return origin ? kOriginMaterialFormatVersion : kCoverMaterialFormatVersion;
     return origin ? kOriginAtlasFormatVersion : kCoverAtlasFormatVersion;
 }
@@ -96,7 +103,7 @@ void write_exemplar_size_and_seed(ByteWriter& w, const FileHeader& header, int a
 
 std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width, int atlas_height,
                                        const std::vector<uint8_t>& atlas_bitstream, const AtlasSynthesisParams& params) {
-    const uint16_t version = version_for(header, atlas_width, atlas_height, false);
+    const uint16_t version = version_for(header, atlas_width, atlas_height, false, params);
     check_fields(header, atlas_width, atlas_height, params, version);
     if (header.channels < 1 || header.channels > 4 || atlas_bitstream.empty())
         fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: no bitstream, or channels outside 1..4");
@@ -110,7 +117,7 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
 std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_width, int atlas_height,
                                           const std::vector<CodedMap>& maps, const GuideMatrix& guide,
                                           const AtlasSynthesisParams& params) {
-    const uint16_t version = version_for(header, atlas_width, atlas_height, true);
+    const uint16_t version = version_for(header, atlas_width, atlas_height, true, params);
     check_fields(header, atlas_width, atlas_height, params, version);
     int channels = 0;
     for (const CodedMap& m : maps) {

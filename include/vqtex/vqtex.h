@@ -326,10 +326,12 @@ typedef struct vqtex_trees_params {
 
 /* Whether an example wraps (vqtex_encode_params.example_tileable). DETECT:
  * an atlas file of a still image or a map set wraps when the example (every
- * map) repeats a tile both ways, of more than a quarter of its side one way
- * at least, and the atlas is the whole example (docs/ATLAS.md "Examples
- * that tile"); trees files and animations do not wrap. YES: the example
- * wraps, as trees, animations and atlases. NO: it does not. */
+ * map) tiles seamlessly and does not repeat a tile of a quarter of its side
+ * or less, and the atlas is the whole example; unless the example repeats a
+ * tile, it is decoded with the period bar, so that the output does not
+ * repeat the example on a grid (docs/ATLAS.md "Examples that tile"). Trees
+ * files and animations do not wrap. YES: the example wraps, as trees,
+ * animations and atlases. NO: it does not. */
 #define VQTEX_TILEABLE_DETECT 0u
 #define VQTEX_TILEABLE_YES 1u
 #define VQTEX_TILEABLE_NO 2u
@@ -387,6 +389,9 @@ typedef struct vqtex_encode_stats {
     /* 1: the example's wrap is seamless (every map's, for a set), whether
      * or not the atlas wraps (docs/ATLAS.md "Examples that tile"). */
     uint32_t example_tiles;
+    /* 1: the atlas wraps and is decoded with the period bar (format 15 or
+     * 16): no copy shows the example again a period further on. */
+    uint32_t period_bar;
 } vqtex_encode_stats;
 
 /* Encodes an example into a new buffer (*data, *size), freed with
@@ -536,6 +541,8 @@ typedef struct vqtex_file_info {
                                                       the decoder uses, in output pixels (0: none); 0 otherwise */
     uint32_t atlas_wraps;                          /* atlas texture: 1 when the atlas wraps (a tileable example,
                                                       or the tile a repeating example is made of) */
+    uint32_t period_bar;                           /* atlas texture: 1 when a wrapping atlas is decoded with the
+                                                      period bar (formats 15 and 16) */
     uint32_t atlas_frames;                         /* atlas animation (format 12): the atlas's frames, the
                                                       default output frame count; 0 otherwise */
     uint32_t map_count;                            /* maps in the file: 1 but for a material set */
