@@ -72,7 +72,7 @@ public:
         // The engine's defaults, as vqtex_synthesize runs it (synth_api.cpp).
         AtlasSynthesisParams sp;
         sp.example_tileable = wrap_.wraps;
-        sp.period_bar = wrap_.wraps && wrap_.period_bar;
+        sp.period_bar = wrap_.period_bar;
         return files_.emplace(cq, encode_atlas_file(h, atlas_.width, atlas_.height, bits, sp)).first->second;
     }
 
@@ -378,7 +378,7 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
     // on a grid (docs/ATLAS.md "Examples that tile").
     const bool wraps = period.repeats() ? period.wraps()
                                         : options.example_tileable || (options.detect_tileable && tiling.wraps());
-    const AtlasWrap wrap{wraps, !period.repeats() && tiling.period_bar()};
+    const AtlasWrap wrap{wraps, wraps && !period.repeats() && tiling.period_bar()};
     AtlasChoiceOptions o = options;
     if (o.budget == 0)
         o.budget = atlas_budget_of_quality(o.quality, std::min<uint64_t>(source.pixel_count(), kBudgetedPixels));

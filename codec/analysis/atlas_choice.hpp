@@ -18,8 +18,8 @@
 
 namespace vqtex {
 
-// Whether an atlas wraps, and whether it is then decoded with the period
-// bar (CoherentOptions::period_bar).
+// Whether an atlas wraps, and whether it is decoded with the period bar
+// (CoherentOptions::period_bar; only an atlas that wraps is).
 struct AtlasWrap {
     bool wraps = false;
     bool period_bar = false;

@@ -182,9 +182,9 @@ class SetLevelSearch {
 public:
     SetLevelSearch(const std::vector<MaterialMap>& maps, const GuideMatrix& guide, const std::vector<int>& offsets,
                    std::array<int, 4> part, const AtlasChoiceOptions& options, int threads, uint32_t* attempts,
-                   int speed = AtlasEncodeOptions{}.speed)
-        : maps_(maps), guide_(guide), offsets_(offsets), part_(part), options_(options), threads_(threads),
-          attempts_(attempts), speed_(speed) {
+                   int speed = AtlasEncodeOptions{}.speed, bool period_bar = false)
+        : maps_(maps), guide_(guide), offsets_(offsets), part_(part), options_(options), period_bar_(period_bar),
+          threads_(threads), attempts_(attempts), speed_(speed) {
         const auto [x, y, w, h] = part;
         for (const MaterialMap& m : maps) {
             atlases_.push_back(m.image.crop(x, y, w, h));
@@ -218,7 +218,7 @@ public:
         hd.atlas_y = uint32_t(part_[1]);
         AtlasSynthesisParams sp;
         sp.example_tileable = wraps();
-        sp.period_bar = wraps() && period_bar_;
+        sp.period_bar = barred();
         return files_.emplace(cq, encode_material_file(hd, part_[2], part_[3], coded, guide_, sp)).first->second;
     }
 
@@ -234,18 +234,18 @@ public:
         c.atlas_width = part_[2];
         c.atlas_height = part_[3];
         c.wraps = wraps();
-        c.period_bar = wraps() && period_bar_;
+        c.period_bar = barred();
         return c;
     }
-
-    // Whether a wrapping atlas is decoded with the period bar.
-    void bar_period(bool bar) { period_bar_ = bar; }
 
 private:
     // The atlas wraps when the example does and the atlas is all of it.
     bool wraps() const {
         return options_.example_tileable && part_[2] == maps_[0].image.width && part_[3] == maps_[0].image.height;
     }
+    // A wrapping atlas is decoded with the period bar unless a map repeats
+    // a tile (`period_bar` false).
+    bool barred() const { return wraps() && period_bar_; }
 
     const std::vector<MaterialMap>& maps_;
     const GuideMatrix& guide_;
@@ -388,8 +388,8 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
     for (int scale = 16; scale >= 1; scale = scale == 16 ? 12 : scale * 3 / 4) {
         const int w = std::min({kMaxAtlasSide, first.width, std::max(kMinAtlasSide, first.width * scale / 16)});
         const int h = std::min({kMaxAtlasSide, first.height, std::max(kMinAtlasSide, first.height * scale / 16)});
-        SetLevelSearch search(maps, guide, offsets, {0, 0, w, h}, options, options.threads, &attempts);
-        search.bar_period(bar);
+        SetLevelSearch search(maps, guide, offsets, {0, 0, w, h}, options, options.threads, &attempts,
+                              AtlasEncodeOptions{}.speed, bar);
         const int best = finest_fitting_level(options.budget, [&](int cq) { return search.size_at(cq); });
         if (best >= 0) {
             MaterialChoice c = search.choice(best);

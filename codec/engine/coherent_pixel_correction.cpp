@@ -126,9 +126,8 @@ struct PixelStep {
         // where it sits inside one copy with them: one drawn at random
         // (seeded, per pixel), which its neighbours then continue.
         if (win.periodic) {
-            const uint64_t r = pixel_hash(seed, v.level, kPeriodPurpose, win.cx, win.cy);
-            const uint32_t c = pack_position(int((r & 0xFFFFFFFF) % uint64_t(v.space.width)),
-                                             int((r >> 32) % uint64_t(v.space.height)));
+            const uint32_t c =
+                random_position(pixel_hash(seed, v.level, kPeriodPurpose, win.cx, win.cy), v.space.width, v.space.height);
             if (!barred(win, c)) candidates.add(c, false);
         }
         const int k = std::min(v.k, kMaxCandidates / kTaps);

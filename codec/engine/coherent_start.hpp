@@ -16,6 +16,7 @@
 #include "common/image.hpp"
 #include "common/parallel.hpp"
 #include "engine/appearance.hpp"
+#include "engine/coherent_positions.hpp"
 
 namespace vqtex::coherent {
 
@@ -31,6 +32,12 @@ inline constexpr int kStartPurpose = 0;   // the coarsest level's x and y
 inline constexpr int kJitterPurpose = 1;  // a level's jitter
 inline constexpr int kFramePurpose = 2;   // the coarsest level's example frame
 inline constexpr int kPeriodPurpose = 3;  // a position offered where the period bar moves a pixel
+
+// A position of a w x h example drawn from a pixel hash r: x from its low
+// half, y from its high half.
+inline uint32_t random_position(uint64_t r, int w, int h) {
+    return pack_position(int((r & 0xFFFFFFFF) % uint64_t(w)), int((r >> 32) % uint64_t(h)));
+}
 
 // A child's coordinate from its parent's. With `clamp` false, a parent
 // whose second child would fall past the example's edge has its block of
@@ -68,8 +75,8 @@ void random_start(const AppearanceSpace& space, int frames, uint64_t seed, int l
         for (int x = 0; x < w; ++x) {
             const uint64_t r = pixel_hash(seed, level, kStartPurpose, x, y);
             const int t = Positions::kTimed ? int(pixel_hash(seed, level, kFramePurpose, x, y) % uint64_t(frames)) : 0;
-            out[std::size_t(y) * w + x] =
-                Positions::pack(int((r & 0xFFFFFFFF) % uint64_t(space.width)), int((r >> 32) % uint64_t(space.height)), t);
+            const uint32_t p = random_position(r, space.width, space.height);
+            out[std::size_t(y) * w + x] = Positions::pack(position_x(p), position_y(p), t);
         }
 }
 
