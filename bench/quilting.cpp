@@ -68,7 +68,12 @@ std::vector<int> min_error_cut(int length, int width, const Cost& cost) {
 
 Image quilt(const Image& ex, int width, int height, const QuiltRules& rules) {
     const int b = rules.block, o = rules.overlap, step = b - o, ch = ex.channels;
-    if (b > ex.width || b > ex.height || o < 1 || o >= b) throw std::runtime_error("block or overlap out of range");
+    if (b > ex.width || b > ex.height)
+        throw std::runtime_error("a block of " + std::to_string(b) + " pixels does not fit the " + std::to_string(ex.width) +
+                                 "x" + std::to_string(ex.height) + " exemplar: pass a smaller --block");
+    if (o < 1 || o >= b)
+        throw std::runtime_error("the overlap must be 1 to the block's side less 1 (" + std::to_string(b - 1) +
+                                 "): pass another --overlap");
     // Laid on a canvas of whole blocks, cropped at the end.
     const int cols = (width - o + step - 1) / step, rows = (height - o + step - 1) / step;
     Image canvas{cols * step + o, rows * step + o, ch, {}};
@@ -108,7 +113,8 @@ Image quilt(const Image& ex, int width, int height, const QuiltRules& rules) {
             for (int y = 0; y < b; ++y)
                 for (int x = 0; x < b; ++x)
                     if (x >= from_x[std::size_t(y)] && y >= from_y[std::size_t(x)])
-                        std::copy_n(at(ex, u + x, v + y), ch, canvas.pixels.data() + (std::size_t(y0 + y) * canvas.width + x0 + x) * ch);
+                        std::copy_n(at(ex, u + x, v + y), ch,
+                                    canvas.pixels.data() + (std::size_t(y0 + y) * canvas.width + x0 + x) * ch);
         }
     Image out{width, height, ch, {}};
     for (int y = 0; y < height; ++y)
