@@ -28,6 +28,8 @@ struct BenchOptions {
     // The compact protocol: also synthesise from lossless parts of the
     // input (the ceiling of any atlas that is a part of it).
     bool compact_parts = false;
+    // ... and from lossless compactions of it (inverse texture synthesis).
+    bool compact_inverse = false;
     // The animation protocol: the folder of the shared corpus whose
     // photographs become animations (empty: none; default the source
     // tree's ../shared/corpus) and the output frame count.

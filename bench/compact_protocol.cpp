@@ -17,6 +17,7 @@
 #include "bench_rows.hpp"
 #include "contact_sheet.hpp"
 #include "image_io.hpp"
+#include "inverse_synthesis.hpp"
 #include "measured_run.hpp"
 #include "vqtex/vqtex.h"
 #include "vqtex/vqtex.hpp"
@@ -226,6 +227,27 @@ int run_compact_protocol(const BenchOptions& o) {
                 if (synthesise(part, input.width, input.height, o.seed, from_part))
                     add_row(writer, name, "ceiling:part-" + std::to_string(side), -1, "", nullptr, 0, from_part,
                             input, o.seed);
+            }
+        }
+        if (o.compact_inverse) {
+            vqtex::Image whole(input.width, input.height, input.channels);
+            whole.pixels = input.pixels;
+            for (int side : {256, 360, 512}) {
+                if (side > std::min(input.width, input.height) / 2) continue;
+                vqtex::InverseSynthesisOptions io;
+                io.side = side;
+                io.seed = o.seed;
+                const vqtex::Image t = vqtex::inverse_synthesis(whole, io);
+                Image compaction{t.width, t.height, t.channels, t.pixels};
+                Image from_compaction;
+                if (synthesise(compaction, input.width, input.height, o.seed, from_compaction, true))
+                    add_row(writer, name, "ceiling:inverse-" + std::to_string(side), -1, "", nullptr, 0,
+                            from_compaction, input, o.seed);
+                if (!o.sheets.empty()) {
+                    fs::create_directories(o.sheets);
+                    write_sheet(fs::path(o.sheets) / ("compact_" + path.stem().string() + "_inverse" + std::to_string(side) + ".png"),
+                                std::vector<Image>{input, from_compaction, compaction});
+                }
             }
         }
         for (uint64_t target : targets) {

@@ -27,9 +27,10 @@ Image decoded_atlas(const std::vector<uint8_t>& file) {
     }
 }
 
-bool synthesise(Image& example, int w, int h, uint64_t seed, Image& out) {
+bool synthesise(Image& example, int w, int h, uint64_t seed, Image& out, bool wraps) {
     vqtex_synth_params p;
     vqtex_synth_params_init(&p);
+    p.example_tileable = wraps ? 1u : 0u;
     p.width = uint32_t(w);
     p.height = uint32_t(h);
     p.seed = seed;

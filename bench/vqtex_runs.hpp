@@ -22,8 +22,9 @@ constexpr uint32_t kSynthThreads = 1;
 // from). Empty for a file of another version, or if the file does not read.
 Image decoded_atlas(const std::vector<uint8_t>& file);
 
-// Synthesis from an image with vqtex's engine (full codebooks).
-bool synthesise(Image& example, int w, int h, uint64_t seed, Image& out);
+// Synthesis from an image with vqtex's engine (full codebooks); `wraps`:
+// the image is a torus.
+bool synthesise(Image& example, int w, int h, uint64_t seed, Image& out, bool wraps = false);
 
 // vqtex's synthesis for the synth protocol, in a forked child like every
 // vqtex encode and decode (so that its peak memory is its own); the child
