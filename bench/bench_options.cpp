@@ -59,7 +59,8 @@ int parse_options(int argc, char** argv, BenchOptions& o) {
                  "(the ceiling of an atlas that is a part of the input)");
     app.add_flag("--compact-inverse", o.compact_inverse,
                  "compact protocol: also rows synthesised from lossless compactions of the input by inverse "
-                 "texture synthesis, 256, 360 and 512 pixels a side (bench/inverse_synthesis.hpp; minutes a texture)");
+                 "texture synthesis, 256, 360 and 512 pixels a side, those at most half the input's smaller side "
+                 "(bench/inverse_synthesis.hpp; minutes a texture)");
     app.add_option("--shared", o.shared,
                    "animation protocol: the folder holding tux_oceansplash_256.png and embark_caustics_256.png, "
                    "made into animations ('': none; a missing file is skipped with a note)")

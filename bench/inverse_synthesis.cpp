@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 namespace vqtex {
@@ -63,6 +64,13 @@ struct Match {
 
 Image inverse_synthesis(const Image& example, const InverseSynthesisOptions& o) {
     const int patch = o.patch, ch = example.channels;
+    // Each scale halves the side exactly, the coarsest holds a window, and
+    // the compaction is no larger than the example.
+    const int coarsest = o.scales >= 1 ? o.side >> (o.scales - 1) : 0;
+    if (o.scales < 1 || o.patch < 1 || coarsest < o.patch || (coarsest << (o.scales - 1)) != o.side ||
+        o.side > std::min(example.width, example.height) || example.empty())
+        throw std::invalid_argument("inverse_synthesis: the side must be a multiple of 2^(scales - 1), "
+                                    "at most the example's smaller side, with a window in its coarsest scale");
     Random rng{o.seed};
     std::vector<Image> pyramid{example};
     for (int s = 1; s < o.scales; ++s) pyramid.push_back(reduce(pyramid.back()));
@@ -138,8 +146,13 @@ Image inverse_synthesis(const Image& example, const InverseSynthesisOptions& o) 
                         const Match& n = to_compaction[std::size_t(j + dir * nx)];
                         offer(n.x, n.y - dir * stride);
                     }
-                    for (int r = side / 2; r >= 1; r /= 2)
-                        offer(m.x + rng.below(2 * r + 1) - r, m.y + rng.below(2 * r + 1) - r);
+                    for (int r = side / 2; r >= 1; r /= 2) {
+                        // The draws in a fixed order (y first), not as two
+                        // arguments, whose order the compiler picks.
+                        const int dy = rng.below(2 * r + 1) - r;
+                        const int dx = rng.below(2 * r + 1) - r;
+                        offer(m.x + dx, m.y + dy);
+                    }
                 }
             }
             // Search: each compaction window to the example.
@@ -162,8 +175,13 @@ Image inverse_synthesis(const Image& example, const InverseSynthesisOptions& o) 
                     offer(across.x - dir, across.y);
                     const Match& down = to_example[std::size_t(Image::wrap(y + dir, side)) * std::size_t(side) + std::size_t(x)];
                     offer(down.x, down.y - dir);
-                    for (int r = std::max(e.width, e.height) / 2; r >= 1; r /= 2)
-                        offer(m.x + rng.below(2 * r + 1) - r, m.y + rng.below(2 * r + 1) - r);
+                    for (int r = std::max(e.width, e.height) / 2; r >= 1; r /= 2) {
+                        // The draws in a fixed order (y first), not as two
+                        // arguments, whose order the compiler picks.
+                        const int dy = rng.below(2 * r + 1) - r;
+                        const int dx = rng.below(2 * r + 1) - r;
+                        offer(m.x + dx, m.y + dy);
+                    }
                 }
             }
             // Update: each compaction pixel the weighted mean of the example

@@ -19,7 +19,7 @@
 namespace vqtex {
 
 struct InverseSynthesisOptions {
-    int side = 256;          // the compaction is side x side (a multiple of 4)
+    int side = 256;          // the compaction is side x side (a multiple of 2^(scales - 1))
     int patch = 8;           // window side
     int iterations = 6;      // search and update steps at the finest scale (2 more at the coarser)
     int scales = 3;          // the example reduced 2x this many times minus one
@@ -28,8 +28,10 @@ struct InverseSynthesisOptions {
     uint64_t seed = 1;
 };
 
-// The compaction of `example` (8-bit, 3 or 4 channels read as 3). Single
-// threaded and seeded: the same bytes on every run.
+// The compaction of `example` (8-bit, every channel matched). Single
+// threaded and seeded: the same bytes on every run and build. Throws
+// std::invalid_argument for a side the scales cannot halve, or larger
+// than the example.
 Image inverse_synthesis(const Image& example, const InverseSynthesisOptions& options);
 
 }  // namespace vqtex
