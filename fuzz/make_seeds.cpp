@@ -204,8 +204,10 @@ int main(int argc, char** argv) {
         vqtex_free(data);
         ++files;
     }
-    // Version 9 sets, so that the fuzzers reach the maps' reader and the
-    // guide: a colour map with a grey data map, and a normal map alone.
+    // Sets, so that the fuzzers reach the maps' reader, the guide and the
+    // predictions: a colour map with a grey data map (its first channel,
+    // so predicted: version 17, and 18 with an origin), and a normal map
+    // alone (version 11, and 14).
     {
         const vqtex_tools::LoadedImage img = vqtex_tools::load_image((corpus / images[0]).string());
         std::vector<uint8_t> colour = crop(img, 16, 3), grey = crop(img, 16, 1);
@@ -230,11 +232,15 @@ int main(int argc, char** argv) {
             // its origin stored.
             try {
                 const vqtex::AtlasFile f = vqtex::decode_atlas_file(data, size, 32u << 20);
-                std::vector<vqtex::CodedMap> coded;
+                // `coded` keeps the maps' predictions (versions 17, 18), `plain`
+                // drops them (a residual is an image like any other).
+                std::vector<vqtex::CodedMap> coded, plain;
                 std::size_t at = f.bitstream_offset;
                 for (const vqtex::AtlasMap& m : f.maps) {
                     coded.push_back({m.name, m.kind, m.atlas.channels, m.bits,
-                                     std::vector<uint8_t>(data + at, data + at + m.bytes)});
+                                     std::vector<uint8_t>(data + at, data + at + m.bytes), m.prediction});
+                    plain.push_back({m.name, m.kind, m.atlas.channels, m.bits,
+                                     std::vector<uint8_t>(data + at, data + at + m.bytes), vqtex::MapPrediction{}});
                     at += m.bytes;
                 }
                 vqtex::FileHeader h = f.header;
@@ -243,7 +249,7 @@ int main(int argc, char** argv) {
                 barred.example_tileable = true;
                 barred.period_bar = true;
                 const std::vector<uint8_t> v16 =
-                    vqtex::encode_material_file(h, f.atlas.width, f.atlas.height, coded, f.guide, barred);
+                    vqtex::encode_material_file(h, f.atlas.width, f.atlas.height, plain, f.guide, barred);
                 write(out / "decode" / ("set_" + std::to_string(count) + "_maps_v16.vqt"), v16.data(), v16.size());
                 ++files;
                 h.exemplar_width += 4;
@@ -252,7 +258,9 @@ int main(int argc, char** argv) {
                 h.atlas_y = 1;
                 const std::vector<uint8_t> v14 =
                     vqtex::encode_material_file(h, f.atlas.width, f.atlas.height, coded, f.guide, f.params);
-                write(out / "decode" / ("set_" + std::to_string(count) + "_maps_v14.vqt"), v14.data(), v14.size());
+                write(out / "decode" / ("set_" + std::to_string(count) + "_maps_v" +
+                                        std::to_string(vqtex::read_format_version(v14.data(), v14.size())) + ".vqt"),
+                      v14.data(), v14.size());
                 ++files;
             } catch (const std::exception& e) {
                 std::fprintf(stderr, "make_seeds: set of %u maps as version 14: %s\n", count, e.what());

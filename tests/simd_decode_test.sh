@@ -31,6 +31,7 @@ decode_all() {  # $1 = output directory
   "$decode" "$golden/cellular_v7.vqt" "$1/atlas_v7.png" --size 190x130 --seed 7 -j 2 --quiet
   "$decode" "$golden/cellular_v8.vqt" "$1/atlas_v8.png" --size 260x200 --seed 8 -j 2 --quiet
   "$decode" "$golden/material_v9.vqt" "$1/material_{map}.png" --size 180x120 --seed 9 -j 2 --quiet
+  "$decode" "$golden/material_v17.vqt" "$1/material_v17_{map}.png" --size 170x130 --seed 17 -j 2 --quiet
   "$decode" "$golden/cellular_v10.vqt" "$1/atlas_v10.png" --size 280x210 --seed 10 -j 2 --quiet
   "$decode" "$golden/cellular_v15.vqt" "$1/atlas_v15.png" --size 300x220 --seed 15 -j 2 --quiet
   mkdir -p "$1/anim_v12"

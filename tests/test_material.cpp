@@ -136,6 +136,8 @@ TEST(Material, MapsDecodeAlignedWithUnitNormals) {
     const Surface s = make_surface(64, 7);
     const std::vector<uint8_t>& file = surface_file();
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
+    // The gloss is not predicted: its few levels of contrast against the
+    // albedo's coding error (AMapTheOthersPredictIsCodedAsWhatTheyDoNot).
     EXPECT_EQ(info.format_version, 11u);
     ASSERT_EQ(info.map_count, 3u);
     EXPECT_STREQ(info.maps[1].name, "normal");
@@ -227,13 +229,16 @@ struct MapField {
     int kind = 0, channels = 3;
     std::vector<uint8_t> bits;
     int depth = 8;
+    std::vector<uint64_t> prediction = {0};  // version 17: source + 1, coefficients, offsets (varints)
 };
 
+// A version 9 file (17 with `version`, whose maps carry their prediction
+// fields) of a 32x32 atlas, 3 levels, seed 1.
 std::vector<uint8_t> v9_file(const std::vector<MapField>& maps, const std::vector<uint64_t>& guide,
-                             uint8_t packed_extra = 0, int64_t length_delta = 0) {
+                             uint8_t packed_extra = 0, int64_t length_delta = 0, uint16_t version = 9) {
     ByteWriter w;
     w.bytes(kMagic, sizeof kMagic);
-    w.u16(9);
+    w.u16(version);
     w.u8(uint8_t((2 << kPackedLevelsShift) | packed_extra));  // 3 levels
     w.varint(32);
     w.varint(32);
@@ -246,6 +251,8 @@ std::vector<uint8_t> v9_file(const std::vector<MapField>& maps, const std::vecto
         w.varint(uint64_t(m.channels));
         w.varint(uint64_t(m.depth));
         w.varint(uint64_t(int64_t(m.bits.size()) + length_delta));
+        if (version == 17)
+            for (uint64_t v : m.prediction) w.varint(v);
     }
     for (uint64_t v : guide) w.varint(v);
     for (const MapField& m : maps) w.bytes(m.bits);
@@ -300,7 +307,7 @@ TEST(Material, WrongFieldsAreRefusedByTheirCheck) {
     grey_normal.kind = 1;
     MapField nine_bits = gloss;
     nine_bits.depth = 9;
-    const std::vector<Case> cases = {
+    std::vector<Case> cases = {
         {with_size(v9_file({albedo, gloss}, guide2, 0x02)), "packed bits 0-1"},
         {with_size(v9_file(dup, {1, 512, 0, 0, 0, 0, 0, 0})), "two maps are named"},
         {with_size(v9_file({albedo, bad_name}, guide2)), "name holds a character"},
@@ -313,6 +320,26 @@ TEST(Material, WrongFieldsAreRefusedByTheirCheck) {
         {with_size(v9_file({}, {})), "map count is 0"},
     };
     (void)normal;
+    // Version 17: the gloss predicted from the albedo (zigzag Q8
+    // coefficients of red, green, blue and the offset).
+    MapField predicted = gloss;
+    predicted.prediction = {1, 512, 0, 0, 0};
+    EXPECT_EQ(status(with_size(v9_file({albedo, predicted}, guide2, 0, 0, 17))), VQTEX_OK);
+    MapField from_itself = gloss;
+    from_itself.prediction = {2, 512, 0, 0, 0};
+    MapField from_deep = gloss;
+    from_deep.prediction = {1, 512, 0, 0, 0};
+    MapField deep = albedo;
+    deep.depth = 12;
+    MapField wild = gloss;
+    wild.prediction = {1, 2 * 5000, 0, 0, 0};
+    MapField far = gloss;
+    far.prediction = {1, 512, 0, 0, 2 * (1u << 21)};
+    cases.push_back({with_size(v9_file({albedo, from_itself}, guide2, 0, 0, 17)), "prediction source is 2"});
+    cases.push_back({with_size(v9_file({deep, from_deep}, guide2, 0, 0, 17)), "joins 8-bit maps only"});
+    cases.push_back({with_size(v9_file({albedo, wild}, guide2, 0, 0, 17)), "prediction coefficient"});
+    cases.push_back({with_size(v9_file({albedo, far}, guide2, 0, 0, 17)), "prediction offset"});
+    cases.push_back({with_size(v9_file({albedo, gloss}, guide2, 0, 0, 17)), "predicts no map"});
     for (const Case& c : cases) {
         std::string detail;
         EXPECT_EQ(status(c.bytes, &detail), VQTEX_ERROR_CORRUPT) << c.what;
@@ -324,6 +351,100 @@ TEST(Material, WrongFieldsAreRefusedByTheirCheck) {
     vqtex_status st = VQTEX_OK;
     vqtex_test::decode(file, small, &st);
     EXPECT_EQ(st, VQTEX_ERROR_LIMIT_EXCEEDED);
+}
+
+// The decoder restores a predicted map as its decoded residual plus the
+// prediction from its source (§4.16), in integers, to the bit.
+TEST(Material, APredictedMapIsItsResidualPlusThePrediction) {
+    const std::vector<uint8_t>& file = surface_file();
+    const AtlasFile f = decode_atlas_file(file.data(), file.size(), 256u << 20);
+    std::vector<std::vector<uint8_t>> bits;
+    std::size_t at = f.bitstream_offset;
+    for (const AtlasMap& m : f.maps) {
+        bits.emplace_back(file.begin() + std::ptrdiff_t(at), file.begin() + std::ptrdiff_t(at + m.bytes));
+        at += m.bytes;
+    }
+    const auto with_size = [](std::vector<uint8_t> v) {
+        v[11] = 64, v[12] = 64;
+        const uint32_t crc = crc32(v.data(), v.size() - 4);
+        for (int k = 0; k < 4; ++k) v[v.size() - 4 + std::size_t(k)] = uint8_t(crc >> (8 * k));
+        return v;
+    };
+    const std::vector<uint64_t> guide2 = {1, 512, 0, 0, 0, 0};
+    MapField albedo{"albedo", 0, 3, bits[0]}, gloss{"gloss", 2, 1, bits[2]};
+    const std::vector<uint8_t> plain = with_size(v9_file({albedo, gloss}, guide2));
+    // Coefficients 77, 150, 29 (zigzag 154, 300, 58), offset -300 (599).
+    gloss.prediction = {1, 154, 300, 58, 599};
+    const std::vector<uint8_t> predicted = with_size(v9_file({albedo, gloss}, guide2, 0, 0, 17));
+    const AtlasFile a = decode_atlas_file(plain.data(), plain.size(), 256u << 20);
+    const AtlasFile b = decode_atlas_file(predicted.data(), predicted.size(), 256u << 20);
+    ASSERT_EQ(b.maps.size(), 2u);
+    EXPECT_EQ(b.maps[1].prediction.source, 0);
+    EXPECT_EQ(b.maps[0].atlas.pixels, a.maps[0].atlas.pixels);
+    const Image& rgb = a.maps[0].atlas;
+    int changed = 0;
+    for (std::size_t i = 0; i < rgb.pixel_count(); ++i) {
+        const uint8_t* p = &rgb.pixels[i * 3];
+        const int64_t sum = 77 * p[0] + 150 * p[1] + 29 * p[2] - 300 + 128;
+        const int prediction = int(std::clamp<int64_t>(sum >> 8, 0, 255));
+        const int expected = std::clamp(int(a.maps[1].atlas.pixels[i]) + prediction - 128, 0, 255);
+        ASSERT_EQ(int(b.maps[1].atlas.pixels[i]), expected) << "pixel " << i;
+        changed += expected != a.maps[1].atlas.pixels[i];
+    }
+    EXPECT_GT(changed, int(rgb.pixel_count()) / 2);
+}
+
+// The encoder predicts a map from an earlier one when that leaves little,
+// even counting the source's coding error, and codes a map the others do
+// not predict well enough as it is.
+TEST(Material, AMapTheOthersPredictIsCodedAsWhatTheyDoNot) {
+    // The surface's gloss: its bumps, sparse, 5.5 levels of deviation, of
+    // which a fit to the albedo would leave 2.9 once the albedo's coding
+    // error is counted. Coded as it is.
+    const vqtex_file_info plain = vqtex_cpp::inspect(surface_file().data(), surface_file().size());
+    EXPECT_EQ(plain.format_version, 11u);
+    for (uint32_t i = 0; i < plain.map_count; ++i) EXPECT_EQ(plain.map_predicted_from[i], -1) << plain.maps[i].name;
+    // Bricks for the albedo, and a gloss that is a function of its red and
+    // green, less contrasty than they are: predicted, for a fraction of the
+    // bytes the same gloss takes coded as it is beside a noise albedo.
+    Surface s = make_surface(64, 7);
+    s.albedo = vqtex_test::load_corpus("bricks_128.png").crop(0, 0, 64, 64);
+    for (std::size_t i = 0; i < s.gloss.pixel_count(); ++i)
+        s.gloss.pixels[i] = uint8_t(10 + (s.albedo.pixels[i * 3] + s.albedo.pixels[i * 3 + 1]) / 4);
+    const std::vector<uint8_t> file = encode_surface(s);
+    Surface unrelated = s;
+    uint64_t state = 5;
+    for (uint8_t& v : unrelated.albedo.pixels) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        v = uint8_t(state >> 56);
+    }
+    const std::vector<uint8_t> apart = encode_surface(unrelated);
+    const vqtex_file_info alone = vqtex_cpp::inspect(apart.data(), apart.size());
+    EXPECT_EQ(alone.map_predicted_from[2], -1);
+    const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
+    EXPECT_EQ(info.format_version, 17u);
+    EXPECT_EQ(info.map_predicted_from[0], -1);
+    EXPECT_EQ(info.map_predicted_from[1], -1) << "a normal map is coded as it is";
+    EXPECT_EQ(info.map_predicted_from[2], 0) << "the gloss follows the albedo";
+    EXPECT_LT(info.maps[2].bytes * 4, alone.maps[2].bytes) << "the residual is cheaper than the map " << info.maps[0].bytes << " " << info.maps[1].bytes;
+    // Decoded, the pair keeps the example's correlation, and the gloss is
+    // where its example is: read back through the coordinates.
+    const std::size_t n = 128 * 96;
+    const auto out = vqtex_cpp::decode_maps(decode_params(128, 96, 3, 2), file.data(), file.size());
+    ASSERT_EQ(out.size(), 3u);
+    const double example = correlation(s.albedo.pixels.data(), 3, s.gloss.pixels.data(), 1, 64 * 64);
+    EXPECT_NEAR(correlation(out[0].image.data(), 3, out[2].image.data(), 1, n), example, 0.02);
+    // A gloss of its own (seeded noise, unrelated to the albedo): not
+    // predicted.
+    state = 99;
+    for (uint8_t& v : s.gloss.pixels) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        v = uint8_t(64 + (state >> 58));
+    }
+    const std::vector<uint8_t> own_file = encode_surface(s);
+    const vqtex_file_info own = vqtex_cpp::inspect(own_file.data(), own_file.size());
+    EXPECT_EQ(own.format_version, 11u);
+    for (uint32_t i = 0; i < own.map_count; ++i) EXPECT_EQ(own.map_predicted_from[i], -1) << own.maps[i].name;
 }
 
 TEST(Material, EveryTruncationAndByteFlipIsRejected) {
@@ -453,7 +574,7 @@ TEST(Material, CoordinatesAreWhereEachPixelIsRead) {
 }
 
 // Above 2 x 256x256 pixels the atlas is a part of the example: the file
-// says where it lies (format 13, 14), and the coordinates of a decode are
+// says where it lies (format 13; 14 for a set, 18 with a predicted map), and the coordinates of a decode are
 // then the exemplar's own pixels, for a single image and for a set. A
 // brightness ramp across the surface puts the part that looks most like
 // the whole away from the corner.
@@ -472,7 +593,9 @@ TEST(Material, CoordinatesOfAPartAreTheExemplarsPixels) {
     const std::vector<uint8_t> pair(set.data(), set.data() + set.size());
     for (const std::vector<uint8_t>* file : {&single, &pair}) {
         const vqtex_file_info info = vqtex_cpp::inspect(file->data(), file->size());
-        EXPECT_EQ(info.format_version, file == &single ? 13u : 14u);
+        // The set's gloss (its bumps, under an albedo of more contrast than
+        // the 64x64 surface's) is predicted: version 14 with predicted maps.
+        EXPECT_EQ(info.format_version, file == &single ? 13u : 18u);
         ASSERT_LT(info.atlas_width, 400u);
         ASSERT_GT(info.atlas_x + info.atlas_y, 0u) << "the part is the corner: nothing is tested";
         const vqtex_decode_params p = decode_params(160, 120, 4, 2);
@@ -527,4 +650,21 @@ TEST(Material, GoldenFileDecodesToKnownPixels) {
     }
     const uint64_t hash = vqtex_test::fnv1a(all.data(), all.size());
     EXPECT_EQ(hash, 0xc3e88ee853d6775aull) << std::hex << "decoded hash 0x" << hash;
+}
+
+// Version 17: a set whose gloss is predicted from its albedo (§4.17).
+TEST(Material, GoldenPredictedFileDecodesToKnownPixels) {
+    std::ifstream in(std::string(VQTEX_GOLDEN_DIR) + "/material_v17.vqt", std::ios::binary);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(bytes.empty()) << "missing tests/golden/material_v17.vqt";
+    const vqtex_file_info info = vqtex_cpp::inspect(bytes.data(), bytes.size());
+    EXPECT_EQ(info.format_version, 17u);
+    ASSERT_EQ(info.map_count, 2u);
+    EXPECT_EQ(info.map_predicted_from[1], 0);
+    const auto maps = vqtex_cpp::decode_maps(decode_params(96, 80, 5), bytes.data(), bytes.size());
+    ASSERT_EQ(maps.size(), 2u);
+    std::vector<uint8_t> all(maps[0].image.data(), maps[0].image.data() + maps[0].image.size_bytes());
+    all.insert(all.end(), maps[1].image.data(), maps[1].image.data() + maps[1].image.size_bytes());
+    const uint64_t hash = vqtex_test::fnv1a(all.data(), all.size());
+    EXPECT_EQ(hash, 0x8794e5abfb64234dull) << std::hex << "decoded hash 0x" << hash;
 }

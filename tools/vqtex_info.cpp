@@ -122,7 +122,10 @@ FileReport info_one(const std::string& input) {
                                  {"kind", kind_name(info.maps[i].kind)},
                                  {"channels", info.maps[i].channels},
                                  {"bits", info.maps[i].bits},
-                                 {"bytes", info.maps[i].bytes}});
+                                 {"bytes", info.maps[i].bytes},
+                                 {"predicted_from", info.map_predicted_from[i] < 0
+                                                        ? nlohmann::ordered_json(nullptr)
+                                                        : nlohmann::ordered_json(info.maps[info.map_predicted_from[i]].name)}});
     }
 
     std::string& t = r.text;
@@ -185,9 +188,11 @@ FileReport info_one(const std::string& input) {
         int width = 0;
         for (uint32_t i = 0; i < map_count; ++i) width = std::max(width, int(std::strlen(info.maps[i].name)));
         for (uint32_t i = 0; i < map_count; ++i)
-            add(t, "  %-*s  %-6s  %u channel%s  %2u bits  %7llu bytes of coded atlas\n", width, info.maps[i].name,
+            add(t, "  %-*s  %-6s  %u channel%s  %2u bits  %7llu bytes of coded atlas%s%s\n", width, info.maps[i].name,
                 kind_name(info.maps[i].kind), info.maps[i].channels, info.maps[i].channels == 1 ? " " : "s",
-                info.maps[i].bits, (unsigned long long)info.maps[i].bytes);
+                info.maps[i].bits, (unsigned long long)info.maps[i].bytes,
+                info.map_predicted_from[i] < 0 ? "" : ", predicted from ",
+                info.map_predicted_from[i] < 0 ? "" : info.maps[info.map_predicted_from[i]].name);
     }
     for (uint32_t l = 0; l < info.levels && !atlas; ++l)
         add(t, "  level %u  {%ux%u,%u}  %5u codewords  %6u entries  %5u closing codewords\n", l, info.shapes[l].rows,

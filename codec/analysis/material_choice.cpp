@@ -101,6 +101,163 @@ constexpr double kFlatDeviation = 4.0;
 
 }  // namespace
 
+namespace {
+
+// Solves the n x n system a x = b (a symmetric, positive semi-definite) by
+// Gaussian elimination with partial pivoting; false when it is singular.
+bool solve(std::vector<double> a, std::vector<double> b, int n, std::vector<double>& x) {
+    const auto at = [n](std::vector<double>& m, int r, int c) -> double& {
+        return m[std::size_t(r) * std::size_t(n) + std::size_t(c)];
+    };
+    for (int k = 0; k < n; ++k) {
+        int pivot = k;
+        for (int r = k + 1; r < n; ++r)
+            if (std::abs(at(a, r, k)) > std::abs(at(a, pivot, k))) pivot = r;
+        if (std::abs(at(a, pivot, k)) < 1e-9) return false;
+        if (pivot != k) {
+            for (int c = 0; c < n; ++c) std::swap(at(a, k, c), at(a, pivot, c));
+            std::swap(b[std::size_t(k)], b[std::size_t(pivot)]);
+        }
+        for (int r = k + 1; r < n; ++r) {
+            const double q = at(a, r, k) / at(a, k, k);
+            for (int c = k; c < n; ++c) at(a, r, c) -= q * at(a, k, c);
+            b[std::size_t(r)] -= q * b[std::size_t(k)];
+        }
+    }
+    x.assign(std::size_t(n), 0.0);
+    for (int k = n - 1; k >= 0; --k) {
+        double t = b[std::size_t(k)];
+        for (int c = k + 1; c < n; ++c) t -= at(a, k, c) * x[std::size_t(c)];
+        x[std::size_t(k)] = t / at(a, k, k);
+    }
+    return true;
+}
+
+// The variance a prediction leaves, summed over the map's channels, on the
+// pixels of `grid`.
+double residual_variance(const Image& map, const Image& source, const MapPrediction& p,
+                         const std::vector<std::size_t>& grid) {
+    double sum = 0;
+    for (int c = 0; c < map.channels; ++c) {
+        double s = 0, s2 = 0;
+        for (const std::size_t i : grid) {
+            int64_t v = p.offsets[std::size_t(c)] + 128;
+            for (int k = 0; k < source.channels; ++k)
+                v += int64_t(p.coefficients[std::size_t(c * source.channels + k)]) *
+                     source.pixels[i * std::size_t(source.channels) + std::size_t(k)];
+            const double d = double(map.pixels[i * std::size_t(map.channels) + std::size_t(c)]) -
+                             double(std::clamp<int64_t>(v >> 8, 0, 255));
+            s += d, s2 += d * d;
+        }
+        const double n = double(grid.size());
+        sum += s2 / n - (s / n) * (s / n);
+    }
+    return sum;
+}
+
+// The residual the encoder codes for a predicted map (docs/FORMAT.md
+// §4.17): what the decoder's add_prediction turns back into the map.
+Image subtract_prediction(const Image& map, const Image& prediction) {
+    Image out(map.width, map.height, map.channels);
+    for (std::size_t i = 0; i < map.pixels.size(); ++i)
+        out.pixels[i] = uint8_t(std::clamp(int(map.pixels[i]) - int(prediction.pixels[i]) + 128, 0, 255));
+    return out;
+}
+
+// The deviation of a predicted map's residual below which it is not coded
+// (a flat residual: the prediction alone).
+constexpr double kRoundingDeviation = 1.0;
+
+// The coding error of a source map, in levels, that a prediction is made
+// robust to: about the default's on the corpus's albedos (the wood
+// albedo's decoded atlas is 0.96 correlated with the example, 3 levels of
+// its 11).
+constexpr double kSourceNoise = 3.0;
+
+}  // namespace
+
+std::vector<MapPrediction> fit_map_predictions(const std::vector<MaterialMap>& maps) {
+    std::vector<MapPrediction> predictions(maps.size());
+    if (maps.size() < 2) return predictions;
+    const std::size_t pixels = maps[0].image.pixel_count(), step = std::max<std::size_t>(1, pixels / 65536);
+    std::vector<std::size_t> grid;
+    for (std::size_t i = 0; i < pixels; i += step) grid.push_back(i);
+    for (std::size_t m = 1; m < maps.size(); ++m) {
+        const Image& map = maps[m].image;
+        if (maps[m].bits != 8 || maps[m].kind == MapKind::Normal) continue;
+        double own = 0;  // the map's variance, summed over its channels
+        for (int c = 0; c < map.channels; ++c) {
+            double s = 0, s2 = 0;
+            for (const std::size_t i : grid) {
+                const double v = map.pixels[i * std::size_t(map.channels) + std::size_t(c)];
+                s += v, s2 += v * v;
+            }
+            own += s2 / double(grid.size()) - (s / double(grid.size())) * (s / double(grid.size()));
+        }
+        double best = own / 4;  // a prediction must leave at most a quarter
+        for (std::size_t j = 0; j < m; ++j) {
+            if (maps[j].bits != 8) continue;
+            const Image& src = maps[j].image;
+            const int n = src.channels + 1;
+            // Normal equations of [s_0 .. s_S-1, 1] -> each channel.
+            std::vector<double> a(std::size_t(n) * std::size_t(n), 0.0);
+            std::vector<std::vector<double>> b(std::size_t(map.channels), std::vector<double>(std::size_t(n), 0.0));
+            std::vector<double> f(static_cast<std::size_t>(n), 0.0);
+            for (const std::size_t i : grid) {
+                for (int k = 0; k < src.channels; ++k)
+                    f[std::size_t(k)] = src.pixels[i * std::size_t(src.channels) + std::size_t(k)];
+                f[std::size_t(n - 1)] = 1;
+                for (int r = 0; r < n; ++r)
+                    for (int c = 0; c < n; ++c) a[std::size_t(r * n + c)] += f[std::size_t(r)] * f[std::size_t(c)];
+                for (int c = 0; c < map.channels; ++c)
+                    for (int r = 0; r < n; ++r)
+                        b[std::size_t(c)][std::size_t(r)] +=
+                            f[std::size_t(r)] * map.pixels[i * std::size_t(map.channels) + std::size_t(c)];
+            }
+            // The decoder predicts from the decoded source, whose coding
+            // error the coefficients carry into the map: the fit is a ridge
+            // that counts that error as noise of kSourceNoise levels on
+            // each source channel (on a synthetic surface, a plain fit put
+            // 3.3 on the albedo's blue and the decoded gloss lost 0.06 of
+            // its correlation with the albedo).
+            for (int k = 0; k + 1 < n; ++k)
+                a[std::size_t(k * n + k)] += double(grid.size()) * kSourceNoise * kSourceNoise;
+            MapPrediction p;
+            p.source = int(j);
+            bool solved = true;
+            for (int c = 0; c < map.channels && solved; ++c) {
+                std::vector<double> x;
+                solved = solve(a, b[std::size_t(c)], n, x);
+                if (!solved) break;
+                // Q8 coefficients, then the offset that keeps the mean with
+                // them as rounded.
+                double mean_in = 0, mean_out = 0;
+                for (const std::size_t i : grid) mean_out += map.pixels[i * std::size_t(map.channels) + std::size_t(c)];
+                mean_out /= double(grid.size());
+                for (int k = 0; k < src.channels; ++k) {
+                    const int32_t q = int32_t(std::clamp<long>(std::lround(x[std::size_t(k)] * 256.0),
+                                                               -kMaxPredictionCoefficient, kMaxPredictionCoefficient));
+                    p.coefficients.push_back(q);
+                    double mk = 0;
+                    for (const std::size_t i : grid) mk += src.pixels[i * std::size_t(src.channels) + std::size_t(k)];
+                    mean_in += double(q) * mk / double(grid.size());
+                }
+                p.offsets.push_back(int32_t(std::clamp<long>(std::lround(mean_out * 256.0 - mean_in - 128.0),
+                                                             -kMaxPredictionOffset, kMaxPredictionOffset)));
+            }
+            if (!solved) continue;
+            double gain = 0;  // the sum of the squared coefficients
+            for (const int32_t q : p.coefficients) gain += (double(q) / 256.0) * (double(q) / 256.0);
+            const double left = residual_variance(map, src, p, grid) + kSourceNoise * kSourceNoise * gain;
+            if (left < best) {
+                best = left;
+                predictions[m] = std::move(p);
+            }
+        }
+    }
+    return predictions;
+}
+
 GuideMatrix guide_matrix(const std::vector<MaterialMap>& maps) {
     GuideMatrix g;
     if (maps.size() < 2) return g;
@@ -181,7 +338,8 @@ namespace {
 class SetLevelSearch {
 public:
     SetLevelSearch(const std::vector<MaterialMap>& maps, const GuideMatrix& guide, const std::vector<int>& offsets,
-                   std::array<int, 4> part, const AtlasChoiceOptions& options, int threads, uint32_t* attempts,
+                   const std::vector<MapPrediction>& predictions, std::array<int, 4> part,
+                   const AtlasChoiceOptions& options, int threads, uint32_t* attempts,
                    int speed = AtlasEncodeOptions{}.speed, bool period_bar = false)
         : maps_(maps), guide_(guide), offsets_(offsets), part_(part), options_(options), period_bar_(period_bar),
           threads_(threads), attempts_(attempts), speed_(speed) {
@@ -189,6 +347,33 @@ public:
         for (const MaterialMap& m : maps) {
             atlases_.push_back(m.image.crop(x, y, w, h));
             atlases16_.push_back(m.bits > 8 ? m.image16.crop(x, y, w, h) : Image16());
+        }
+        // A predicted map is coded as what its source's original samples do
+        // not predict (the decoder predicts from the decoded source, so the
+        // map follows the source's coding error). No version holds both
+        // the period bar and predictions: a barred set codes its maps as
+        // they are.
+        predictions_.assign(maps.size(), MapPrediction{});
+        if (!barred())
+            for (std::size_t i = 0; i < maps.size(); ++i) predictions_[i] = predictions[i];
+        // A residual is coded at its source's level: what it holds beyond
+        // the prediction is finer than the source's own coding error, and
+        // a finer level spends bytes on the prediction's rounding (on
+        // bricks, a gloss's residual at the gloss's finer level took 6
+        // times the bytes of the gloss coded as it is).
+        for (std::size_t i = maps.size(); i-- > 0;) {
+            const MapPrediction& p = predictions_[i];
+            if (!p.predicted()) continue;
+            offsets_[i] = offsets_[std::size_t(p.source)];
+            atlases_[i] = subtract_prediction(
+                atlases_[i], predict_map(atlases_[std::size_t(p.source)], p, atlases_[i].channels));
+            // A residual of under a level is the prediction's rounding and
+            // the map's own noise: coded, it is white noise that costs as
+            // much as the map (on bricks, at a fine level, 2.1 KB for a
+            // gloss the prediction already gave within a level); dropped,
+            // the map's error stays under a level.
+            if (map_deviation(atlases_[i]) < kRoundingDeviation)
+                std::fill(atlases_[i].pixels.begin(), atlases_[i].pixels.end(), uint8_t(128));
         }
         const int deepest = coherent_levels(w, h);
         levels_ = options.levels ? std::min(options.levels, deepest) : deepest;
@@ -205,7 +390,8 @@ public:
                 ao.cq_level = std::clamp(cq + offsets_[i], 0, 63);
                 ao.speed = speed_;
                 coded[i] = {m.name, m.kind, atlases_[i].channels, m.bits,
-                            m.bits > 8 ? encode_atlas_high(atlases16_[i], m.bits, ao) : encode_atlas(atlases_[i], ao)};
+                            m.bits > 8 ? encode_atlas_high(atlases16_[i], m.bits, ao) : encode_atlas(atlases_[i], ao),
+                            predictions_[i]};
             }
         });
         ++*attempts_;
@@ -249,7 +435,7 @@ private:
 
     const std::vector<MaterialMap>& maps_;
     const GuideMatrix& guide_;
-    const std::vector<int>& offsets_;
+    std::vector<int> offsets_;  // per map, added to the set's level
     std::array<int, 4> part_;  // x, y, w, h
     AtlasChoiceOptions options_;
     bool period_bar_ = false;
@@ -257,8 +443,9 @@ private:
     uint32_t* attempts_;
     int speed_ = 4;
     int levels_ = 0;
-    std::vector<Image> atlases_;
+    std::vector<Image> atlases_;  // a predicted map's: its residual
     std::vector<Image16> atlases16_;
+    std::vector<MapPrediction> predictions_;
     std::map<int, std::vector<uint8_t>> files_;
 };
 
@@ -307,7 +494,8 @@ std::vector<ProxyScores> set_proxy_scores(const std::vector<MaterialMap>& maps,
 // fitting level; they compete on the proxy's scores of every map, each
 // relative to the best candidate's.
 MaterialChoice choose_material_part(const std::vector<MaterialMap>& maps, const GuideMatrix& guide,
-                                    const std::vector<int>& offsets, const AtlasChoiceOptions& options) {
+                                    const std::vector<int>& offsets, const std::vector<MapPrediction>& predictions,
+                                    const AtlasChoiceOptions& options) {
     const Image& first = maps[0].image;
     const std::vector<int> sides = large_part_sides(options.budget / maps.size(),
                                                     std::min({first.width, first.height, kMaxAtlasSide}));
@@ -319,9 +507,9 @@ MaterialChoice choose_material_part(const std::vector<MaterialMap>& maps, const 
             const bool whole = s == first.width && s == first.height;
             const std::array<int, 2> at = whole ? std::array<int, 2>{0, 0} : representative_place(first, s);
             const std::array<int, 4> part{at[0], at[1], s, s};
-            SetLevelSearch fast(maps, guide, offsets, part, options, 1, &attempts[i], kSearchSpeed);
+            SetLevelSearch fast(maps, guide, offsets, predictions, part, options, 1, &attempts[i], kSearchSpeed);
             const int guess = finest_fitting_level(options.budget, [&](int cq) { return fast.size_at(cq); });
-            SetLevelSearch fine(maps, guide, offsets, part, options, 1, &attempts[i], kFinalSpeed);
+            SetLevelSearch fine(maps, guide, offsets, predictions, part, options, 1, &attempts[i], kFinalSpeed);
             const int cq = finest_fitting_near(options.budget, guess, [&](int q) { return fine.size_at(q); });
             if (cq >= 0) candidates[i] = fine.choice(cq);
         }
@@ -379,8 +567,9 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
     std::vector<int> offsets;
     for (const double d : deviation)
         offsets.push_back(std::clamp(int(std::lround(6.0 * std::log2(d / most))), -24, 0));
+    const std::vector<MapPrediction> predictions = fit_map_predictions(maps);
     if (options.compaction && first.pixel_count() > kLargeExamplePixels) {
-        MaterialChoice c = choose_material_part(maps, guide, offsets, options);
+        MaterialChoice c = choose_material_part(maps, guide, offsets, predictions, options);
         c.example_tiles = tiles;
         return c;
     }
@@ -388,7 +577,7 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
     for (int scale = 16; scale >= 1; scale = scale == 16 ? 12 : scale * 3 / 4) {
         const int w = std::min({kMaxAtlasSide, first.width, std::max(kMinAtlasSide, first.width * scale / 16)});
         const int h = std::min({kMaxAtlasSide, first.height, std::max(kMinAtlasSide, first.height * scale / 16)});
-        SetLevelSearch search(maps, guide, offsets, {0, 0, w, h}, options, options.threads, &attempts,
+        SetLevelSearch search(maps, guide, offsets, predictions, {0, 0, w, h}, options, options.threads, &attempts,
                               AtlasEncodeOptions{}.speed, bar);
         const int best = finest_fitting_level(options.budget, [&](int cq) { return search.size_at(cq); });
         if (best >= 0) {

@@ -40,6 +40,12 @@ MaterialMap map_from_16_bits(std::string name, MapKind kind, int weight, const I
 // file's integer form.
 GuideMatrix guide_matrix(const std::vector<MaterialMap>& maps);
 
+// How each map of a set is best coded (format/map_prediction.hpp): for an
+// 8-bit map that is not a normal map, the earlier 8-bit map whose channels
+// predict it best by least squares over the whole example, when what is
+// left has at most a quarter of its variance; otherwise coded as it is.
+std::vector<MapPrediction> fit_map_predictions(const std::vector<MaterialMap>& maps);
+
 struct MaterialChoice {
     std::vector<uint8_t> file;  // a whole version 9 file
     int cq = 0;                 // libaom's level, 0..63, of every map

@@ -410,6 +410,7 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
     return guarded(error, [&] {
         if (!info) fail(VQTEX_ERROR_INVALID_ARGUMENT, "info pointer is NULL");
         *info = vqtex_file_info{};
+        for (int32_t& from : info->map_predicted_from) from = -1;
         if (is_atlas_file(data, size)) {
             const AtlasFile f =
                 decode_atlas_file(data, size, std::size_t(memory_limit ? memory_limit : kDefaultMemoryLimit));
@@ -442,6 +443,7 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
                     info->maps[i].channels = uint32_t(f.maps[i].atlas.channels);
                     info->maps[i].bits = uint32_t(f.maps[i].bits);
                     info->maps[i].bytes = f.maps[i].bytes;
+                    info->map_predicted_from[i] = f.maps[i].prediction.source;
                 }
                 info->channels = uint32_t(f.maps[0].atlas.channels);
             }

@@ -105,8 +105,10 @@ inline void read_atlas_origin(ByteReader& r, uint16_t version, uint8_t packed, i
     h.atlas_y = uint32_t(r.varint_in("atlas y", 0, room(h.exemplar_height, ah)));
     if (h.atlas_x == 0 && h.atlas_y == 0)
         r.corrupt("the atlas's origin is stored but is (0, 0) (the file must then be version " +
-                  std::to_string(version == kOriginAtlasFormatVersion ? kCoverAtlasFormatVersion
-                                                                      : kCoverMaterialFormatVersion) + ")");
+                  std::to_string(version == kOriginAtlasFormatVersion         ? kCoverAtlasFormatVersion
+                                 : version == kOriginMaterialFormatVersion ? kCoverMaterialFormatVersion
+                                                                           : kPredictedMaterialFormatVersion) +
+                  ")");
 }
 
 inline bool are_compact_defaults(const AtlasSynthesisParams& p, uint16_t version) {

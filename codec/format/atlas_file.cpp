@@ -81,8 +81,39 @@ int64_t zigzag(uint64_t v) { return int64_t(v >> 1) ^ -int64_t(v & 1); }
 // descriptions, the guide's matrix, then their bitstreams, which run to the
 // CRC. Every map is checked before any is decoded, and the memory of all
 // their atlases and the guide before dav1d runs.
-void read_maps(ByteReader& r, uint8_t packed, int aw, int ah, std::size_t size, std::size_t memory_limit,
-               AtlasFile& f) {
+// Versions 17 and 18: after map m's bitstream length, where it is
+// predicted from (0: nowhere, k: map k - 1, an earlier 8-bit map) and the
+// prediction's coefficients and offsets (§4.17).
+MapPrediction read_prediction(ByteReader& r, int m, const std::vector<AtlasMap>& earlier,
+                              const std::vector<int>& map_channels, const AtlasMap& map, int channels) {
+    MapPrediction p;
+    const int from = int(r.varint_in("prediction source", 0, uint64_t(m)));
+    if (from == 0) return p;
+    p.source = from - 1;
+    const AtlasMap& source = earlier[std::size_t(p.source)];
+    if (map.bits != 8 || source.bits != 8)
+        r.corrupt("map '" + map.name + "' is predicted from map '" + source.name +
+                  "', but a prediction joins 8-bit maps only");
+    const int s = map_channels[std::size_t(p.source)];
+    for (int k = 0; k < channels * s; ++k) {
+        const int64_t v = zigzag(r.varint("prediction coefficient"));
+        if (v < -kMaxPredictionCoefficient || v > kMaxPredictionCoefficient)
+            r.corrupt("a prediction coefficient of map '" + map.name + "' is " + std::to_string(v) + ", outside -" +
+                      std::to_string(kMaxPredictionCoefficient) + ".." + std::to_string(kMaxPredictionCoefficient));
+        p.coefficients.push_back(int32_t(v));
+    }
+    for (int c = 0; c < channels; ++c) {
+        const int64_t o = zigzag(r.varint("prediction offset"));
+        if (o < -kMaxPredictionOffset || o > kMaxPredictionOffset)
+            r.corrupt("a prediction offset of map '" + map.name + "' is " + std::to_string(o) + ", outside -" +
+                      std::to_string(kMaxPredictionOffset) + ".." + std::to_string(kMaxPredictionOffset));
+        p.offsets.push_back(int32_t(o));
+    }
+    return p;
+}
+
+void read_maps(ByteReader& r, uint16_t version, uint8_t packed, int aw, int ah, std::size_t size,
+               std::size_t memory_limit, AtlasFile& f) {
     if (packed & kPackedChannels)
         r.corrupt("packed bits 0-1 must be 0 in a set of maps (format versions 9 and 11: each map has its channels)");
     const int count = int(r.varint_in("map count", 1, kMaxMaps));
@@ -108,6 +139,7 @@ void read_maps(ByteReader& r, uint8_t packed, int aw, int ah, std::size_t size, 
             r.corrupt("map '" + map.name + "' has " + std::to_string(map.bits) + " bits a sample; 8, 10 or 12");
         map.bytes = std::size_t(r.varint_in("map bitstream length", 1, size));
         map_channels.push_back(ch);
+        if (predicts_maps(version)) map.prediction = read_prediction(r, m, f.maps, map_channels, map, ch);
         channels += ch;
         // A map above 8 bits is held as 16-bit samples and as bytes.
         memory_channels += map.bits > 8 ? 3 * ch : ch;
@@ -139,8 +171,10 @@ void read_maps(ByteReader& r, uint8_t packed, int aw, int ah, std::size_t size, 
     FileHeader& h = f.header;
     h.channels = uint8_t(count > 1 ? g.channels : map_channels[0]);
     f.input_bytes = size;
-    // All the maps' atlases, the guide, and dav1d's frame for one of them.
-    check_atlas(aw, ah, h.levels, memory_channels + (count > 1 ? g.channels : 0), f.input_bytes, memory_limit);
+    // All the maps' atlases, the guide, and dav1d's frame for one of them
+    // (versions 17 and 18: and one map's prediction, 4 channels at most).
+    check_atlas(aw, ah, h.levels, memory_channels + (count > 1 ? g.channels : 0) + (predicts_maps(version) ? 4 : 0),
+                f.input_bytes, memory_limit);
     f.bitstream_offset = r.position();
     for (int m = 0; m < count; ++m) {
         AtlasMap& map = f.maps[std::size_t(m)];
@@ -154,6 +188,20 @@ void read_maps(ByteReader& r, uint8_t packed, int aw, int ah, std::size_t size, 
         }
         f.atlas_bytes += map.bytes;
     }
+    // In order, so that a map predicted from a predicted map reads it
+    // restored.
+    bool predicted = false;
+    for (AtlasMap& map : f.maps) {
+        if (!map.prediction.predicted()) continue;
+        predicted = true;
+        add_prediction(map.atlas, predict_map(f.maps[std::size_t(map.prediction.source)].atlas, map.prediction,
+                                              map.atlas.channels));
+    }
+    if (predicts_maps(version) && !predicted)
+        r.corrupt("a version " + std::to_string(version) + " file predicts no map (it must then be version " +
+                  std::to_string(version == kPredictedMaterialFormatVersion ? kCoverMaterialFormatVersion
+                                                                             : kOriginMaterialFormatVersion) +
+                  ")");
     f.atlas = guide_of(f.maps, f.guide);
 }
 
@@ -206,7 +254,7 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
         f.parameter_bytes = r.position() - at;
     }
     if (holds_maps(version)) {
-        read_maps(r, packed, aw, ah, size, memory_limit, f);
+        read_maps(r, version, packed, aw, ah, size, memory_limit, f);
         return f;
     }
     if (r.remaining() == 0) r.corrupt("the file has no atlas bitstream");

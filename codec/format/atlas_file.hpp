@@ -21,6 +21,7 @@
 #include "common/image.hpp"
 #include "engine/copy_relocation.hpp"
 #include "format/container.hpp"
+#include "format/map_prediction.hpp"
 
 namespace vqtex {
 
@@ -122,6 +123,7 @@ struct AtlasMap {
     std::string name;
     MapKind kind = MapKind::Colour;
     int bits = 8;
+    MapPrediction prediction;  // versions 17 and 18: coded as what an earlier map does not predict
     Image atlas;            // decoded; above 8 bits, the samples >> (bits - 8), for the guide
     Image16 atlas16;        // above 8 bits: the decoded samples, 0 to 2^bits - 1
     std::size_t bytes = 0;  // its coded bitstream

@@ -78,25 +78,37 @@ inline constexpr uint16_t kOriginMaterialFormatVersion = 14;
 // wraps and is not the tile of an example that repeats it.
 inline constexpr uint16_t kPeriodBarAtlasFormatVersion = 15;
 inline constexpr uint16_t kPeriodBarMaterialFormatVersion = 16;
-// Versions 4 to 11 and 13 to 16: one still atlas or a set of maps behind
+// Versions 17 and 18 (docs/FORMAT.md §2.7, §4.17): versions 11 and 14, a
+// set of maps, where a map may be coded as what an earlier map does not
+// predict of it. The encoder writes them, in place of 11 and 14, when a
+// map of the set is predicted.
+inline constexpr uint16_t kPredictedMaterialFormatVersion = 17;
+inline constexpr uint16_t kPredictedOriginMaterialFormatVersion = 18;
+// Versions 4 to 11 and 13 to 18: one still atlas or a set of maps behind
 // the compact header.
 inline bool is_compact_atlas_version(uint16_t version) {
     return (version >= kCompactAtlasFormatVersion && version <= kCoverMaterialFormatVersion) ||
-           (version >= kOriginAtlasFormatVersion && version <= kPeriodBarMaterialFormatVersion);
+           (version >= kOriginAtlasFormatVersion && version <= kPredictedOriginMaterialFormatVersion);
 }
-// Whether a compact version's file holds a set of maps (9, 11, 14 and 16)
-// rather than one atlas.
+// Whether a compact version's file has maps predicted from others (17, 18).
+inline bool predicts_maps(uint16_t version) {
+    return version == kPredictedMaterialFormatVersion || version == kPredictedOriginMaterialFormatVersion;
+}
+// Whether a compact version's file holds a set of maps (9, 11, 14, 16, 17
+// and 18) rather than one atlas.
 inline bool holds_maps(uint16_t version) {
     return version == kMaterialAtlasFormatVersion || version == kCoverMaterialFormatVersion ||
-           version == kOriginMaterialFormatVersion || version == kPeriodBarMaterialFormatVersion;
+           version == kOriginMaterialFormatVersion || version == kPeriodBarMaterialFormatVersion ||
+           predicts_maps(version);
 }
 // Whether a compact version's file is decoded with the period bar (15, 16).
 inline bool bars_period(uint16_t version) {
     return version == kPeriodBarAtlasFormatVersion || version == kPeriodBarMaterialFormatVersion;
 }
-// Whether a compact version's file stores the atlas's origin (13 and 14).
+// Whether a compact version's file stores the atlas's origin (13, 14 and 18).
 inline bool stores_origin(uint16_t version) {
-    return version == kOriginAtlasFormatVersion || version == kOriginMaterialFormatVersion;
+    return version == kOriginAtlasFormatVersion || version == kOriginMaterialFormatVersion ||
+           version == kPredictedOriginMaterialFormatVersion;
 }
 inline constexpr std::size_t kHeaderSize = 40;
 inline constexpr std::size_t kSectionHeaderSize = 16;

@@ -1,5 +1,6 @@
 // atlas_writer.cpp - writing format versions 10 and 11, or 13 and 14 when
-// the atlas is a part of the example away from its top-left corner
+// the atlas is a part of the example away from its top-left corner, 15 and
+// 16 with the period bar, 17 and 18 for sets with predicted maps
 // (docs/FORMAT.md §2), the atlas files the encoder makes: the compact
 // header, the atlas's origin when it is not (0, 0), the parameters only
 // when they are not the defaults, the atlas bitstream (version 11: the
@@ -36,7 +37,7 @@ void check_fields(const FileHeader& header, int atlas_width, int atlas_height, c
 // exemplar's top-left corner, so that its origin has one encoding; 15 and
 // 16 for a wrapping atlas decoded with the period bar.
 uint16_t version_for(const FileHeader& header, int atlas_width, int atlas_height, bool set,
-                     const AtlasSynthesisParams& params) {
+                     const AtlasSynthesisParams& params, bool predicted = false) {
     const bool origin = header.atlas_x != 0 || header.atlas_y != 0;
     if (origin && (uint64_t(header.atlas_x) + uint64_t(atlas_width) > header.exemplar_width ||
                    uint64_t(header.atlas_y) + uint64_t(atlas_height) > header.exemplar_height))
@@ -44,8 +45,10 @@ uint16_t version_for(const FileHeader& header, int atlas_width, int atlas_height
     if (params.period_bar) {
         if (origin || !params.example_tileable)
             fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: the period bar needs a wrapping atlas at the origin");
+        if (predicted) fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: no version has the period bar and predicted maps");
         return set ? kPeriodBarMaterialFormatVersion : kPeriodBarAtlasFormatVersion;
     }
+    if (predicted) return origin ? kPredictedOriginMaterialFormatVersion : kPredictedMaterialFormatVersion;
     if (set) return origin ? kOriginMaterialFormatVersion : kCoverMaterialFormatVersion;
     return origin ? kOriginAtlasFormatVersion : kCoverAtlasFormatVersion;
 }
@@ -117,7 +120,23 @@ std::vector<uint8_t> encode_atlas_file(const FileHeader& header, int atlas_width
 std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_width, int atlas_height,
                                           const std::vector<CodedMap>& maps, const GuideMatrix& guide,
                                           const AtlasSynthesisParams& params) {
-    const uint16_t version = version_for(header, atlas_width, atlas_height, true, params);
+    bool predicted = false;
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        const MapPrediction& p = maps[i].prediction;
+        if (!p.predicted()) continue;
+        predicted = true;
+        if (p.source >= int(i) || maps[i].bits != 8 || maps[std::size_t(p.source)].bits != 8 ||
+            p.coefficients.size() != std::size_t(maps[i].channels * maps[std::size_t(p.source)].channels) ||
+            p.offsets.size() != std::size_t(maps[i].channels))
+            fail(VQTEX_ERROR_INTERNAL, "encode_material_file: map '" + maps[i].name + "''s prediction cannot be stored");
+        for (const int32_t v : p.coefficients)
+            if (v < -kMaxPredictionCoefficient || v > kMaxPredictionCoefficient)
+                fail(VQTEX_ERROR_INTERNAL, "encode_material_file: a prediction coefficient out of range");
+        for (const int32_t o : p.offsets)
+            if (o < -kMaxPredictionOffset || o > kMaxPredictionOffset)
+                fail(VQTEX_ERROR_INTERNAL, "encode_material_file: a prediction offset out of range");
+    }
+    const uint16_t version = version_for(header, atlas_width, atlas_height, true, params, predicted);
     check_fields(header, atlas_width, atlas_height, params, version);
     int channels = 0;
     for (const CodedMap& m : maps) {
@@ -142,6 +161,11 @@ std::vector<uint8_t> encode_material_file(const FileHeader& header, int atlas_wi
         w.varint(uint64_t(m.channels));
         w.varint(uint64_t(m.bits));
         w.varint(m.bitstream.size());
+        if (predicts_maps(version)) {
+            w.varint(uint64_t(m.prediction.source + 1));
+            for (const int32_t v : m.prediction.coefficients) w.varint(zigzag(v));
+            for (const int32_t o : m.prediction.offsets) w.varint(zigzag(o));
+        }
     }
     if (!one) {
         w.varint(uint64_t(guide.channels));

@@ -39,7 +39,8 @@ struct CodedMap {
     MapKind kind = MapKind::Colour;
     int channels = 0;
     int bits = 8;
-    std::vector<uint8_t> bitstream;
+    std::vector<uint8_t> bitstream;  // of the residual when the map is predicted
+    MapPrediction prediction;
 };
 
 // A version 11 file (14 with an origin): the levels, exemplar size, seed

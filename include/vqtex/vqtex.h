@@ -556,6 +556,10 @@ typedef struct vqtex_file_info {
     uint32_t atlas_x, atlas_y;                     /* atlas texture: where the atlas lies in the exemplar (its
                                                       top-left corner; 0, 0 when it is the whole exemplar or
                                                       its top-left corner, and in files before format 13) */
+    int32_t map_predicted_from[VQTEX_MAX_MAPS];    /* material set (formats 17 and 18): the index of the map
+                                                      that map i is coded as a prediction from, its atlas
+                                                      holding only what that map does not predict; -1 when
+                                                      map i is coded as it is */
 } vqtex_file_info;
 
 /* Verifies and describes a file (everything the decoder checks). */
