@@ -260,28 +260,42 @@ std::vector<uint8_t> v9_file(const std::vector<MapField>& maps, const std::vecto
     return w.data();
 }
 
-}  // namespace
-
-TEST(Material, WrongFieldsAreRefusedByTheirCheck) {
-    // Real bitstreams, taken from a file the encoder made.
+// The maps' bitstreams of the surface's file, as the encoder made them.
+std::vector<std::vector<uint8_t>> surface_bitstreams() {
     const std::vector<uint8_t>& file = surface_file();
     const AtlasFile f = decode_atlas_file(file.data(), file.size(), 256u << 20);
-    ASSERT_EQ(f.maps.size(), 3u);
     std::vector<std::vector<uint8_t>> bits;
     std::size_t at = f.bitstream_offset;
     for (const AtlasMap& m : f.maps) {
         bits.emplace_back(file.begin() + std::ptrdiff_t(at), file.begin() + std::ptrdiff_t(at + m.bytes));
         at += m.bytes;
     }
-    // The atlas is the 64x64 example: rebuild the same header at that size.
-    const auto with_size = [&](std::vector<uint8_t> v) {
-        // Header fields: aw, ah at bytes 11, 12 (one-byte varints of 32)
-        // become 64; the CRC is made again.
-        v[11] = 64, v[12] = 64;
-        const uint32_t crc = crc32(v.data(), v.size() - 4);
-        for (int k = 0; k < 4; ++k) v[v.size() - 4 + std::size_t(k)] = uint8_t(crc >> (8 * k));
-        return v;
-    };
+    return bits;
+}
+
+// A v9_file made for the surface's 64x64 atlas: its header fields aw, ah
+// at bytes 11, 12 (one-byte varints of 32) become 64; the CRC is made
+// again.
+std::vector<uint8_t> with_size(std::vector<uint8_t> v) {
+    v[11] = 64, v[12] = 64;
+    const uint32_t crc = crc32(v.data(), v.size() - 4);
+    for (int k = 0; k < 4; ++k) v[v.size() - 4 + std::size_t(k)] = uint8_t(crc >> (8 * k));
+    return v;
+}
+
+// A golden file's bytes (tests/golden/).
+std::vector<uint8_t> golden(const std::string& name) {
+    std::ifstream in(std::string(VQTEX_GOLDEN_DIR) + "/" + name, std::ios::binary);
+    return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST(Material, WrongFieldsAreRefusedByTheirCheck) {
+    // Real bitstreams, taken from a file the encoder made.
+    const std::vector<uint8_t>& file = surface_file();
+    const std::vector<std::vector<uint8_t>> bits = surface_bitstreams();
+    ASSERT_EQ(bits.size(), 3u);
     const MapField albedo{"albedo", 0, 3, bits[0]}, normal{"normal", 1, 3, bits[1]}, gloss{"gloss", 2, 1, bits[2]};
     const auto status = [](const std::vector<uint8_t>& bytes, std::string* detail = nullptr) {
         vqtex_status st = VQTEX_OK;
@@ -354,22 +368,9 @@ TEST(Material, WrongFieldsAreRefusedByTheirCheck) {
 }
 
 // The decoder restores a predicted map as its decoded residual plus the
-// prediction from its source (§4.16), in integers, to the bit.
+// prediction from its source (§4.17), in integers, to the bit.
 TEST(Material, APredictedMapIsItsResidualPlusThePrediction) {
-    const std::vector<uint8_t>& file = surface_file();
-    const AtlasFile f = decode_atlas_file(file.data(), file.size(), 256u << 20);
-    std::vector<std::vector<uint8_t>> bits;
-    std::size_t at = f.bitstream_offset;
-    for (const AtlasMap& m : f.maps) {
-        bits.emplace_back(file.begin() + std::ptrdiff_t(at), file.begin() + std::ptrdiff_t(at + m.bytes));
-        at += m.bytes;
-    }
-    const auto with_size = [](std::vector<uint8_t> v) {
-        v[11] = 64, v[12] = 64;
-        const uint32_t crc = crc32(v.data(), v.size() - 4);
-        for (int k = 0; k < 4; ++k) v[v.size() - 4 + std::size_t(k)] = uint8_t(crc >> (8 * k));
-        return v;
-    };
+    const std::vector<std::vector<uint8_t>> bits = surface_bitstreams();
     const std::vector<uint64_t> guide2 = {1, 512, 0, 0, 0, 0};
     MapField albedo{"albedo", 0, 3, bits[0]}, gloss{"gloss", 2, 1, bits[2]};
     const std::vector<uint8_t> plain = with_size(v9_file({albedo, gloss}, guide2));
@@ -634,8 +635,7 @@ TEST(Material, CoordinatesOfAPartAreTheExemplarsPixels) {
 // target, decoded at 96x80 with seed 5: the hash of the albedo's bytes
 // then the height's 16-bit samples, little-endian.
 TEST(Material, GoldenFileDecodesToKnownPixels) {
-    std::ifstream in(std::string(VQTEX_GOLDEN_DIR) + "/material_v9.vqt", std::ios::binary);
-    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::vector<uint8_t> bytes = golden("material_v9.vqt");
     ASSERT_FALSE(bytes.empty()) << "missing tests/golden/material_v9.vqt";
     const vqtex_file_info info = vqtex_cpp::inspect(bytes.data(), bytes.size());
     EXPECT_EQ(info.format_version, 9u);
@@ -654,8 +654,7 @@ TEST(Material, GoldenFileDecodesToKnownPixels) {
 
 // Version 17: a set whose gloss is predicted from its albedo (§4.17).
 TEST(Material, GoldenPredictedFileDecodesToKnownPixels) {
-    std::ifstream in(std::string(VQTEX_GOLDEN_DIR) + "/material_v17.vqt", std::ios::binary);
-    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::vector<uint8_t> bytes = golden("material_v17.vqt");
     ASSERT_FALSE(bytes.empty()) << "missing tests/golden/material_v17.vqt";
     const vqtex_file_info info = vqtex_cpp::inspect(bytes.data(), bytes.size());
     EXPECT_EQ(info.format_version, 17u);

@@ -133,20 +133,15 @@ bool solve(std::vector<double> a, std::vector<double> b, int n, std::vector<doub
     return true;
 }
 
-// The variance a prediction leaves, summed over the map's channels, on the
-// pixels of `grid`.
-double residual_variance(const Image& map, const Image& source, const MapPrediction& p,
-                         const std::vector<std::size_t>& grid) {
+// The variance of `image`'s channels on the pixels of `grid`, summed over
+// its channels; with `minus`, of image - minus.
+double variance_on(const Image& image, const std::vector<std::size_t>& grid, const Image* minus = nullptr) {
     double sum = 0;
-    for (int c = 0; c < map.channels; ++c) {
+    for (int c = 0; c < image.channels; ++c) {
         double s = 0, s2 = 0;
         for (const std::size_t i : grid) {
-            int64_t v = p.offsets[std::size_t(c)] + 128;
-            for (int k = 0; k < source.channels; ++k)
-                v += int64_t(p.coefficients[std::size_t(c * source.channels + k)]) *
-                     source.pixels[i * std::size_t(source.channels) + std::size_t(k)];
-            const double d = double(map.pixels[i * std::size_t(map.channels) + std::size_t(c)]) -
-                             double(std::clamp<int64_t>(v >> 8, 0, 255));
+            const std::size_t at = i * std::size_t(image.channels) + std::size_t(c);
+            const double d = double(image.pixels[at]) - (minus ? double(minus->pixels[at]) : 0.0);
             s += d, s2 += d * d;
         }
         const double n = double(grid.size());
@@ -185,16 +180,8 @@ std::vector<MapPrediction> fit_map_predictions(const std::vector<MaterialMap>& m
     for (std::size_t m = 1; m < maps.size(); ++m) {
         const Image& map = maps[m].image;
         if (maps[m].bits != 8 || maps[m].kind == MapKind::Normal) continue;
-        double own = 0;  // the map's variance, summed over its channels
-        for (int c = 0; c < map.channels; ++c) {
-            double s = 0, s2 = 0;
-            for (const std::size_t i : grid) {
-                const double v = map.pixels[i * std::size_t(map.channels) + std::size_t(c)];
-                s += v, s2 += v * v;
-            }
-            own += s2 / double(grid.size()) - (s / double(grid.size())) * (s / double(grid.size()));
-        }
-        double best = own / 4;  // a prediction must leave at most a quarter
+        // A prediction must leave at most a quarter of the map's variance.
+        double best = variance_on(map, grid) / 4;
         for (std::size_t j = 0; j < m; ++j) {
             if (maps[j].bits != 8) continue;
             const Image& src = maps[j].image;
@@ -230,25 +217,25 @@ std::vector<MapPrediction> fit_map_predictions(const std::vector<MaterialMap>& m
                 solved = solve(a, b[std::size_t(c)], n, x);
                 if (!solved) break;
                 // Q8 coefficients, then the offset that keeps the mean with
-                // them as rounded.
-                double mean_in = 0, mean_out = 0;
-                for (const std::size_t i : grid) mean_out += map.pixels[i * std::size_t(map.channels) + std::size_t(c)];
-                mean_out /= double(grid.size());
+                // them as rounded (the sums of the constant term's row and
+                // of b are the channels' sums over the grid).
+                const double count = double(grid.size());
+                double mean_in = 0;
                 for (int k = 0; k < src.channels; ++k) {
                     const int32_t q = int32_t(std::clamp<long>(std::lround(x[std::size_t(k)] * 256.0),
                                                                -kMaxPredictionCoefficient, kMaxPredictionCoefficient));
                     p.coefficients.push_back(q);
-                    double mk = 0;
-                    for (const std::size_t i : grid) mk += src.pixels[i * std::size_t(src.channels) + std::size_t(k)];
-                    mean_in += double(q) * mk / double(grid.size());
+                    mean_in += double(q) * a[std::size_t((n - 1) * n + k)] / count;
                 }
+                const double mean_out = b[std::size_t(c)][std::size_t(n - 1)] / count;
                 p.offsets.push_back(int32_t(std::clamp<long>(std::lround(mean_out * 256.0 - mean_in - 128.0),
                                                              -kMaxPredictionOffset, kMaxPredictionOffset)));
             }
             if (!solved) continue;
             double gain = 0;  // the sum of the squared coefficients
             for (const int32_t q : p.coefficients) gain += (double(q) / 256.0) * (double(q) / 256.0);
-            const double left = residual_variance(map, src, p, grid) + kSourceNoise * kSourceNoise * gain;
+            const Image prediction = predict_map(src, p, map.channels);
+            const double left = variance_on(map, grid, &prediction) + kSourceNoise * kSourceNoise * gain;
             if (left < best) {
                 best = left;
                 predictions[m] = std::move(p);
