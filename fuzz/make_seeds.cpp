@@ -16,6 +16,7 @@
 
 #include "common/checksum.hpp"
 #include "atlas_v3_writer.hpp"
+#include "engine/quilt.hpp"
 #include "format/atlas_file.hpp"
 #include "writer/atlas_writer.hpp"
 #include "image_io.hpp"
@@ -189,6 +190,15 @@ int main(int argc, char** argv) {
                     vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, barred);
                 write(out / "decode" / (name + "_v15.vqt"), v15.data(), v15.size());
                 ++files;
+                // Version 19: the same atlas laid out by quilting.
+                vqtex::AtlasSynthesisParams quilted = sp;
+                quilted.quilt = vqtex::quilt_block(f.atlas.width, f.atlas.height);
+                if (quilted.quilt > 0) {
+                    const std::vector<uint8_t> v19 =
+                        vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, quilted);
+                    write(out / "decode" / (name + "_v19.vqt"), v19.data(), v19.size());
+                    ++files;
+                }
                 // Version 13: the atlas a part of a larger exemplar, its
                 // origin stored.
                 h.atlas_x = 3;

@@ -864,6 +864,74 @@ TEST(AtlasFile, GoldenPeriodBarFileDecodesToKnownPixels) {
     EXPECT_TRUE(f.params.period_bar);
 }
 
+// Pins format version 19 and its decoder, quilting: cellular_v15.vqt's
+// bytes with the version 19 (the same atlas, wrapping), so that the two
+// decodes differ by the layout alone.
+TEST(AtlasFile, GoldenQuiltFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes =
+        check_golden_compact("cellular_v19.vqt", 19, 0xa7dd1b38084cb8a9ull, 0xb29f381b5bd1654full, 256, 256, 15);
+    if (bytes.empty()) return;
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
+    EXPECT_EQ(f.params.quilt, 64);
+    EXPECT_FALSE(f.params.period_bar);
+    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).quilt_block, 64u);
+}
+
+// The layout asked of the encoder: quilting writes version 19 for a
+// wrapping example (the same atlas as the engine's file), decoded alike on
+// any thread count, differently for another seed, and tiling; an example
+// that does not wrap keeps the engine.
+TEST(AtlasFile, QuiltLayoutIsVersion19OnWrappingExamplesOnly) {
+    const vqtex::Image ex = load_corpus("cellular_128.png");
+    vqtex_encode_params p = atlas_params();
+    p.layout = VQTEX_LAYOUT_COHERENT;
+    const std::vector<uint8_t> coherent = encode(ex, p);
+    p.layout = VQTEX_LAYOUT_QUILT;
+    vqtex_encode_stats stats{};
+    const std::vector<uint8_t> quilted = encode(ex, p, &stats);
+    EXPECT_EQ(vqtex_cpp::inspect(coherent.data(), coherent.size()).format_version, 15u);
+    EXPECT_EQ(vqtex_cpp::inspect(quilted.data(), quilted.size()).format_version, 19u);
+    EXPECT_EQ(stats.quilt, 1u);
+    EXPECT_EQ(stats.period_bar, 0u);
+    ASSERT_EQ(coherent.size(), quilted.size()) << "the same atlas, one more version";
+    EXPECT_TRUE(std::equal(coherent.begin() + 10, coherent.end() - 4, quilted.begin() + 10));
+    const vqtex::Image one = decode(quilted, decode_params(200, 150, 3, 1));
+    for (uint32_t threads : {2u, 3u}) EXPECT_EQ(decode(quilted, decode_params(200, 150, 3, threads)).pixels, one.pixels);
+    EXPECT_NE(decode(quilted, decode_params(200, 150, 4, 2)).pixels, one.pixels);
+    EXPECT_NE(decode(coherent, decode_params(200, 150, 3, 2)).pixels, one.pixels);
+    const SeamStats seams = seam_stats(one);
+    EXPECT_LT(seams.rank_x, 0.95) << "the output tiles across x";
+    EXPECT_LT(seams.rank_y, 0.95) << "the output tiles across y";
+    // Noise on a ramp does not tile: the engine, whatever the layout asked.
+    vqtex::Image noise = make_random(64, 64, 3, 4);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            for (int c = 0; c < 3; ++c) noise.at(x, y)[c] = uint8_t(noise.at(x, y)[c] / 4 + 3 * x);
+    const std::vector<uint8_t> plain = encode(noise, p, &stats);
+    EXPECT_EQ(vqtex_cpp::inspect(plain.data(), plain.size()).format_version, 10u);
+    EXPECT_EQ(stats.quilt, 0u);
+    p.layout = 3;
+    vqtex_image in{64, 64, 3, const_cast<uint8_t*>(noise.pixels.data())};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    vqtex_error err{};
+    EXPECT_EQ(vqtex_encode(&p, &in, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(err.detail).find("layout"), std::string::npos) << err.detail;
+}
+
+// A version 19 file whose atlas is too small to quilt is corrupt.
+TEST(AtlasFile, QuiltFileOfATinyAtlasIsCorrupt) {
+    std::vector<uint8_t> file = encode(make_random(12, 12, 3, 8), atlas_params());
+    ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 10u);
+    file[8] = 19;
+    fix_crc(file);
+    vqtex_status st = VQTEX_OK;
+    vqtex_error err{};
+    decode(file, decode_params(32, 32), &st, &err);
+    EXPECT_EQ(st, VQTEX_ERROR_CORRUPT);
+    EXPECT_NE(std::string(err.detail).find("at least 16"), std::string::npos) << err.detail;
+}
+
 TEST(AtlasFile, ParametersOutsideTheAtlasPathAreRefused) {
     const vqtex::Image ex = load_corpus("cellular_128.png");
     vqtex_image in{128, 128, 3, const_cast<uint8_t*>(ex.pixels.data())};

@@ -19,11 +19,15 @@ using namespace vqtex_test;
 
 namespace {
 
+// The engine's layout, so that what wraps is all that is asked (quilting,
+// which the encoder may choose for an atlas that wraps, is tested in
+// test_atlas.cpp and below).
 vqtex_encode_params wrap_params(uint32_t tileable) {
     vqtex_encode_params p;
     vqtex_encode_params_init(&p);
     p.threads = 1;
     p.example_tileable = tileable;
+    p.layout = VQTEX_LAYOUT_COHERENT;
     return p;
 }
 
@@ -150,6 +154,23 @@ TEST(ExampleWrap, TheEncoderWrapsWhatTilesUnlessTold) {
     vqtex_error err{};
     EXPECT_EQ(vqtex_encode(&bad, &in, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(data, nullptr);
+}
+
+// Left to choose the layout, the encoder quilts the demo's cells (both
+// coherences clearly lower) and keeps the engine for the bricks; a
+// quilted output repeats the example no more than a barred one does (its
+// blocks lie inside the example).
+TEST(ExampleWrap, TheEncoderQuiltsTheCellsButNotTheBricks) {
+    vqtex_encode_params p = wrap_params(VQTEX_TILEABLE_DETECT);
+    p.layout = VQTEX_LAYOUT_AUTO;
+    vqtex_encode_stats stats{};
+    const std::vector<uint8_t> cells = encode(load_corpus("cellular_128.png"), p, &stats);
+    EXPECT_EQ(cells[8], 19);
+    EXPECT_EQ(stats.quilt, 1u);
+    EXPECT_EQ(stats.atlas_wraps, 1u);
+    encode(load_corpus("bricks_128.png"), p, &stats);
+    EXPECT_EQ(stats.quilt, 0u);
+    EXPECT_LT(share_repeated(decode(cells, decode_params(512, 512, 1, 2)), 128), 0.02);
 }
 
 // A wrapping atlas lets one copy run across the whole output, which then

@@ -171,17 +171,28 @@ TEST(Tools, HelpWorks) {
 TEST(Tools, EncodeDecodeInfoRoundTrip) {
     const fs::path dir = scratch_dir();
     const std::string vqt = (dir / "c.vqt").string(), png = (dir / "c.png").string();
-    ToolRun r = encode_tool(corpus + "/cellular_128.png " + vqt + " -q 10 --json");
+    ToolRun r = encode_tool(corpus + "/cellular_128.png " + vqt + " -q 10 --layout coherent --json");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("\"quality\":10,"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bytes\":"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"bpp\":"), std::string::npos) << r.output;
     // What the atlas is: at -q 10, the whole example, which tiles, so it
-    // wraps with the period bar.
+    // wraps with the period bar (laid out by the engine, as asked).
     EXPECT_NE(r.output.find("\"atlas\":{\"width\":128,\"height\":128,\"x\":0,\"y\":0,\"kind\":\"whole\",\"wraps\":true,"
-                            "\"period_bar\":true,\"example_tiles\":true}"),
+                            "\"period_bar\":true,\"quilt\":false,\"example_tiles\":true}"),
               std::string::npos)
         << r.output;
+    // Laid out by quilting: no period bar, and vqtex-info says so.
+    const std::string quilted = (dir / "q.vqt").string();
+    r = encode_tool(corpus + "/cellular_128.png " + quilted + " -q 10 --layout quilt --json");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("\"period_bar\":false,\"quilt\":true,"), std::string::npos) << r.output;
+    r = info_tool(quilted);
+    EXPECT_NE(r.output.find("format 19"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("image quilting, blocks of 64x64 pixels"), std::string::npos) << r.output;
+    r = info_tool(quilted + " --json");
+    EXPECT_NE(r.output.find("\"quilt_block\":64"), std::string::npos) << r.output;
+    EXPECT_NE(encode_tool(corpus + "/cellular_128.png " + quilted + " --layout sideways").status, 0);
     r = decode_tool(vqt + " " + png + " --size 200x120 --seed 3 --json");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("\"decode_seconds\":"), std::string::npos) << r.output;

@@ -37,11 +37,14 @@ void add_atlas_json(const vqtex_encode_stats& stats, FileReport& r) {
                            {"kind", kAtlasKinds[std::min(stats.atlas_kind, 2u)]},
                            {"wraps", stats.atlas_wraps != 0},
                            {"period_bar", stats.period_bar != 0},
+                           {"quilt", stats.quilt != 0},
                            {"example_tiles", stats.example_tiles != 0}};
 }
 
 void add_atlas_text(const vqtex_encode_stats& stats, FileReport& r) {
-    if (stats.atlas_width && stats.atlas_kind == 0 && stats.atlas_wraps)
+    if (stats.quilt)
+        r.text += "atlas: the whole example, which tiles: the output is laid out by quilting\n";
+    else if (stats.atlas_width && stats.atlas_kind == 0 && stats.atlas_wraps)
         r.text += stats.period_bar ? "atlas: the whole example, which tiles: it wraps, and no copy repeats it a period on\n"
                                    : "atlas: the whole example, which repeats its tile: it wraps\n";
     else if (stats.atlas_width && stats.atlas_kind == 0 && stats.example_tiles)
@@ -581,6 +584,12 @@ int main(int argc, char** argv) {
                                        "image or a set wraps without it when the example is found to tile)");
     app.add_flag("--no-tileable-example", not_tileable, "the example does not wrap, even if it is found to tile")
         ->excludes(tileable_flag);
+    std::string layout = "auto";
+    app.add_option("--layout", layout,
+                   "how a wrapping atlas's output is laid out: auto (the better of the two on this example), "
+                   "coherent (the engine) or quilt (image quilting)")
+        ->check(CLI::IsMember({"auto", "coherent", "quilt"}))
+        ->capture_default_str();
     app.add_option("-j,--threads", threads,
                    "threads (default: all cores), shared between the files of a batch; output is identical");
     app.add_flag("--json", json, "print machine-readable statistics on stdout (one JSON line per file)");
@@ -616,6 +625,7 @@ int main(int argc, char** argv) {
                                             : VQTEX_TILEABLE_DETECT;
         p.seed = seed;
         p.target_size = target_size;
+        p.layout = layout == "quilt" ? VQTEX_LAYOUT_QUILT : layout == "coherent" ? VQTEX_LAYOUT_COHERENT : VQTEX_LAYOUT_AUTO;
         // Options that only a trees file has make no sense for an atlas.
         const bool tree_options = !codewords.empty() || entries || precision || pixel_precision || smoothing ||
                                   no_entry_keys || closing_divisor || closing_window || backtrack || no_closing ||

@@ -92,6 +92,7 @@ FileReport info_one(const std::string& input) {
         j["cover"] = info.cover;
         j["atlas_wraps"] = info.atlas_wraps != 0;
         j["period_bar"] = info.period_bar != 0;
+        j["quilt_block"] = info.quilt_block;
         if (info.atlas_frames) j["atlas_frames"] = info.atlas_frames;
         j["atlas_share"] = double(info.atlas_width) * info.atlas_height /
                            (double(info.exemplar_width) * info.exemplar_height);
@@ -176,6 +177,9 @@ FileReport info_one(const std::string& input) {
         if (info.atlas_frames)
             add(t, "decoding  coherent engine for animations, %u levels, an atlas of %u voxels\n", info.levels,
                 info.codewords[0]);
+        else if (info.quilt_block)
+            add(t, "decoding  image quilting, blocks of %ux%u pixels, an atlas of %u pixels, %s\n", info.quilt_block,
+                info.quilt_block, info.codewords[0], seams.c_str());
         else
             add(t, "decoding  coherent engine, %u levels, an atlas of %u pixels, %s%s%s%s%s\n", info.levels,
                 info.codewords[0], seams.c_str(), copies.c_str(), edges.c_str(), cuts.c_str(), covers.c_str());

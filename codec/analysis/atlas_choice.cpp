@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "common/parallel.hpp"
 #include "engine/coherent_synthesis.hpp"
+#include "engine/quilt.hpp"
 #include "format/atlas_coder.hpp"
 #include "writer/atlas_encoder.hpp"
 #include "format/atlas_file.hpp"
@@ -128,6 +129,63 @@ ProxyScores proxy_scores(const vqtex_metrics::Image& reference, const std::vecto
                                        std::vector<uint8_t>(out.pixels, out.pixels + std::size_t(out.width) * out.height * out.channels)};
     vqtex_image_free(&out);
     return proxy_scores_of(reference, texture, max_windows);
+}
+
+// The same atlas file laid out by quilting (format 19): its bitstream and
+// fields, the period bar dropped.
+std::vector<uint8_t> quilted_file(const std::vector<uint8_t>& file) {
+    // The encoder made this file: any memory it needs was already spent.
+    const AtlasFile f = decode_atlas_file(file.data(), file.size(), std::size_t(1) << 30);
+    AtlasSynthesisParams sp = f.params;
+    sp.period_bar = false;
+    sp.quilt = quilt_block(f.atlas.width, f.atlas.height);
+    return encode_atlas_file(f.header, f.atlas.width, f.atlas.height,
+                             std::vector<uint8_t>(file.begin() + long(f.bitstream_offset),
+                                                  file.begin() + long(f.bitstream_offset + f.atlas_bytes)),
+                             sp);
+}
+
+// A file's texture at twice the atlas's side (at most 512).
+vqtex_metrics::Image proxy_texture(const std::vector<uint8_t>& file, int width, int height, uint64_t seed,
+                                   int threads) {
+    vqtex_decode_params p;
+    vqtex_decode_params_init(&p);
+    p.width = uint32_t(width);
+    p.height = uint32_t(height);
+    p.seed = seed;
+    p.threads = uint32_t(threads);
+    vqtex_image out{};
+    vqtex_error err{};
+    if (vqtex_decode(&p, file.data(), file.size(), &out, &err) != VQTEX_OK)
+        fail(VQTEX_ERROR_INTERNAL, std::string("a candidate atlas did not decode: ") + err.detail);
+    vqtex_metrics::Image texture{int(out.width), int(out.height), int(out.channels),
+                                 std::vector<uint8_t>(out.pixels, out.pixels + std::size_t(out.width) * out.height * out.channels)};
+    vqtex_image_free(&out);
+    return texture;
+}
+
+// Whether quilting beats the coherent engine on this example (kQuiltGain),
+// on the means of kQuiltProxySeeds decodes of each.
+bool quilting_wins(const Image& example, const std::vector<uint8_t>& coherent, const std::vector<uint8_t>& quilted,
+                   int threads) {
+    const vqtex_metrics::Image reference = as_metrics_image(example);
+    const int w = std::min(512, 2 * example.width), h = std::min(512, 2 * example.height);
+    struct Scores {
+        double half = 0, coherence = 0, swd = 0;
+    };
+    const auto score = [&](const std::vector<uint8_t>& file) {
+        Scores s;
+        for (int k = 0; k < kQuiltProxySeeds; ++k) {
+            const vqtex_metrics::Image t = proxy_texture(file, w, h, uint64_t(2 + k), threads);
+            s.half += vqtex_metrics::coherence_half_resolution(t, reference, 7, 1024) / kQuiltProxySeeds;
+            s.coherence += vqtex_metrics::coherence(t, reference, 7, 1024) / kQuiltProxySeeds;
+            s.swd += vqtex_metrics::sliced_wasserstein(t, reference).mean / kQuiltProxySeeds;
+        }
+        return s;
+    };
+    const Scores e = score(coherent), q = score(quilted);
+    return q.half <= (1 - kQuiltGain) * e.half && q.coherence <= (1 - kQuiltGain) * e.coherence &&
+           q.swd <= (1 + kQuiltSwdSlack) * e.swd;
 }
 
 }  // namespace
@@ -389,6 +447,15 @@ AtlasChoice choose_atlas(const Image& example, const AtlasChoiceOptions& options
     c.wraps = wraps && c.atlas.width == source.width && c.atlas.height == source.height;
     c.period_bar = c.wraps && wrap.period_bar;
     c.example_tiles = tiling.tiles;
+    if (c.wraps && !c.tile && options.layout != AtlasChoiceOptions::Layout::Coherent &&
+        quilt_block(c.atlas.width, c.atlas.height) > 0) {
+        std::vector<uint8_t> quilted = quilted_file(c.file);
+        if (options.layout == AtlasChoiceOptions::Layout::Quilt || quilting_wins(source, c.file, quilted, options.threads)) {
+            c.file = std::move(quilted);
+            c.quilt = true;
+            c.period_bar = false;
+        }
+    }
     return c;
 }
 

@@ -24,6 +24,7 @@ CoherentOptions coherent_options(const AtlasSynthesisParams& params, int width, 
     opt.cover = params.cover;
     opt.period_bar = params.period_bar && params.example_tileable;
     opt.blend_straight_alpha = params.blend_straight_alpha;
+    opt.quilt = params.quilt;
     return opt;
 }
 

@@ -428,6 +428,7 @@ vqtex_status vqtex_inspect(const uint8_t* data, size_t size, uint64_t memory_lim
             info->cover = uint32_t(f.params.cover);
             info->atlas_wraps = f.params.example_tileable ? 1u : 0u;
             info->period_bar = f.params.period_bar ? 1u : 0u;
+            info->quilt_block = uint32_t(f.params.quilt);
             if (f.maps.empty()) {
                 info->map_count = 1;
                 std::snprintf(info->maps[0].name, sizeof info->maps[0].name, "texture");

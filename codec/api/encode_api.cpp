@@ -67,6 +67,9 @@ void encode_atlas(const vqtex_encode_params& p, const Image& ex, int threads, co
     o.detect_tileable = p.example_tileable == VQTEX_TILEABLE_DETECT;
     o.seed = p.seed;
     o.threads = threads;
+    o.layout = p.layout == VQTEX_LAYOUT_QUILT      ? AtlasChoiceOptions::Layout::Quilt
+               : p.layout == VQTEX_LAYOUT_COHERENT ? AtlasChoiceOptions::Layout::Coherent
+                                                   : AtlasChoiceOptions::Layout::Auto;
     const AtlasChoice r = choose_atlas(ex, o);
     if (progress && !progress(1, 1)) fail(VQTEX_ERROR_CANCELLED, "encoding cancelled by the progress callback");
     copy_out(r.file, data, size);
@@ -84,6 +87,7 @@ void encode_atlas(const vqtex_encode_params& p, const Image& ex, int threads, co
         stats->atlas_y = uint32_t(r.y);
         stats->atlas_wraps = r.wraps ? 1u : 0u;
         stats->period_bar = r.period_bar ? 1u : 0u;
+        stats->quilt = r.quilt ? 1u : 0u;
         stats->example_tiles = r.example_tiles ? 1u : 0u;
         stats->atlas_kind = r.tile ? 2u : (r.atlas.width == ex.width && r.atlas.height == ex.height) ? 0u : 1u;
     }

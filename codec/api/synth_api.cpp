@@ -52,6 +52,7 @@ void synthesize_coherent_api(const vqtex_synth_params& params, const Image& exam
     engine.period_bar = engine.example_tileable && example_tiling(example).period_bar();
     CoherentOptions opt = coherent_options(engine, int(params.width), int(params.height), params.seed);
     opt.margin = int(c.margin);
+    if (const char* q = std::getenv("VQTEX_QTMP")) opt.quilt = std::atoi(q);
     opt.threads = threads;
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
     CoherentResult r = synthesize_coherent(example, levels, params.example_tileable != 0, int(c.coherence), opt,

@@ -133,6 +133,9 @@ void validate(const vqtex_encode_params* p) {
     if (p->example_tileable > VQTEX_TILEABLE_NO)
         fail(VQTEX_ERROR_INVALID_ARGUMENT, "example_tileable must be VQTEX_TILEABLE_DETECT, _YES or _NO (got " +
                                                std::to_string(p->example_tileable) + ")");
+    if (p->layout > VQTEX_LAYOUT_QUILT)
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "layout must be VQTEX_LAYOUT_AUTO, _COHERENT or _QUILT (got " +
+                                               std::to_string(p->layout) + ")");
 }
 
 void validate(const vqtex_volume_encode_params* p) {

@@ -12,6 +12,7 @@
 #include "engine/coherent_torus.hpp"
 #include "engine/seam_blend.hpp"
 #include "engine/seam_cut.hpp"
+#include "engine/quilt.hpp"
 
 namespace vqtex {
 namespace coherent {
@@ -150,7 +151,39 @@ uint64_t band_bytes(const Image& example, const AppearanceSpace& space, int cohe
     return held >= spare - kMinBandBytes ? kMinBandBytes : std::min(kBandBytes, spare - held);
 }
 
+// The example's pixels (or each readout's) through a whole torus of
+// positions, then the torus cut.
+std::vector<ReadImage> read_whole(const Image& example, PositionMap map, const CoherentOptions& options,
+                                  const std::vector<Readout>& readouts, bool wraps) {
+    std::vector<ReadImage> out;
+    if (readouts.empty()) {
+        out.emplace_back();
+        out.back().image = read_positions(example, std::move(map), options.roll, options.threads, options.blend, wraps,
+                                          options.blend_straight_alpha);
+        return out;
+    }
+    for (const Readout& r : readouts) {
+        out.push_back(allocate(r, map.width, map.height));
+        read_rows(r, wraps, options.blend,
+                  [&](int y) {
+                      return map.positions.data() + std::size_t(Image::wrap(y, map.height)) * std::size_t(map.width);
+                  },
+                  0, map.height, out.back(), options.threads);
+    }
+    std::vector<uint32_t>().swap(map.positions);
+    if (options.roll) roll_all(out, readouts, map.width, map.height, options.threads);
+    return out;
+}
+
 }  // namespace
+
+std::vector<ReadImage> quilt_pixels(const Image& example, bool wraps, const CoherentOptions& options,
+                                    const std::vector<Readout>& readouts) {
+    PositionMap map{options.width, options.height,
+                    quilt_positions(example, options.width, options.height, options.quilt, options.seed,
+                                    options.threads)};
+    return read_whole(example, std::move(map), options, readouts, wraps);
+}
 
 // The finest level whole, or for a large output in bands.
 std::vector<ReadImage> synthesize_pixels(const Image& example, int frame, const AppearanceSpace& space,
@@ -175,23 +208,7 @@ std::vector<ReadImage> synthesize_pixels(const Image& example, int frame, const 
         cut_seams(example, space.wraps, map.width, map.height, map.positions, cut_rules(options), options.threads);
         cover_seams(example, space.wraps, map.width, map.height, map.positions, cover_rules(options),
                     options.threads);
-        if (readouts.empty()) {
-            out.emplace_back();
-            out.back().image = read_positions(example, std::move(map), options.roll, options.threads, options.blend,
-                                              space.wraps, options.blend_straight_alpha);
-            return out;
-        }
-        for (const Readout& r : read) {
-            out.push_back(allocate(r, map.width, map.height));
-            read_rows(r, space.wraps, options.blend,
-                      [&](int y) {
-                          return map.positions.data() + std::size_t(Image::wrap(y, map.height)) * std::size_t(map.width);
-                      },
-                      0, map.height, out.back(), options.threads);
-        }
-        std::vector<uint32_t>().swap(map.positions);
-        if (options.roll) roll_all(out, read, map.width, map.height, options.threads);
-        return out;
+        return read_whole(example, std::move(map), options, readouts, space.wraps);
     }
     return synthesize_in_bands(example, read, frame, passes, band, margin);
 }

@@ -26,4 +26,11 @@ std::vector<ReadImage> synthesize_pixels(const Image& example, int margin, const
                                          AppearanceSpace* by_level_space = nullptr,
                                          CoherenceSets* by_level_sets = nullptr);
 
+// The output of `options`' size laid out by quilting with blocks of
+// options.quilt pixels (quilt.hpp) instead of the coherent passes, read as
+// synthesize_pixels reads; `wraps`: the example tiles (the read-out's blend
+// wraps across its edges). Needs no analysis.
+std::vector<ReadImage> quilt_pixels(const Image& example, bool wraps, const CoherentOptions& options,
+                                    const std::vector<Readout>& readouts = {});
+
 }  // namespace vqtex::coherent

@@ -75,6 +75,18 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
     const auto t0 = Clock::now();
     if (analyse_progress && !analyse_progress(0, 1))
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+    if (options.quilt > 0) {
+        if (example.width < options.quilt || example.height < options.quilt)
+            fail(VQTEX_ERROR_INVALID_ARGUMENT, "the quilting block is larger than the example");
+        CoherentResult r;
+        std::vector<ReadImage> images = coherent::quilt_pixels(example, example_tileable, options, readouts);
+        if (readouts.empty())
+            r.image = std::move(images[0].image);
+        else
+            r.maps = std::move(images);
+        r.synthesise_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+        return r;
+    }
     // The copies are laid out in the example less its frame (copy_margin).
     const int margin = copy_margin(example.width, example.height, example_tileable, options.margin);
     Image inner;

@@ -72,6 +72,11 @@ struct CoherentOptions : CoherentRun {
     // so that the output does not repeat the example on a grid (the period
     // bar, coherent_pixel_correction.cpp; docs/FORMAT.md §4.8).
     bool period_bar = false;
+    // Above 0: the output is laid out by image quilting with square blocks
+    // of this side (quilt.hpp) in place of the coherent passes, cuts and
+    // covers, and no analysis is made; the read-out and the torus cut are
+    // the same.
+    int quilt = 0;
     // The frame, in example pixels, that the copies are laid out inside of
     // (copy_margin), so that a cut always has that much of each copy to
     // move into; 0: none.

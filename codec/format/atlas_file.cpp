@@ -20,6 +20,7 @@
 #include "common/error.hpp"
 #include "common/parallel.hpp"
 #include "engine/coherent_synthesis.hpp"
+#include "engine/quilt.hpp"
 #include "engine/seam_blend.hpp"
 #include "format/atlas_coder.hpp"
 #include "format/atlas_compact.hpp"
@@ -228,6 +229,13 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
                   "applies only there, and an atlas that does not wrap is written as version " +
                   std::to_string(version == kPeriodBarAtlasFormatVersion ? kCoverAtlasFormatVersion
                                                                          : kCoverMaterialFormatVersion));
+    if (quilts(version)) {
+        p.quilt = quilt_block(aw, ah);
+        if (p.quilt == 0)
+            r.corrupt("a version " + std::to_string(version) + " file's atlas is " + std::to_string(aw) + "x" +
+                      std::to_string(ah) + ": quilting needs at least " + std::to_string(kMinQuiltSide) +
+                      " pixels on a side");
+    }
     p.blend = default_blend(version);
     p.relocate = default_relocation(version);
     p.edge_guard = default_edge_guard(version);

@@ -90,6 +90,10 @@ struct AtlasSynthesisParams {
     // Whether a wrapping atlas is decoded with the period bar (versions 15
     // and 16; CoherentOptions::period_bar).
     bool period_bar = false;
+    // Version 19: the side of the quilting blocks the output is laid out
+    // with (quilt_block of the atlas's size; CoherentOptions::quilt); 0 for
+    // the coherent passes of every other version.
+    int quilt = 0;
     // Whether the blend weights colour by straight alpha (version 8; files
     // of versions 3 to 7 blend every channel alike).
     bool blend_straight_alpha = true;

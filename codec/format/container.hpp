@@ -84,12 +84,20 @@ inline constexpr uint16_t kPeriodBarMaterialFormatVersion = 16;
 // map of the set is predicted.
 inline constexpr uint16_t kPredictedMaterialFormatVersion = 17;
 inline constexpr uint16_t kPredictedOriginMaterialFormatVersion = 18;
-// Versions 4 to 11 and 13 to 18: one still atlas or a set of maps behind
+// Version 19 (docs/FORMAT.md §2.8, §4.18): version 10, one atlas at the
+// exemplar's corner, whose output is laid out by image quilting
+// (engine/quilt.hpp) instead of the coherent passes. The encoder writes it,
+// in place of 10 or 15, for an example that tiles when quilting scores
+// better on it (docs/ATLAS.md "Examples that tile").
+inline constexpr uint16_t kQuiltAtlasFormatVersion = 19;
+// Versions 4 to 11 and 13 to 19: one still atlas or a set of maps behind
 // the compact header.
 inline bool is_compact_atlas_version(uint16_t version) {
     return (version >= kCompactAtlasFormatVersion && version <= kCoverMaterialFormatVersion) ||
-           (version >= kOriginAtlasFormatVersion && version <= kPredictedOriginMaterialFormatVersion);
+           (version >= kOriginAtlasFormatVersion && version <= kQuiltAtlasFormatVersion);
 }
+// Whether a compact version's file is laid out by quilting (19).
+inline bool quilts(uint16_t version) { return version == kQuiltAtlasFormatVersion; }
 // Whether a compact version's file has maps predicted from others (17, 18).
 inline bool predicts_maps(uint16_t version) {
     return version == kPredictedMaterialFormatVersion || version == kPredictedOriginMaterialFormatVersion;

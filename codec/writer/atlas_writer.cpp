@@ -42,6 +42,11 @@ uint16_t version_for(const FileHeader& header, int atlas_width, int atlas_height
     if (origin && (uint64_t(header.atlas_x) + uint64_t(atlas_width) > header.exemplar_width ||
                    uint64_t(header.atlas_y) + uint64_t(atlas_height) > header.exemplar_height))
         fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: the atlas does not lie inside the exemplar");
+    if (params.quilt) {
+        if (origin || set || predicted || params.period_bar)
+            fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: quilting is for one atlas at the origin, without the period bar");
+        return kQuiltAtlasFormatVersion;
+    }
     if (params.period_bar) {
         if (origin || !params.example_tileable)
             fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: the period bar needs a wrapping atlas at the origin");

@@ -336,6 +336,16 @@ typedef struct vqtex_trees_params {
 #define VQTEX_TILEABLE_YES 1u
 #define VQTEX_TILEABLE_NO 2u
 
+/* How the output of a wrapping atlas is laid out (vqtex_encode_params.layout).
+ * AUTO: the encoder decodes the file both ways and keeps quilting (format 19)
+ * where it keeps the example's structure better, the coherent engine
+ * elsewhere (docs/ATLAS.md "Examples that tile"). COHERENT: always the
+ * engine. QUILT: quilting wherever the atlas wraps and is the whole example.
+ * An atlas that does not wrap is always laid out by the engine. */
+#define VQTEX_LAYOUT_AUTO 0u
+#define VQTEX_LAYOUT_COHERENT 1u
+#define VQTEX_LAYOUT_QUILT 2u
+
 typedef struct vqtex_encode_params {
     uint32_t struct_size;       /* set by vqtex_encode_params_init */
     vqtex_codebook codebook;    /* what the file stores: an atlas (default) or TSVQ trees [--trees] */
@@ -353,6 +363,9 @@ typedef struct vqtex_encode_params {
     uint32_t threads;           /* 0 = all cores [--threads] */
     vqtex_progress_fn progress;
     void* progress_user;
+    /* Atlas of one image only: VQTEX_LAYOUT_AUTO (0, default), _COHERENT or
+       _QUILT [--layout auto|coherent|quilt] */
+    uint32_t layout;
     /* Trees only. */
     vqtex_trees_params trees;
 } vqtex_encode_params;
@@ -392,6 +405,8 @@ typedef struct vqtex_encode_stats {
     /* 1: the atlas wraps and is decoded with the period bar (format 15 or
      * 16): no copy shows the example again a period further on. */
     uint32_t period_bar;
+    /* 1: the output is laid out by quilting (format 19). */
+    uint32_t quilt;
 } vqtex_encode_stats;
 
 /* Encodes an example into a new buffer (*data, *size), freed with
@@ -543,6 +558,8 @@ typedef struct vqtex_file_info {
                                                       or the tile a repeating example is made of) */
     uint32_t period_bar;                           /* atlas texture: 1 when a wrapping atlas is decoded with the
                                                       period bar (formats 15 and 16) */
+    uint32_t quilt_block;                          /* atlas texture: the side of the blocks the output is
+                                                      laid out with by quilting (format 19); 0 otherwise */
     uint32_t atlas_frames;                         /* atlas animation (format 12): the atlas's frames, the
                                                       default output frame count; 0 otherwise */
     uint32_t map_count;                            /* maps in the file: 1 but for a material set */

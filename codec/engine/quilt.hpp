@@ -1,0 +1,57 @@
+// quilt.hpp - the output laid out by image quilting (Efros & Freeman 2001,
+// "Image quilting for texture synthesis and transfer", section 2) with the
+// patch insertion cut of Kwatra, Schödl, Essa, Turk, Bobick 2003
+// ("Graphcut textures", section 3), on the output torus.
+//
+// Square blocks of the example, each the one (among those within a
+// tolerance of the best, picked by the seed) whose pixels agree best with
+// what the blocks before it left in its overlap, are placed in raster order
+// with a fixed overlap; a minimum cut then decides, pixel by pixel, where the
+// new block shows and where the output stays as it was. Where the
+// coherent engine's copies meet along the lines its coarse levels laid out,
+// the blocks here meet wherever they agree: a cell, a brick or a plank is
+// cut only where the example offers nothing that continues it. The blocks
+// lie inside the example, never across its edge, so that a wrapping example
+// is not shown again one period further on. The output's last blocks
+// overlap its first ones across the torus, so it tiles.
+//
+// Every cost is an exact integer and each block's search runs over all the
+// example's places, so the positions are the same for any thread count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/image.hpp"
+
+namespace vqtex {
+
+// A near-best block is one whose overlap cost is at most this many percent
+// above the best's (Efros & Freeman's 0.1).
+inline constexpr int kQuiltTolerancePercent = 10;
+
+// The least example side quilting works on.
+inline constexpr int kMinQuiltSide = 16;
+
+// The block side for an example of this size: half its shorter side, at
+// most 64, a multiple of 4; 0 when the example is too small (below
+// kMinQuiltSide).
+int quilt_block(int example_width, int example_height);
+
+// How an output is covered: blocks of `block` pixels (half the output's
+// shorter side at most, at least 4 or the side), their overlap a quarter
+// of the block, and `nx` x `ny` of them at even steps of about block -
+// overlap: block i of a row starts at i * width / nx (i * height / ny for
+// a column), so that the last one overlaps the first across the torus as
+// much as any other pair does.
+struct QuiltGrid {
+    int block = 0, overlap = 0, nx = 0, ny = 0;
+};
+QuiltGrid quilt_grid(int block, int width, int height);
+
+// The width x height torus of packed example positions
+// (coherent_positions.hpp) laid out with blocks of `block` pixels.
+std::vector<uint32_t> quilt_positions(const Image& example, int width, int height, int block, uint64_t seed,
+                                      int threads);
+
+}  // namespace vqtex

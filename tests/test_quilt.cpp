@@ -1,0 +1,139 @@
+// Tests of the quilting layout (engine/quilt.hpp; Efros & Freeman 2001,
+// Kwatra et al. 2003) and of the minimum cut it uses (engine/min_cut.hpp):
+// the cut is a minimum one, found against brute force on small graphs; a
+// periodic example is reproduced without a seam; no copy is larger than a
+// block; every pixel is laid, inside the example; the positions are the
+// same for any thread count and change with the seed.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "common/rng.hpp"
+#include "engine/coherent_positions.hpp"
+#include "engine/min_cut.hpp"
+#include "engine/quilt.hpp"
+#include "test_support.hpp"
+
+using namespace vqtex;
+using vqtex_test::make_random;
+using vqtex_test::load_corpus;
+using vqtex_test::make_stripes;
+
+namespace {
+
+struct Arc {
+    int a, b;
+    int64_t cap;
+};
+
+// The cost of the cut that puts the nodes of `source_side` (bit v) with
+// the source: the arcs from that side to the other.
+int64_t cut_cost(const std::vector<Arc>& arcs, int n, uint32_t source_side) {
+    const auto side = [&](int v) { return v == n ? true : v == n + 1 ? false : ((source_side >> v) & 1) != 0; };
+    int64_t c = 0;
+    for (const Arc& e : arcs)
+        if (side(e.a) && !side(e.b)) c += e.cap;
+    return c;
+}
+
+}  // namespace
+
+TEST(MinCut, EqualsTheLeastOfEveryCutOnSmallGraphs) {
+    Rng rng(11);
+    for (int trial = 0; trial < 400; ++trial) {
+        const int n = 1 + int(rng.below(10));
+        std::vector<Arc> arcs;
+        MinCut cut(n);
+        const int edges = int(rng.below(uint64_t(3 * n + 4)));
+        for (int k = 0; k < edges; ++k) {
+            // Any two distinct nodes, source (n) and sink (n + 1) included;
+            // capacities with ties and zeros.
+            const int a = int(rng.below(uint64_t(n + 2))), b = int(rng.below(uint64_t(n + 2)));
+            if (a == b) continue;
+            const int64_t ab = int64_t(rng.below(6)) * (rng.below(2) ? 1 : 1000), ba = int64_t(rng.below(4));
+            cut.add(a, b, ab, ba);
+            arcs.push_back({a, b, ab});
+            arcs.push_back({b, a, ba});
+        }
+        int64_t least = INT64_MAX;
+        for (uint32_t s = 0; s < (1u << n); ++s) least = std::min(least, cut_cost(arcs, n, s));
+        ASSERT_EQ(cut.solve(), least) << "trial " << trial;
+        uint32_t chosen = 0;
+        for (int v = 0; v < n; ++v) chosen |= cut.source_side(v) ? 1u << v : 0u;
+        EXPECT_EQ(cut_cost(arcs, n, chosen), least) << "trial " << trial << ": the sides returned are a minimum cut";
+        // The source side is the least one: every minimum cut's source side
+        // holds it.
+        for (uint32_t s = 0; s < (1u << n); ++s)
+            if (cut_cost(arcs, n, s) == least) EXPECT_EQ(s & chosen, chosen) << "trial " << trial;
+    }
+}
+
+TEST(Quilt, BlockAndGridFollowTheExampleAndTheOutput) {
+    EXPECT_EQ(quilt_block(128, 128), 64);
+    EXPECT_EQ(quilt_block(256, 200), 64);
+    EXPECT_EQ(quilt_block(100, 60), 28);
+    EXPECT_EQ(quilt_block(15, 200), 0);
+    const QuiltGrid g = quilt_grid(64, 512, 256);
+    EXPECT_EQ(g.block, 64);
+    EXPECT_EQ(g.overlap, 16);
+    EXPECT_EQ(g.nx, 11);  // 512 / 48 = 10.7
+    EXPECT_EQ(g.ny, 5);   // 256 / 48 = 5.3
+    // A small output: blocks of half its side.
+    EXPECT_EQ(quilt_grid(64, 40, 300).block, 20);
+    EXPECT_EQ(quilt_grid(64, 3, 300).block, 3);
+}
+
+TEST(Quilt, EveryPixelIsLaidInsideTheExampleForAnySize) {
+    const Image ex = make_random(48, 40, 3, 5);
+    const int block = quilt_block(ex.width, ex.height);
+    for (const auto& [w, h] : std::vector<std::pair<int, int>>{{1, 1}, {3, 7}, {5, 64}, {20, 20}, {47, 101}, {96, 80}, {130, 61}}) {
+        const std::vector<uint32_t> pos = quilt_positions(ex, w, h, block, 3, 2);
+        ASSERT_EQ(pos.size(), std::size_t(w) * std::size_t(h));
+        for (uint32_t p : pos) {
+            ASSERT_LT(position_x(p), ex.width) << w << "x" << h;
+            ASSERT_LT(position_y(p), ex.height) << w << "x" << h;
+        }
+    }
+}
+
+TEST(Quilt, APeriodicExampleComesOutPeriodicWithoutASeam) {
+    // Vertical stripes of period 8: every block that fits the overlap
+    // exactly is a whole number of periods away, so the output is stripes
+    // again, across the torus's edges too.
+    const Image ex = make_stripes(64, 64, 8);
+    const std::vector<uint32_t> pos = quilt_positions(ex, 128, 96, quilt_block(64, 64), 7, 2);
+    const auto colour = [&](int x, int y) { return ex.at(position_x(pos[std::size_t(y) * 128 + std::size_t(x)]), position_y(pos[std::size_t(y) * 128 + std::size_t(x)])); };
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 128; ++x) {
+            ASSERT_EQ(colour(x, y)[0], colour(x, 0)[0]) << "column " << x << " changes at row " << y;
+            ASSERT_EQ(colour(x, y)[0], colour((x + 8) % 128, y)[0]) << "period broken at " << x << ", " << y;
+        }
+}
+
+TEST(Quilt, NoCopyIsLargerThanABlock) {
+    // On noise no block continues a neighbour's copy, so a copy (pixels with
+    // one offset between output and example) is at most one block.
+    const Image ex = make_random(128, 128, 3, 9);
+    const int block = quilt_block(128, 128);
+    const std::vector<uint32_t> pos = quilt_positions(ex, 256, 256, block, 1, 2);
+    std::map<std::pair<int, int>, int> copies;
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) {
+            const uint32_t p = pos[std::size_t(y) * 256 + std::size_t(x)];
+            ++copies[{position_x(p) - x, position_y(p) - y}];
+        }
+    int largest = 0;
+    for (const auto& c : copies) largest = std::max(largest, c.second);
+    EXPECT_LE(largest, block * block);
+    EXPECT_GE(copies.size(), 25u) << "about one copy per block";
+}
+
+TEST(Quilt, SameForAnyThreadCountAndChangedBySeed) {
+    const Image ex = load_corpus("cellular_128.png");
+    const int block = quilt_block(ex.width, ex.height);
+    const std::vector<uint32_t> one = quilt_positions(ex, 150, 110, block, 4, 1);
+    for (int threads : {2, 3, 8}) EXPECT_EQ(quilt_positions(ex, 150, 110, block, 4, threads), one) << threads;
+    EXPECT_NE(quilt_positions(ex, 150, 110, block, 5, 2), one);
+}
