@@ -899,6 +899,17 @@ TEST(AtlasFile, QuiltLayoutIsVersion19OnWrappingExamplesOnly) {
     for (uint32_t threads : {2u, 3u}) EXPECT_EQ(decode(quilted, decode_params(200, 150, 3, threads)).pixels, one.pixels);
     EXPECT_NE(decode(quilted, decode_params(200, 150, 4, 2)).pixels, one.pixels);
     EXPECT_NE(decode(coherent, decode_params(200, 150, 3, 2)).pixels, one.pixels);
+    // The progress callback hears of the quilt's rows and can cancel it.
+    vqtex_decode_params cancel = decode_params(200, 150, 3, 2);
+    int calls = 0;
+    cancel.progress_user = &calls;
+    cancel.progress = [](void* user, vqtex_stage stage, uint64_t, uint64_t) -> int {
+        return stage == VQTEX_STAGE_SYNTHESISE && ++*static_cast<int*>(user) >= 3 ? 0 : 1;
+    };
+    vqtex_status st = VQTEX_OK;
+    decode(quilted, cancel, &st);
+    EXPECT_EQ(st, VQTEX_ERROR_CANCELLED);
+    EXPECT_EQ(calls, 3);
     const SeamStats seams = seam_stats(one);
     EXPECT_LT(seams.rank_x, 0.95) << "the output tiles across x";
     EXPECT_LT(seams.rank_y, 0.95) << "the output tiles across y";

@@ -137,3 +137,28 @@ TEST(Quilt, SameForAnyThreadCountAndChangedBySeed) {
     for (int threads : {2, 3, 8}) EXPECT_EQ(quilt_positions(ex, 150, 110, block, 4, threads), one) << threads;
     EXPECT_NE(quilt_positions(ex, 150, 110, block, 5, 2), one);
 }
+
+TEST(Quilt, TheSynthesisCallQuiltsOnRequest) {
+    const Image ex = load_corpus("cellular_128.png");
+    vqtex_synth_params p = vqtex_test::default_params(96, 80, 2);
+    p.engine = VQTEX_ENGINE_COHERENT;
+    p.example_tileable = 1;
+    p.threads = 1;
+    const Image engine = vqtex_test::synthesize(ex, p);
+    p.coherent.quilt = 1;
+    const Image quilted = vqtex_test::synthesize(ex, p);
+    EXPECT_NE(quilted.pixels, engine.pixels);
+    p.threads = 3;
+    EXPECT_EQ(vqtex_test::synthesize(ex, p).pixels, quilted.pixels);
+    // What it refuses: another value, and an example too small to quilt.
+    vqtex_image in{128, 128, 3, const_cast<uint8_t*>(ex.pixels.data())};
+    vqtex_image out{};
+    vqtex_error err{};
+    p.coherent.quilt = 2;
+    EXPECT_EQ(vqtex_synthesize(&p, &in, &out, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    p.coherent.quilt = 1;
+    const Image tiny = make_random(12, 12, 3, 1);
+    vqtex_image small{12, 12, 3, const_cast<uint8_t*>(tiny.pixels.data())};
+    EXPECT_EQ(vqtex_synthesize(&p, &small, &out, nullptr, &err), VQTEX_ERROR_IMAGE_TOO_SMALL);
+    EXPECT_NE(std::string(err.detail).find("16x16"), std::string::npos) << err.detail;
+}

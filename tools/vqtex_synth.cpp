@@ -212,6 +212,10 @@ int main(int argc, char** argv) {
                                       "less a frame of this many pixels, which the cuts then use: fewer "
                                       "straight seams, the frame's own values rarer; 0 to 16 (default 0)")
                            ->check(CLI::Range(0, 16));
+    bool quilt = false;
+    auto* quilt_opt = app.add_flag("--quilt", quilt,
+                                   "coherent engine, still textures: lay the output out by image quilting with "
+                                   "minimum cuts (format 19's layout) instead of the engine's passes");
     app.add_option("--levels", levels, "pyramid levels (default: automatic; coherent 6 for 128x128, paper 4)");
     app.add_option("--shapes", shapes,
                    "neighbourhood per level, finest first, RxC:k (default for 4 levels 9x9:2,7x7:2,5x5:2,5x5:1)");
@@ -247,7 +251,7 @@ int main(int argc, char** argv) {
     if (paper) engine = "paper";
     if (engine == "paper") {
         for (const auto* o : {coherence_opt, passes_opt, jitter_opt, blend_opt, relocate_opt, edge_guard_opt, cut_opt,
-                              cover_opt, margin_opt})
+                              cover_opt, margin_opt, quilt_opt})
             if (o->count()) {
                 std::fprintf(stderr, "vqtex-synth: error: %s applies to the coherent engine, not to --engine paper\n",
                              o->get_name().c_str());
@@ -279,6 +283,7 @@ int main(int argc, char** argv) {
         if (edge_guard_opt->count()) c.edge_guard = edge_guard;
         if (cut_opt->count()) c.cut = cut;
         if (cover_opt->count()) c.cover = cover;
+        if (quilt) c.quilt = 1;
         if (margin_opt->count()) c.margin = margin;
         if (paper) {
             init = "noise";

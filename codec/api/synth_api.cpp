@@ -14,6 +14,7 @@
 #include "api/api_support.hpp"
 #include "api/coherent_options.hpp"
 #include "api/validate_encode.hpp"
+#include "engine/quilt.hpp"
 #include "common/error.hpp"
 #include "common/image.hpp"
 #include "common/parallel.hpp"
@@ -52,7 +53,12 @@ void synthesize_coherent_api(const vqtex_synth_params& params, const Image& exam
     engine.period_bar = engine.example_tileable && example_tiling(example).period_bar();
     CoherentOptions opt = coherent_options(engine, int(params.width), int(params.height), params.seed);
     opt.margin = int(c.margin);
-    if (const char* q = std::getenv("VQTEX_QTMP")) opt.quilt = std::atoi(q);
+    if (c.quilt) {
+        opt.quilt = quilt_block(example.width, example.height);
+        if (opt.quilt == 0)
+            fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "quilting needs an example of at least " + std::to_string(kMinQuiltSide) +
+                                                  "x" + std::to_string(kMinQuiltSide) + " pixels");
+    }
     opt.threads = threads;
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
     CoherentResult r = synthesize_coherent(example, levels, params.example_tileable != 0, int(c.coherence), opt,

@@ -93,6 +93,7 @@ void validate(const vqtex_synth_params* p) {
     check_at_most(c.cut, kMaxCutReach, "cut", "output pixels a border between copies may move");
     check_at_most(c.cover, kMaxCoverReach, "cover", "output pixels a cover over a border may reach into each copy");
     check_at_most(c.margin, kMaxCopyMargin, "margin", "example pixels kept around the copies for the cuts");
+    if (c.quilt > 1) fail(VQTEX_ERROR_INVALID_ARGUMENT, "quilt must be 0 (the engine's layout) or 1 (quilting)");
     check_levels(p->levels);
     const vqtex_paper_params& paper = p->paper;
     check_tsvq(paper.tsvq);

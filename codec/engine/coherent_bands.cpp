@@ -181,7 +181,7 @@ std::vector<ReadImage> quilt_pixels(const Image& example, bool wraps, const Cohe
                                     const std::vector<Readout>& readouts) {
     PositionMap map{options.width, options.height,
                     quilt_positions(example, options.width, options.height, options.quilt, options.seed,
-                                    options.threads)};
+                                    options.threads, options.progress)};
     return read_whole(example, std::move(map), options, readouts, wraps);
 }
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "common/error.hpp"
 #include "common/hash.hpp"
 #include "common/parallel.hpp"
 #include "engine/coherent_positions.hpp"
@@ -58,7 +59,7 @@ QuiltGrid quilt_grid(int block, int width, int height) {
 }
 
 std::vector<uint32_t> quilt_positions(const Image& example, int width, int height, int block, uint64_t seed,
-                                      int threads) {
+                                      int threads, const std::function<bool(uint64_t, uint64_t)>& progress) {
     const QuiltGrid grid = quilt_grid(block, width, height);
     const int B = grid.block, nx = grid.nx, ny = grid.ny, ch = example.channels;
     // Origins of a block inside the example.
@@ -85,7 +86,9 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         for (int c = 0; c < ch; ++c) s += int64_t(int(a[c]) - int(b[c])) * (int(a[c]) - int(b[c]));
         return s;
     };
-    for (int bj = 0; bj < ny; ++bj)
+    for (int bj = 0; bj < ny; ++bj) {
+        if (progress && !progress(uint64_t(bj), uint64_t(ny)))
+            fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
         for (int bi = 0; bi < nx; ++bi) {
             const int xo = int(int64_t(bi) * width / nx), yo = int(int64_t(bj) * height / ny);
             // What the output already holds under the block, row by row in
@@ -248,6 +251,9 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
                     std::copy_n(fresh(dx, dy), ch, colour.data() + i * std::size_t(ch));
                 }
         }
+    }
+    if (progress && !progress(uint64_t(ny), uint64_t(ny)))
+        fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     return pos;
 }
 

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "common/image.hpp"
@@ -51,7 +52,10 @@ QuiltGrid quilt_grid(int block, int width, int height);
 
 // The width x height torus of packed example positions
 // (coherent_positions.hpp) laid out with blocks of `block` pixels.
+// `progress` (may be empty) hears of each row of blocks done; false
+// cancels (VQTEX_ERROR_CANCELLED).
 std::vector<uint32_t> quilt_positions(const Image& example, int width, int height, int block, uint64_t seed,
-                                      int threads);
+                                      int threads,
+                                      const std::function<bool(uint64_t done, uint64_t total)>& progress = {});
 
 }  // namespace vqtex

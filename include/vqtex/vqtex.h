@@ -239,6 +239,11 @@ typedef struct vqtex_coherent_params {
                                   a long border between two copies may reach into each, cut in
                                   along where it agrees with them (fewer straight seams);
                                   0 (none) to 16, default 8 [--cover] */
+    uint32_t quilt;            /* still textures: 1 lays the output out by image quilting with the
+                                  patch insertion cut (blocks of half the example's shorter side, at
+                                  most 64; the layout of format 19) instead of the engine's passes,
+                                  cuts and covers; needs an example of at least 16x16; default 0
+                                  [--quilt] */
 } vqtex_coherent_params;
 
 /* The paper's engine's own parameters. */
