@@ -111,41 +111,7 @@ private:
     std::map<int, std::vector<uint8_t>> files_;
 };
 
-// The texture the decoder makes from a candidate file (a seed of its own),
-// scored against the example.
-ProxyScores proxy_scores(const vqtex_metrics::Image& reference, const std::vector<uint8_t>& file, int width,
-                         int height, int max_windows = 262144, int threads = 1) {
-    vqtex_decode_params p;
-    vqtex_decode_params_init(&p);
-    p.width = uint32_t(width);
-    p.height = uint32_t(height);
-    p.seed = 2;
-    p.threads = uint32_t(threads);
-    vqtex_image out{};
-    vqtex_error err{};
-    if (vqtex_decode(&p, file.data(), file.size(), &out, &err) != VQTEX_OK)
-        fail(VQTEX_ERROR_INTERNAL, std::string("a candidate atlas did not decode: ") + err.detail);
-    const vqtex_metrics::Image texture{int(out.width), int(out.height), int(out.channels),
-                                       std::vector<uint8_t>(out.pixels, out.pixels + std::size_t(out.width) * out.height * out.channels)};
-    vqtex_image_free(&out);
-    return proxy_scores_of(reference, texture, max_windows);
-}
-
-// The same atlas file laid out by quilting (format 19): its bitstream and
-// fields, the period bar dropped.
-std::vector<uint8_t> quilted_file(const std::vector<uint8_t>& file) {
-    // The encoder made this file: any memory it needs was already spent.
-    const AtlasFile f = decode_atlas_file(file.data(), file.size(), std::size_t(1) << 30);
-    AtlasSynthesisParams sp = f.params;
-    sp.period_bar = false;
-    sp.quilt = quilt_block(f.atlas.width, f.atlas.height);
-    return encode_atlas_file(f.header, f.atlas.width, f.atlas.height,
-                             std::vector<uint8_t>(file.begin() + long(f.bitstream_offset),
-                                                  file.begin() + long(f.bitstream_offset + f.atlas_bytes)),
-                             sp);
-}
-
-// A file's texture at twice the atlas's side (at most 512).
+// The texture the decoder makes from a candidate file (seeds of its own).
 vqtex_metrics::Image proxy_texture(const std::vector<uint8_t>& file, int width, int height, uint64_t seed,
                                    int threads) {
     vqtex_decode_params p;
@@ -162,6 +128,26 @@ vqtex_metrics::Image proxy_texture(const std::vector<uint8_t>& file, int width, 
                                  std::vector<uint8_t>(out.pixels, out.pixels + std::size_t(out.width) * out.height * out.channels)};
     vqtex_image_free(&out);
     return texture;
+}
+
+// That texture scored against the example (seed 2).
+ProxyScores proxy_scores(const vqtex_metrics::Image& reference, const std::vector<uint8_t>& file, int width,
+                         int height, int max_windows = 262144, int threads = 1) {
+    return proxy_scores_of(reference, proxy_texture(file, width, height, 2, threads), max_windows);
+}
+
+// The same atlas file laid out by quilting (format 19): its bitstream and
+// fields, the period bar dropped.
+std::vector<uint8_t> quilted_file(const std::vector<uint8_t>& file) {
+    // The encoder made this file: any memory it needs was already spent.
+    const AtlasFile f = decode_atlas_file(file.data(), file.size(), std::size_t(1) << 30);
+    AtlasSynthesisParams sp = f.params;
+    sp.period_bar = false;
+    sp.quilt = quilt_block(f.atlas.width, f.atlas.height);
+    return encode_atlas_file(f.header, f.atlas.width, f.atlas.height,
+                             std::vector<uint8_t>(file.begin() + long(f.bitstream_offset),
+                                                  file.begin() + long(f.bitstream_offset + f.atlas_bytes)),
+                             sp);
 }
 
 // Whether quilting beats the coherent engine on this example (kQuiltGain),
