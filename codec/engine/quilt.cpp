@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "common/hash.hpp"
 #include "common/parallel.hpp"
+#include "dsp/dsp.hpp"
 #include "engine/coherent_positions.hpp"
 #include "engine/min_cut.hpp"
 
@@ -18,11 +19,15 @@ namespace {
 
 constexpr uint32_t kUnplaced = 0xFFFFFFFFu;
 
-// The rows of the overlap whose cost bounds the search (quilt_positions).
-constexpr int kBoundRows = 4;
+// How far, in example pixels, around the places where the overlapping
+// blocks' copies would go on, the places that set the search's first limit
+// lie.
+constexpr int kSeedReach = 2;
+// The cost of a place dropped by the search.
+constexpr int64_t kDropped = std::numeric_limits<int64_t>::max();
 
-// Sum of squared differences of n bytes; plain so that the compiler
-// vectorises it, exact whatever it does.
+// Sum of squared differences of n bytes (the tail the dispatched kernel,
+// which takes whole 16-byte chunks, leaves).
 inline uint32_t ssd_bytes(const uint8_t* a, const uint8_t* b, int n) {
     uint32_t s = 0;
     for (int i = 0; i < n; ++i) {
@@ -77,7 +82,9 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
     std::vector<int> node(std::size_t(B) * std::size_t(B));
     std::vector<Run> runs;
     std::vector<int64_t> cost(std::size_t(cx) * std::size_t(cy));
-    std::vector<std::pair<int64_t, uint32_t>> order, near;
+    std::vector<std::pair<int64_t, uint32_t>> near;
+    // The byte distance kernel of this machine (exact: the same sums on any).
+    const dsp::Kernels& kernel = dsp::kernels();
     const auto out_index = [&](int x, int y) {
         return std::size_t(Image::wrap(y, height)) * std::size_t(width) + std::size_t(Image::wrap(x, width));
     };
@@ -143,55 +150,54 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
                 sx = int(salt % uint64_t(cx));
                 sy = int((salt >> 32) % uint64_t(cy));
             } else {
-                // Exact in two steps. The overlap's rows are split into
-                // every kBoundRows-th and the rest; the first part's cost,
-                // for every place, is a lower bound of the whole (the terms
-                // are squares). Then whole costs, in order of that bound,
-                // until the bound exceeds the tolerance over the least
-                // whole cost found: every place left could not be
-                // near-best, so the near-best set is the exhaustive one.
-                const auto run_cost = [&](int x, int y, const Run& r) {
-                    return int64_t(ssd_bytes(example.at(x + r.dx, y + r.dy),
-                                             old.data() + (std::size_t(r.dy) * std::size_t(B) + std::size_t(r.dx)) *
-                                                              std::size_t(ch),
-                                             r.length * ch));
+                // Exact, with an early limit. The whole costs of the places
+                // near where the overlapping blocks' copies would go on
+                // (within kSeedReach), which are often the best, set a
+                // first limit: the tolerance over the least of them. Then
+                // every place's cost is summed row by row and dropped as
+                // soon as it passes that limit. What is dropped cannot be
+                // near-best (the final limit is no higher), so the
+                // near-best set is the exhaustive one, and each place's
+                // fate depends on the first limit alone, the same on any
+                // thread count.
+                const auto whole_cost = [&](int x, int y, int64_t limit) {
+                    int64_t s = 0;
+                    for (const Run& r : runs) {
+                        const uint8_t* e = example.at(x + r.dx, y + r.dy);
+                        const uint8_t* o = old.data() + (std::size_t(r.dy) * std::size_t(B) + std::size_t(r.dx)) *
+                                                            std::size_t(ch);
+                        const int bytes = r.length * ch;
+                        const int whole = bytes / int(dsp::kVectorAlign) * int(dsp::kVectorAlign);
+                        s += int64_t(whole ? kernel.ssd(e, o, std::size_t(whole)) : 0) +
+                             int64_t(ssd_bytes(e + whole, o + whole, bytes - whole));
+                        if (s > limit) return kDropped;
+                    }
+                    return s;
                 };
+                const bool all_excluded = std::size_t(n_excluded) >= cost.size();
+                const auto allowed = [&](int x, int y) { return all_excluded || !is_excluded(x, y); };
+                int64_t first = kDropped;
+                for (const auto& [ex, ey] : excluded)
+                    for (int dy = -kSeedReach; dy <= kSeedReach; ++dy)
+                        for (int dx = -kSeedReach; dx <= kSeedReach; ++dx) {
+                            const int x = ex + dx, y = ey + dy;
+                            if (x >= 0 && y >= 0 && x < cx && y < cy && allowed(x, y))
+                                first = std::min(first, whole_cost(x, y, first));
+                        }
+                const int64_t limit = first == kDropped ? kDropped : first + first * tolp / 100;
                 parallel_for(threads, std::size_t(cy), 4, [&](std::size_t y0, std::size_t y1) {
                     for (std::size_t y = y0; y < y1; ++y)
-                        for (int x = 0; x < cx; ++x) {
-                            int64_t s = 0;
-                            for (const Run& r : runs)
-                                if (r.dy % kBoundRows == 0) s += run_cost(x, int(y), r);
-                            cost[y * std::size_t(cx) + std::size_t(x)] = s;
-                        }
+                        for (int x = 0; x < cx; ++x)
+                            cost[y * std::size_t(cx) + std::size_t(x)] =
+                                allowed(x, int(y)) ? whole_cost(x, int(y), limit) : kDropped;
                 });
-                order.clear();
-                const bool all_excluded = std::size_t(n_excluded) >= cost.size();
-                for (int y = 0; y < cy; ++y)
-                    for (int x = 0; x < cx; ++x)
-                        if (all_excluded || !is_excluded(x, y))
-                            order.push_back({cost[std::size_t(y) * std::size_t(cx) + std::size_t(x)],
-                                             uint32_t(y * cx + x)});
-                std::sort(order.begin(), order.end());
-                int64_t best = std::numeric_limits<int64_t>::max();
+                int64_t best = kDropped;
+                for (const int64_t c : cost) best = std::min(best, c);
                 near.clear();
-                for (const auto& [bound, at] : order) {
-                    const int64_t limit = best == std::numeric_limits<int64_t>::max() ? best : best + best * tolp / 100;
-                    if (bound > limit) break;
-                    const int x = int(at % uint32_t(cx)), y = int(at / uint32_t(cx));
-                    // Dropped as soon as its cost passes the limit.
-                    int64_t s = bound;
-                    for (const Run& r : runs)
-                        if (r.dy % kBoundRows != 0 && (s += run_cost(x, y, r)) > limit) break;
-                    if (s > limit) continue;
-                    best = std::min(best, s);
-                    near.push_back({s, at});
-                }
+                const int64_t final_limit = best + best * tolp / 100;
+                for (std::size_t i = 0; i < cost.size(); ++i)
+                    if (cost[i] <= final_limit) near.push_back({cost[i], uint32_t(i)});
                 // The near-best places, in raster order; the seed picks one.
-                const int64_t limit = best + best * tolp / 100;
-                near.erase(std::remove_if(near.begin(), near.end(), [&](const auto& c) { return c.first > limit; }),
-                           near.end());
-                std::sort(near.begin(), near.end(), [](const auto& p, const auto& q) { return p.second < q.second; });
                 const uint32_t at = near[std::size_t(salt % near.size())].second;
                 sx = int(at % uint32_t(cx));
                 sy = int(at / uint32_t(cx));
