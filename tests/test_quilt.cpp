@@ -42,8 +42,8 @@ int64_t cut_cost(const std::vector<Arc>& arcs, int n, uint32_t source_side) {
 
 TEST(MinCut, EqualsTheLeastOfEveryCutOnSmallGraphs) {
     Rng rng(11);
-    for (int trial = 0; trial < 400; ++trial) {
-        const int n = 1 + int(rng.below(10));
+    for (int trial = 0; trial < 3000; ++trial) {
+        const int n = 1 + int(rng.below(12));
         std::vector<Arc> arcs;
         MinCut cut(n);
         const int edges = int(rng.below(uint64_t(3 * n + 4)));
@@ -65,8 +65,60 @@ TEST(MinCut, EqualsTheLeastOfEveryCutOnSmallGraphs) {
         EXPECT_EQ(cut_cost(arcs, n, chosen), least) << "trial " << trial << ": the sides returned are a minimum cut";
         // The source side is the least one: every minimum cut's source side
         // holds it.
-        for (uint32_t s = 0; s < (1u << n); ++s)
-            if (cut_cost(arcs, n, s) == least) EXPECT_EQ(s & chosen, chosen) << "trial " << trial;
+        for (uint32_t s = 0; s < (1u << n); ++s) {
+            if (cut_cost(arcs, n, s) == least) {
+                EXPECT_EQ(s & chosen, chosen) << "trial " << trial;
+            }
+        }
+    }
+}
+
+// On grids like the quilt's overlaps (a band of pixels, the source along
+// one side and the sink along the other, costs with many ties), the flow
+// equals a plain Edmonds-Karp's on the same graph.
+TEST(MinCut, EqualsAReferenceFlowOnGrids) {
+    Rng rng(23);
+    for (int trial = 0; trial < 60; ++trial) {
+        const int w = 4 + int(rng.below(14)), h = 4 + int(rng.below(14)), n = w * h;
+        std::vector<std::vector<int64_t>> cap(std::size_t(n + 2), std::vector<int64_t>(std::size_t(n + 2), 0));
+        MinCut cut(n);
+        const auto add = [&](int a, int b, int64_t ab, int64_t ba) {
+            cut.add(a, b, ab, ba);
+            cap[std::size_t(a)][std::size_t(b)] += ab;
+            cap[std::size_t(b)][std::size_t(a)] += ba;
+        };
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const int v = y * w + x;
+                const int64_t c1 = int64_t(rng.below(5)) * int64_t(rng.below(40)), c2 = int64_t(rng.below(5)) * int64_t(rng.below(40));
+                if (x + 1 < w) add(v, v + 1, c1, c1);
+                if (y + 1 < h) add(v, v + w, c2, c2);
+                if (x == 0 || rng.below(30) == 0) add(n, v, int64_t(rng.below(100)), 0);
+                if (x == w - 1 || rng.below(30) == 0) add(v, n + 1, int64_t(rng.below(100)), 0);
+            }
+        // Edmonds-Karp on the capacity matrix.
+        int64_t flow = 0;
+        for (;;) {
+            std::vector<int> from(std::size_t(n + 2), -1);
+            std::vector<int> queue{n};
+            from[std::size_t(n)] = n;
+            for (std::size_t q = 0; q < queue.size() && from[std::size_t(n + 1)] < 0; ++q)
+                for (int u = 0; u < n + 2; ++u)
+                    if (from[std::size_t(u)] < 0 && cap[std::size_t(queue[q])][std::size_t(u)] > 0) {
+                        from[std::size_t(u)] = queue[q];
+                        queue.push_back(u);
+                    }
+            if (from[std::size_t(n + 1)] < 0) break;
+            int64_t d = INT64_MAX;
+            for (int v = n + 1; v != n; v = from[std::size_t(v)])
+                d = std::min(d, cap[std::size_t(from[std::size_t(v)])][std::size_t(v)]);
+            for (int v = n + 1; v != n; v = from[std::size_t(v)]) {
+                cap[std::size_t(from[std::size_t(v)])][std::size_t(v)] -= d;
+                cap[std::size_t(v)][std::size_t(from[std::size_t(v)])] += d;
+            }
+            flow += d;
+        }
+        EXPECT_EQ(cut.solve(), flow) << "trial " << trial << ", " << w << "x" << h;
     }
 }
 

@@ -7,9 +7,20 @@
 
 namespace vqtex {
 
-MinCut::MinCut(int nodes)
-    : n_(nodes), head_(std::size_t(nodes) + 2, -1), tree_(std::size_t(nodes) + 2, kFree),
-      parent_(std::size_t(nodes) + 2, -1), reached_(std::size_t(nodes) + 2, 0) {}
+void MinCut::reset(int nodes) {
+    n_ = nodes;
+    const std::size_t n = std::size_t(nodes) + 2;
+    head_.assign(n, -1);
+    tree_.assign(n, kFree);
+    parent_.assign(n, -1);
+    reached_.assign(n, 0);
+    stamp_.assign(n, 0);
+    time_ = 1;
+    edges_.clear();
+    active_.clear();
+    orphans_.clear();
+    active_at_ = 0;
+}
 
 void MinCut::add(int a, int b, int64_t ab, int64_t ba) {
     edges_.push_back({b, head_[std::size_t(a)], ab});
@@ -24,13 +35,16 @@ int MinCut::parent_node(int v) const {
     return tree_[std::size_t(v)] == kSourceTree ? edges_[std::size_t(e ^ 1)].to : edges_[std::size_t(e)].to;
 }
 
-// Whether v's chain of parents still reaches its tree's root.
-bool MinCut::rooted(int v) const {
+// Whether v's chain of parents still reaches its tree's root; the nodes of
+// a chain that does are stamped, so that later walks stop at them.
+bool MinCut::rooted(int v) {
     const int root = tree_[std::size_t(v)] == kSourceTree ? source() : sink();
-    while (v != root) {
-        if (parent_[std::size_t(v)] < 0) return false;
-        v = parent_node(v);
+    int u = v;
+    while (u != root && stamp_[std::size_t(u)] != time_) {
+        if (parent_[std::size_t(u)] < 0) return false;
+        u = parent_node(u);
     }
+    for (u = v; u != root && stamp_[std::size_t(u)] != time_; u = parent_node(u)) stamp_[std::size_t(u)] = time_;
     return true;
 }
 
@@ -118,6 +132,8 @@ void MinCut::adopt() {
             }
         }
         tree_[std::size_t(v)] = kFree;
+        // Its subtree's chains are broken: every stamp is stale.
+        ++time_;
     }
 }
 
@@ -128,6 +144,7 @@ int64_t MinCut::solve() {
     int64_t flow = 0;
     for (int bridge; (bridge = grow()) >= 0;) {
         flow += augment(bridge);
+        ++time_;
         adopt();
     }
     // The source side: what the residual graph still reaches.

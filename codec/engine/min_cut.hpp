@@ -20,7 +20,9 @@ namespace vqtex {
 class MinCut {
 public:
     // `nodes` nodes besides the source and the sink.
-    explicit MinCut(int nodes);
+    explicit MinCut(int nodes = 0) { reset(nodes); }
+    // An empty graph of `nodes` nodes, keeping the memory of the last.
+    void reset(int nodes);
     int source() const { return n_; }
     int sink() const { return n_ + 1; }
     // An edge a -> b of capacity ab and b -> a of capacity ba (both >= 0).
@@ -37,7 +39,7 @@ private:
     };
     enum : int8_t { kFree = 0, kSourceTree = 1, kSinkTree = 2 };
     int parent_node(int v) const;
-    bool rooted(int v) const;
+    bool rooted(int v);
     int grow();
     int64_t augment(int bridge);
     void adopt();
@@ -50,6 +52,11 @@ private:
     // tree; -1 for a root, a free node or an orphan.
     std::vector<int> parent_;
     std::vector<int> active_, orphans_;
+    // Nodes found rooted since the trees last lost a node (stamp_ ==
+    // time_), so that a walk to the root stops at them (Boykov &
+    // Kolmogorov's timestamps).
+    std::vector<int> stamp_;
+    int time_ = 1;
     std::size_t active_at_ = 0;
     std::vector<char> reached_;
 };

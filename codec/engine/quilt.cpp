@@ -83,6 +83,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
     std::vector<Run> runs;
     std::vector<int64_t> cost(std::size_t(cx) * std::size_t(cy));
     std::vector<std::pair<int64_t, uint32_t>> near;
+    MinCut cut;
     // The byte distance kernel of this machine (exact: the same sums on any).
     const dsp::Kernels& kernel = dsp::kernels();
     const auto out_index = [&](int x, int y) {
@@ -217,7 +218,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
             };
             std::vector<char> take(std::size_t(placed), 1);
             if (placed > 0) {
-                MinCut cut(placed);
+                cut.reset(placed);
                 for (int dy = 0; dy < B; ++dy)
                     for (int dx = 0; dx < B; ++dx) {
                         const int v = node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)];
