@@ -2,6 +2,8 @@
 // through the public API with small, fast settings.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -37,6 +39,19 @@ inline std::vector<uint8_t> encode(const vqtex::Image& ex, const vqtex_encode_pa
     std::vector<uint8_t> bytes(data, data + size);
     vqtex_free(data);
     return bytes;
+}
+
+// The status of an encode expected to fail, with its error; checks that it
+// hands back no buffer.
+inline vqtex_status encode_status(const vqtex::Image& ex, const vqtex_encode_params& p, vqtex_error* err) {
+    vqtex_image in{uint32_t(ex.width), uint32_t(ex.height), uint32_t(ex.channels),
+                   const_cast<uint8_t*>(ex.pixels.data())};
+    uint8_t* data = nullptr;
+    size_t size = 0;
+    const vqtex_status st = vqtex_encode(&p, &in, &data, &size, nullptr, err);
+    if (st == VQTEX_OK) vqtex_free(data);
+    EXPECT_TRUE(st == VQTEX_OK || data == nullptr) << "a failed encode hands back no buffer";
+    return st;
 }
 
 inline vqtex_decode_params decode_params(uint32_t w, uint32_t h, uint64_t seed = VQTEX_SEED_FROM_FILE,

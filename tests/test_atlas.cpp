@@ -922,11 +922,8 @@ TEST(AtlasFile, QuiltLayoutIsVersion19OnWrappingExamplesOnly) {
     EXPECT_EQ(vqtex_cpp::inspect(plain.data(), plain.size()).format_version, 10u);
     EXPECT_EQ(stats.quilt, 0u);
     p.layout = 3;
-    vqtex_image in{64, 64, 3, const_cast<uint8_t*>(noise.pixels.data())};
-    uint8_t* data = nullptr;
-    size_t size = 0;
     vqtex_error err{};
-    EXPECT_EQ(vqtex_encode(&p, &in, &data, &size, nullptr, &err), VQTEX_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(encode_status(noise, p, &err), VQTEX_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(err.detail).find("layout"), std::string::npos) << err.detail;
 }
 

@@ -64,6 +64,19 @@ int coherent_levels(int width, int height) {
     return levels;
 }
 
+namespace {
+
+// The engine's images into the result: the example's pixels as the image,
+// or the readouts' as the maps.
+void take_images(CoherentResult& r, std::vector<ReadImage> images, const std::vector<Readout>& readouts) {
+    if (readouts.empty())
+        r.image = std::move(images[0].image);
+    else
+        r.maps = std::move(images);
+}
+
+}  // namespace
+
 CoherentResult synthesize_coherent(const Image& example, int levels, bool example_tileable, int coherence,
                                    const CoherentOptions& options,
                                    const std::function<bool(uint64_t, uint64_t)>& analyse_progress,
@@ -79,11 +92,7 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
         if (example.width < options.quilt || example.height < options.quilt)
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "the quilting block is larger than the example");
         CoherentResult r;
-        std::vector<ReadImage> images = coherent::quilt_pixels(example, example_tileable, options, readouts);
-        if (readouts.empty())
-            r.image = std::move(images[0].image);
-        else
-            r.maps = std::move(images);
+        take_images(r, coherent::quilt_pixels(example, example_tileable, options, readouts), readouts);
         r.synthesise_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
         return r;
     }
@@ -112,12 +121,10 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     const auto t1 = Clock::now();
     CoherentResult r;
-    std::vector<ReadImage> images = coherent::synthesize_pixels(example, margin, space, sets, options, readouts,
-                                                                by_level ? &space : nullptr, by_level ? &sets : nullptr);
-    if (readouts.empty())
-        r.image = std::move(images[0].image);
-    else
-        r.maps = std::move(images);
+    take_images(r,
+                coherent::synthesize_pixels(example, margin, space, sets, options, readouts,
+                                            by_level ? &space : nullptr, by_level ? &sets : nullptr),
+                readouts);
     // What the analysis makes, whether it is held at once or level by level.
     const uint64_t n = example.pixel_count();
     r.model_bytes = space.levels.size() * (example.byte_count() + n * kAppearanceDims * sizeof(int16_t));

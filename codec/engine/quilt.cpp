@@ -26,8 +26,8 @@ constexpr int kSeedReach = 2;
 // The cost of a place dropped by the search.
 constexpr int64_t kDropped = std::numeric_limits<int64_t>::max();
 
-// Sum of squared differences of n bytes (the tail the dispatched kernel,
-// which takes whole 16-byte chunks, leaves).
+// Sum of squared differences of n bytes: the tail the dispatched kernel
+// leaves (it takes whole 16-byte chunks), and one pixel's distance.
 inline uint32_t ssd_bytes(const uint8_t* a, const uint8_t* b, int n) {
     uint32_t s = 0;
     for (int i = 0; i < n; ++i) {
@@ -77,23 +77,20 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         int xo, yo, sx, sy;
     };
     std::vector<Placed> blocks(std::size_t(nx) * std::size_t(ny), Placed{0, 0, -1, -1});
-    std::vector<std::pair<int, int>> continuations;
+    std::vector<std::pair<int, int>> excluded;
     std::vector<uint8_t> old(std::size_t(B) * std::size_t(B) * std::size_t(ch));
     std::vector<int> node(std::size_t(B) * std::size_t(B));
     std::vector<Run> runs;
     std::vector<int64_t> cost(std::size_t(cx) * std::size_t(cy));
-    std::vector<std::pair<int64_t, uint32_t>> near;
+    std::vector<uint32_t> near;
     MinCut cut;
     // The byte distance kernel of this machine (exact: the same sums on any).
     const dsp::Kernels& kernel = dsp::kernels();
     const auto out_index = [&](int x, int y) {
         return std::size_t(Image::wrap(y, height)) * std::size_t(width) + std::size_t(Image::wrap(x, width));
     };
-    const auto d2 = [&](const uint8_t* a, const uint8_t* b) {
-        int64_t s = 0;
-        for (int c = 0; c < ch; ++c) s += int64_t(int(a[c]) - int(b[c])) * (int(a[c]) - int(b[c]));
-        return s;
-    };
+    // One pixel's squared colour distance.
+    const auto d2 = [&](const uint8_t* a, const uint8_t* b) { return int64_t(ssd_bytes(a, b, ch)); };
     for (int bj = 0; bj < ny; ++bj) {
         if (progress && !progress(uint64_t(bj), uint64_t(ny)))
             fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
@@ -122,7 +119,6 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
             }
             // The places where an overlapping block's copy would simply go
             // on: excluded, or the output would be the example again.
-            std::vector<std::pair<int, int>>& excluded = continuations;
             excluded.clear();
             for (int dj = -1; dj <= 1; ++dj)
                 for (int di = -1; di <= 1; ++di) {
@@ -197,9 +193,9 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
                 near.clear();
                 const int64_t final_limit = best + best * tolp / 100;
                 for (std::size_t i = 0; i < cost.size(); ++i)
-                    if (cost[i] <= final_limit) near.push_back({cost[i], uint32_t(i)});
+                    if (cost[i] <= final_limit) near.push_back(uint32_t(i));
                 // The near-best places, in raster order; the seed picks one.
-                const uint32_t at = near[std::size_t(salt % near.size())].second;
+                const uint32_t at = near[std::size_t(salt % near.size())];
                 sx = int(at % uint32_t(cx));
                 sy = int(at / uint32_t(cx));
             }
