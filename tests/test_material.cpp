@@ -16,6 +16,7 @@
 #include "codec_support.hpp"
 #include "common/checksum.hpp"
 #include "common/image.hpp"
+#include "analysis/material_choice.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/normal_map.hpp"
 #include "format/atlas_compact.hpp"
@@ -201,6 +202,30 @@ TEST(Material, ReadingTheExampleItselfGivesTheSynthesis) {
         EXPECT_EQ(r.maps[0].image, plain) << "band " << band;
         EXPECT_EQ(r.maps[1].image, plain) << "band " << band;
     }
+}
+
+TEST(Material, AMapsContrastIsItsChannelsOwnSpread) {
+    // A flat normal map, its blue far from its red and green: no contrast.
+    vqtex::Image flat(64, 64, 3);
+    for (std::size_t i = 0; i < flat.pixel_count(); ++i) {
+        flat.pixels[3 * i] = 127;
+        flat.pixels[3 * i + 1] = 127;
+        flat.pixels[3 * i + 2] = 250;
+    }
+    EXPECT_EQ(vqtex::map_contrast(flat), 0.0);
+    // Channels of spreads 2, 4 and 8 about different means: the root mean
+    // of their variances, whatever the means.
+    vqtex::Image ramps(64, 64, 3);
+    for (std::size_t i = 0; i < ramps.pixel_count(); ++i) {
+        const int sign = i % 2 ? 1 : -1;
+        ramps.pixels[3 * i] = uint8_t(20 + 2 * sign);
+        ramps.pixels[3 * i + 1] = uint8_t(127 + 4 * sign);
+        ramps.pixels[3 * i + 2] = uint8_t(230 + 8 * sign);
+    }
+    EXPECT_NEAR(vqtex::map_contrast(ramps), std::sqrt((4.0 + 16.0 + 64.0) / 3.0), 1e-9);
+    vqtex::Image moved = ramps;
+    for (std::size_t i = 0; i < moved.pixel_count(); ++i) moved.pixels[3 * i + 2] -= 200;
+    EXPECT_EQ(vqtex::map_contrast(moved), vqtex::map_contrast(ramps));
 }
 
 TEST(Material, RenormalisedNormalsHaveUnitLength) {

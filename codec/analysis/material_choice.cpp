@@ -79,16 +79,13 @@ MaterialMap map_from_16_bits(std::string name, MapKind kind, int weight, const I
     return m;
 }
 
-namespace {
-
-// A map's contrast: the root mean of its channels' variances, each about
-// the channel's own mean (8-bit units), on a grid of at most 65536 pixels.
-// Pooled about one mean, the channels' different means counted as
-// contrast: a normal map's blue near 250 against red and green near 127
-// made the corpus's normal maps 54-62 levels (7-20 channel by channel) and
-// lava's orange albedo 84 (25), so a normal map took the level of the
-// set's most contrasty map and was coded coarser than its detail needs.
-double map_deviation(const Image& image) {
+// On a grid of at most 65536 pixels. Pooled about one mean, the channels'
+// different means counted as contrast: a normal map's blue near 250
+// against red and green near 127 made the corpus's normal maps 54-62
+// levels (7-20 channel by channel) and lava's orange albedo 84 (25), so a
+// normal map took the level of the set's most contrasty map and was coded
+// coarser than its detail needs.
+double map_contrast(const Image& image) {
     const std::size_t pixels = image.pixel_count(), step = std::max<std::size_t>(1, pixels / 65536);
     double variance = 0;
     for (int c = 0; c < image.channels; ++c) {
@@ -102,6 +99,8 @@ double map_deviation(const Image& image) {
     }
     return std::sqrt(variance / image.channels);
 }
+
+namespace {
 
 // The deviation below which a map is taken as flat: its noise is not
 // stretched to the others' contrast.
@@ -261,7 +260,7 @@ GuideMatrix guide_matrix(const std::vector<MaterialMap>& maps) {
     // normal map led a dark lava albedo's synthesis, whose SWD was 15%
     // worse than the albedo's alone).
     std::vector<double> deviation;
-    for (const MaterialMap& m : maps) deviation.push_back(map_deviation(m.image));
+    for (const MaterialMap& m : maps) deviation.push_back(map_contrast(m.image));
     const double most = std::max(*std::max_element(deviation.begin(), deviation.end()), kFlatDeviation);
     std::vector<double> weight;  // per channel
     for (std::size_t i = 0; i < maps.size(); ++i) {
@@ -367,7 +366,7 @@ public:
             // much as the map (on bricks, at a fine level, 2.1 KB for a
             // gloss the prediction already gave within a level); dropped,
             // the map's error stays under a level.
-            if (map_deviation(atlases_[i]) < kRoundingDeviation)
+            if (map_contrast(atlases_[i]) < kRoundingDeviation)
                 std::fill(atlases_[i].pixels.begin(), atlases_[i].pixels.end(), uint8_t(128));
         }
         const int deepest = coherent_levels(w, h);
@@ -557,7 +556,7 @@ MaterialChoice choose_material_atlas(const std::vector<MaterialMap>& maps, const
     // the set's most contrasty map, by 24 at most (measured: at most 12
     // left that correlation at 0.88).
     std::vector<double> deviation;
-    for (const MaterialMap& m : maps) deviation.push_back(std::max(map_deviation(m.image), kFlatDeviation));
+    for (const MaterialMap& m : maps) deviation.push_back(std::max(map_contrast(m.image), kFlatDeviation));
     const double most = *std::max_element(deviation.begin(), deviation.end());
     std::vector<int> offsets;
     for (const double d : deviation)

@@ -2,9 +2,11 @@
 // one surface (docs/FORMAT.md §2, §4.15): the guide that the synthesis
 // matches, made from all the maps by a principal component analysis of
 // their weighted channels, and the part of the example that becomes every
-// map's atlas, with the one AV1 quantiser all the maps are coded at for a
-// byte budget. One quantiser for all spends each map's bytes on what its
-// content needs: a flat gloss map takes few, a detailed albedo many.
+// map's atlas, with the AV1 quantiser the maps are coded at for a byte
+// budget: one level for the set, each map's made finer by how much less
+// contrast it has than the set's most contrasty map, so that each map's
+// bytes go to what its content needs and a map of little contrast keeps
+// its structure.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +35,12 @@ inline constexpr int kHighBitDepth = 12;
 // A map of 16-bit samples (0..65535) as kHighBitDepth bits, rounded.
 MaterialMap map_from_16_bits(std::string name, MapKind kind, int weight, const Image16& samples);
 
+// A map's contrast, in 8-bit units: the root mean of its channels'
+// variances, each about the channel's own mean (a normal map's blue, near
+// 250 where its red and green are near 127, is no contrast). The set's
+// levels and the guide's weights follow it.
+double map_contrast(const Image& image);
+
 // The guide of a set of more than one map (a set of one is its own guide):
 // the first min(4, channels) principal components of the maps' channels,
 // each map's weighted by its weight, projected with one scale chosen so
@@ -48,7 +56,7 @@ std::vector<MapPrediction> fit_map_predictions(const std::vector<MaterialMap>& m
 
 struct MaterialChoice {
     std::vector<uint8_t> file;  // a whole version 9 file
-    int cq = 0;                 // libaom's level, 0..63, of every map
+    int cq = 0;                 // libaom's level, 0..63, of the set (each map's offset from it)
     int levels = 0;
     int atlas_x = 0, atlas_y = 0;  // where the atlas lies in the example
     int atlas_width = 0, atlas_height = 0;
