@@ -451,8 +451,9 @@ typedef struct vqtex_map {
 
 /* Encodes a set of 1 to VQTEX_MAX_MAPS maps into one file (an atlas: the
  * `codebook` field must be VQTEX_CODEBOOK_ATLAS). `quality` gives each map
- * a single image's budget, `target_size` is shared: all maps are coded at
- * one AV1 quantiser, so each takes the bytes its content needs. */
+ * a single image's budget, `target_size` is shared: the maps are coded at
+ * one AV1 level, each made finer by how much less contrast it has than the
+ * set's most contrasty map, so each takes the bytes its content needs. */
 VQTEX_API vqtex_status vqtex_encode_maps(const vqtex_encode_params* params, const vqtex_map* maps, uint32_t count,
                                          uint8_t** data, size_t* size, vqtex_encode_stats* stats,
                                          vqtex_error* error);
