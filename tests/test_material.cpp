@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "analysis/material_choice.hpp"
 #include "codec_support.hpp"
 #include "common/checksum.hpp"
 #include "common/image.hpp"
-#include "analysis/material_choice.hpp"
 #include "engine/coherent_synthesis.hpp"
 #include "engine/normal_map.hpp"
 #include "format/atlas_compact.hpp"
