@@ -13,8 +13,8 @@
 //
 //   material-seeds SET_FOLDER [SEEDS] [--parts]
 //
-// The maps are the folder's PNG files, named as for vqtex-encode --map
-// (albedo: colour; normal...: normal map; anything else: data).
+// The maps are the folder's PNG files, loaded and named as the materials
+// protocol loads them (material_set.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "bench_images.hpp"
-#include "image_io.hpp"
+#include "material_set.hpp"
 #include "material_stats.hpp"
 #include "metrics.hpp"
 #include "vqtex/vqtex.h"
@@ -35,20 +35,6 @@ using namespace vqtex_tools;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct ExampleMap {
-    std::string name;
-    vqtex_map_kind kind = VQTEX_MAP_DATA;
-    Image image;
-    std::vector<double> luma;
-};
-
-vqtex_map_kind kind_of(const std::string& name) {
-    if (name.rfind("normal", 0) == 0 || name.rfind("nrm", 0) == 0) return VQTEX_MAP_NORMAL;
-    for (const char* colour : {"albedo", "diffuse", "basecolor", "base_color", "color", "colour", "emissive"})
-        if (name == colour) return VQTEX_MAP_COLOUR;
-    return VQTEX_MAP_DATA;
-}
 
 Image image_of(const vqtex_cpp::Map& m) {
     const vqtex_image& im = m.image.get();
@@ -139,25 +125,9 @@ int run(int argc, char** argv) {
         else
             seeds = std::max(1, std::atoi(argv[a]));
     }
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(folder))
-        if (e.path().extension() == ".png") files.push_back(e.path());
-    std::sort(files.begin(), files.end());
-    std::vector<ExampleMap> maps;
-    for (const fs::path& f : files) {
-        const LoadedImage li = load_image(f.string());
-        ExampleMap m;
-        m.name = f.stem().string();
-        m.kind = kind_of(m.name);
-        m.image = Image{int(li.width), int(li.height), int(li.channels), li.pixels};
-        if (!maps.empty() && (m.image.width != maps[0].image.width || m.image.height != maps[0].image.height))
-            throw std::runtime_error(f.string() + " is not the size of the set's other maps");
-        maps.push_back(std::move(m));
-    }
+    MaterialSet set = load_set(folder, 0);
+    const std::vector<ExampleMap>& maps = set.maps;
     if (maps.empty()) throw std::runtime_error("no PNG maps in " + folder.string());
-    // The file's order: colour, normal, data.
-    std::stable_sort(maps.begin(), maps.end(), [](const ExampleMap& a, const ExampleMap& b) { return a.kind < b.kind; });
-    for (ExampleMap& m : maps) m.luma = luminance(m.image);
     if (parts) {
         print_parts(maps);
         return 0;
@@ -165,7 +135,7 @@ int run(int argc, char** argv) {
     const int side = maps[0].image.width;
     std::vector<vqtex_map> cmaps;
     std::vector<std::string> names;
-    for (ExampleMap& m : maps) {
+    for (ExampleMap& m : set.maps) {
         cmaps.push_back(vqtex_map{m.name.c_str(), m.kind, 0, view(m.image), nullptr});
         names.push_back(m.name);
     }
@@ -177,21 +147,11 @@ int run(int argc, char** argv) {
     const vqtex_file_info info = vqtex_cpp::inspect(set_file.data(), set_file.size());
     std::printf("%s: the set's file %zu bytes, a %ux%u part at (%u, %u)\n", folder.filename().c_str(), set_file.size(),
                 info.atlas_width, info.atlas_height, info.atlas_x, info.atlas_y);
-    // Each map's share, as the materials protocol gives it: its atlas's
-    // bytes and the rest of the file in proportion.
-    std::vector<uint64_t> atlas(maps.size(), 0);
-    uint64_t coded = 0;
-    for (uint32_t i = 0; i < info.map_count && i < VQTEX_MAX_MAPS; ++i)
-        for (std::size_t m = 0; m < maps.size(); ++m)
-            if (maps[m].name == info.maps[i].name) atlas[m] = info.maps[i].bytes, coded += info.maps[i].bytes;
+    // Each map's share, as the materials protocol gives it.
+    const std::vector<std::size_t> shares = shares_of(set_file, set);
     std::vector<std::vector<uint8_t>> alone(maps.size());
-    const uint64_t rest = set_file.size() > coded ? set_file.size() - coded : 0;
-    uint64_t given = 0;
     for (std::size_t i = 0; i < maps.size(); ++i) {
-        const uint64_t share = i + 1 < maps.size()
-                                   ? atlas[i] + (coded ? rest * atlas[i] / coded : rest / maps.size())
-                                   : set_file.size() - given;
-        given += share;
+        const uint64_t share = shares[i];
         vqtex_encode_params a = ep;
         a.target_size = share;
         std::printf("  %s: %llu bytes of the set", maps[i].name.c_str(), static_cast<unsigned long long>(share));
