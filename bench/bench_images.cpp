@@ -12,13 +12,28 @@
 
 namespace vqtex_tools {
 
-Image crop(const LoadedImage& img, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h) {
-    Image out{int(w), int(h), int(img.channels), {}};
-    out.pixels.resize(std::size_t(w) * h * img.channels);
-    for (uint32_t y = 0; y < h; ++y)
-        std::copy_n(img.pixels.data() + ((std::size_t(y0 + y) * img.width + x0) * img.channels),
-                    std::size_t(w) * img.channels, out.pixels.data() + std::size_t(y) * w * img.channels);
+namespace {
+
+// The w x h crop at (x0, y0) of `width`-wide rows of `channels` bytes a pixel.
+Image crop_rows(const uint8_t* pixels, std::size_t width, int channels, std::size_t x0, std::size_t y0,
+                std::size_t w, std::size_t h) {
+    Image out{int(w), int(h), channels, {}};
+    out.pixels.resize(w * h * std::size_t(channels));
+    for (std::size_t y = 0; y < h; ++y)
+        std::copy_n(pixels + ((y0 + y) * width + x0) * std::size_t(channels), w * std::size_t(channels),
+                    out.pixels.data() + y * w * std::size_t(channels));
     return out;
+}
+
+}  // namespace
+
+Image crop(const LoadedImage& img, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h) {
+    return crop_rows(img.pixels.data(), img.width, int(img.channels), x0, y0, w, h);
+}
+
+Image crop(const Image& img, int x0, int y0, int w, int h) {
+    return crop_rows(img.pixels.data(), std::size_t(img.width), img.channels, std::size_t(x0), std::size_t(y0),
+                     std::size_t(w), std::size_t(h));
 }
 
 Image tiled(const Image& img, int w, int h) {
@@ -70,8 +85,12 @@ Image reduced(const Image& img, int w, int h) {
 
 Image from_c(vqtex_image& c) {
     const vqtex_cpp::Image owned(std::exchange(c, vqtex_image{}));
-    return Image{int(owned.width()), int(owned.height()), int(owned.channels()),
-                 std::vector<uint8_t>(owned.data(), owned.data() + owned.size_bytes())};
+    return copy_of(owned.get());
+}
+
+Image copy_of(const vqtex_image& c) {
+    return Image{int(c.width), int(c.height), int(c.channels),
+                 std::vector<uint8_t>(c.pixels, c.pixels + std::size_t(c.width) * c.height * c.channels)};
 }
 
 vqtex_image view(Image& img) { return {uint32_t(img.width), uint32_t(img.height), uint32_t(img.channels), img.pixels.data()}; }

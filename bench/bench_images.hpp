@@ -16,6 +16,7 @@ using Image = vqtex_metrics::Image;
 
 // The w x h crop of `img` at (x0, y0).
 Image crop(const LoadedImage& img, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h);
+Image crop(const Image& img, int x0, int y0, int w, int h);
 
 // `img` repeated to w x h.
 Image tiled(const Image& img, int w, int h);
@@ -27,6 +28,9 @@ Image reduced(const Image& img, int w, int h);
 
 // Takes the library's image (and releases it).
 Image from_c(vqtex_image& c);
+
+// A copy of an image the library still owns (a decoded map).
+Image copy_of(const vqtex_image& c);
 
 // The library's view of `img` (not a copy: `img` must outlive it).
 vqtex_image view(Image& img);

@@ -36,12 +36,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Image image_of(const vqtex_cpp::Map& m) {
-    const vqtex_image& im = m.image.get();
-    return Image{int(im.width), int(im.height), int(im.channels),
-                 std::vector<uint8_t>(im.pixels, im.pixels + m.image.size_bytes())};
-}
-
 // The file's maps decoded at side x side, in the order of `names` (all of
 // them, in the file's order, when `names` is empty).
 std::vector<Image> decode(const std::vector<uint8_t>& file, int side, uint64_t seed,
@@ -54,12 +48,12 @@ std::vector<Image> decode(const std::vector<uint8_t>& file, int side, uint64_t s
     const std::vector<vqtex_cpp::Map> maps = vqtex_cpp::decode_maps(dp, file.data(), file.size());
     std::vector<Image> out;
     if (names.empty()) {
-        for (const vqtex_cpp::Map& m : maps) out.push_back(image_of(m));
+        for (const vqtex_cpp::Map& m : maps) out.push_back(copy_of(m.image.get()));
         return out;
     }
     for (const std::string& n : names)
         for (const vqtex_cpp::Map& m : maps)
-            if (m.name == n) out.push_back(image_of(m));
+            if (m.name == n) out.push_back(copy_of(m.image.get()));
     if (out.size() != names.size()) throw std::runtime_error("a map is missing from the decoded set");
     return out;
 }
@@ -78,16 +72,6 @@ std::vector<uint8_t> encode(const vqtex_encode_params& p, const std::vector<vqte
     return std::vector<uint8_t>(owned.data(), owned.data() + owned.size());
 }
 
-Image part_of(const Image& im, int x0, int y0, int side) {
-    Image c{side, side, im.channels, {}};
-    for (int y = 0; y < side; ++y) {
-        const uint8_t* row = im.pixels.data() + (std::size_t(y0 + y) * std::size_t(im.width) + std::size_t(x0)) *
-                                                    std::size_t(im.channels);
-        c.pixels.insert(c.pixels.end(), row, row + std::size_t(side) * std::size_t(im.channels));
-    }
-    return c;
-}
-
 void print_parts(const std::vector<ExampleMap>& maps) {
     const int side = maps[0].image.width;
     for (int part : {512, 256}) {
@@ -96,7 +80,7 @@ void print_parts(const std::vector<ExampleMap>& maps) {
         for (int y = 0; y + part <= side; y += part)
             for (int x = 0; x + part <= side; x += part) {
                 std::vector<std::vector<double>> luma;
-                for (const ExampleMap& m : maps) luma.push_back(luminance(part_of(m.image, x, y, part)));
+                for (const ExampleMap& m : maps) luma.push_back(luminance(crop(m.image, x, y, part, part)));
                 std::printf("  (%d, %d)", x, y);
                 for (std::size_t i = 0; i < maps.size(); ++i)
                     for (std::size_t j = i + 1; j < maps.size(); ++j)
