@@ -3,9 +3,13 @@
 // the cut is a minimum one, found against brute force on small graphs; a
 // periodic example is reproduced without a seam; no copy is larger than a
 // block; every pixel is laid, inside the example; the positions are the
-// same for any thread count and change with the seed.
+// same for any thread count and change with the seed; the search by
+// transforms finds the same places as the direct one, its correlations
+// within the bound its margin rests on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -13,7 +17,9 @@
 #include "common/rng.hpp"
 #include "engine/coherent_positions.hpp"
 #include "engine/min_cut.hpp"
+#include "dsp/fft.hpp"
 #include "engine/quilt.hpp"
+#include "engine/quilt_search.hpp"
 #include "test_support.hpp"
 
 using namespace vqtex;
@@ -213,4 +219,119 @@ TEST(Quilt, TheSynthesisCallQuiltsOnRequest) {
     vqtex_image small{12, 12, 3, const_cast<uint8_t*>(tiny.pixels.data())};
     EXPECT_EQ(vqtex_synthesize(&p, &small, &out, nullptr, &err), VQTEX_ERROR_IMAGE_TOO_SMALL);
     EXPECT_NE(std::string(err.detail).find("16x16"), std::string::npos) << err.detail;
+}
+
+TEST(Fft, CorrelationsAreWithinTheirBound) {
+    // Correlations of random planes by transforms against the direct sums:
+    // every error within the bound the quilting search's margin uses, and
+    // the bound far below one cost unit on a quilting-sized problem.
+    Rng rng(5);
+    for (const auto& [w, h] : std::vector<std::pair<int, int>>{{8, 8}, {32, 16}, {16, 64}, {128, 128}}) {
+        const dsp::Fft2d fft(w, h);
+        const std::size_t n = std::size_t(w) * std::size_t(h);
+        std::vector<double> a(n, 0.0), e(n), are(n), aim(n, 0.0), ere(n), eim(n, 0.0);
+        const int bw = std::max(1, w / 2), bh = std::max(1, h / 2);
+        double na = 0, ne = 0;
+        for (int y = 0; y < bh; ++y)
+            for (int x = 0; x < bw; ++x) a[std::size_t(y * w + x)] = double(rng.below(256));
+        for (std::size_t i = 0; i < n; ++i) {
+            e[i] = double(rng.below(256));
+            na += a[i] * a[i];
+            ne += e[i] * e[i];
+        }
+        are = a;
+        ere = e;
+        fft.forward(are.data(), aim.data(), bh);
+        fft.forward(ere.data(), eim.data(), h);
+        std::vector<double> sre(n), sim(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            sre[i] = are[i] * ere[i] + aim[i] * eim[i];
+            sim[i] = are[i] * eim[i] - aim[i] * ere[i];
+        }
+        fft.inverse(sre.data(), sim.data(), h);
+        const double bound = dsp::fft_correlation_error_bound(n, std::sqrt(na) * std::sqrt(ne));
+        double worst = 0;
+        for (int sy = 0; sy < h; ++sy)
+            for (int sx = 0; sx < w; ++sx) {
+                int64_t exact = 0;
+                for (int y = 0; y < bh; ++y)
+                    for (int x = 0; x < bw; ++x)
+                        exact += int64_t(a[std::size_t(y * w + x)]) *
+                                 int64_t(e[std::size_t(((y + sy) % h) * w + (x + sx) % w)]);
+                // The imaginary part is exactly zero: its rounding shows
+                // where the real part's rounds to the integer.
+                const std::size_t i = std::size_t(sy * w + sx);
+                worst = std::max({worst, std::abs(sre[i] / double(n) - double(exact)), std::abs(sim[i] / double(n))});
+            }
+        EXPECT_GT(worst, 0.0) << "rounding is seen";
+        EXPECT_LE(worst, bound) << w << "x" << h;
+        EXPECT_LT(bound, 0.5) << w << "x" << h;
+    }
+}
+
+TEST(QuiltSearch, TransformAndDirectGiveTheSameNearPlaces) {
+    // Random examples of 1 to 4 channels, overlaps of every shape the
+    // layout makes (an L, a frame, a strip, scattered pixels), colours
+    // from a place of the example with a little noise or none (so that
+    // costs tie, and the least is 0) and exclusions: the transform's set is
+    // the direct search's, place for place.
+    Rng rng(17);
+    int checked = 0;
+    for (int trial = 0; trial < 48; ++trial) {
+        const int ch = 1 + trial % 4;
+        const int ew = 24 + int(rng.below(80)), eh = 24 + int(rng.below(80));
+        // Half the examples are smooth, so that many places cost about the
+        // same.
+        Image ex = make_random(ew, eh, ch, 100 + uint64_t(trial));
+        if (trial % 2)
+            for (int y = 0; y < eh; ++y)
+                for (int x = 0; x < ew; ++x)
+                    for (int c = 0; c < ch; ++c) ex.at(x, y)[c] = uint8_t((x * 3 + y * 2 + c * 40) % 256);
+        const int block = std::max(4, quilt_block(ew, eh));
+        QuiltSearch transform(ex, block, QuiltSearch::Method::kTransform);
+        QuiltSearch direct(ex, block, QuiltSearch::Method::kDirect);
+        const int px = ew - block + 1, py = eh - block + 1;
+        const int ox = int(rng.below(uint64_t(px))), oy = int(rng.below(uint64_t(py)));
+        const int noise = int(rng.below(3)) * 4;
+        std::vector<uint8_t> old(std::size_t(block) * std::size_t(block) * std::size_t(ch));
+        for (int y = 0; y < block; ++y)
+            for (int x = 0; x < block; ++x)
+                for (int c = 0; c < ch; ++c) {
+                    const int v = ex.at(ox + x, oy + y)[c] + (noise ? int(rng.below(uint64_t(2 * noise + 1))) - noise : 0);
+                    old[(std::size_t(y) * std::size_t(block) + std::size_t(x)) * std::size_t(ch) + std::size_t(c)] =
+                        uint8_t(std::clamp(v, 0, 255));
+                }
+        const int o = std::max(1, block / 4), shape = trial % 4;
+        std::vector<QuiltRun> runs;
+        for (int y = 0; y < block; ++y) {
+            int start = -1;
+            for (int x = 0; x <= block; ++x) {
+                bool placed = false;
+                if (x < block) {
+                    if (shape == 0) placed = y < o || x < o;
+                    if (shape == 1) placed = y < o || x < o || y >= block - o || x >= block - o;
+                    if (shape == 2) placed = x < o;
+                    if (shape == 3) placed = rng.below(3) == 0;
+                }
+                if (placed && start < 0) start = x;
+                if (!placed && start >= 0) {
+                    runs.push_back({y, start, x - start});
+                    start = -1;
+                }
+            }
+        }
+        if (runs.empty()) continue;
+        std::vector<std::pair<int, int>> excluded;
+        for (int k = 0; k < int(rng.below(4)); ++k)
+            excluded.push_back({int(rng.below(uint64_t(px))), int(rng.below(uint64_t(py)))});
+        if (trial % 5 == 0) excluded.push_back({ox, oy});
+        std::vector<uint32_t> a, b;
+        transform.near_places(runs, old.data(), excluded, 1, a);
+        direct.near_places(runs, old.data(), excluded, 2, b);
+        ASSERT_FALSE(b.empty());
+        EXPECT_EQ(a, b) << "trial " << trial << ": " << ch << " channels, " << ew << "x" << eh << ", block " << block
+                        << ", shape " << shape << ", noise " << noise;
+        ++checked;
+    }
+    EXPECT_GE(checked, 40);
 }

@@ -178,10 +178,10 @@ std::vector<ReadImage> read_whole(const Image& example, PositionMap map, const C
 }  // namespace
 
 std::vector<ReadImage> quilt_pixels(const Image& example, bool wraps, const CoherentOptions& options,
-                                    const std::vector<Readout>& readouts) {
+                                    const std::vector<Readout>& readouts, uint64_t search_memory) {
     PositionMap map{options.width, options.height,
                     quilt_positions(example, options.width, options.height, options.quilt, options.seed,
-                                    options.threads, options.progress)};
+                                    options.threads, options.progress, search_memory)};
     return read_whole(example, std::move(map), options, readouts, wraps);
 }
 

@@ -92,7 +92,12 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
         if (example.width < options.quilt || example.height < options.quilt)
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "the quilting block is larger than the example");
         CoherentResult r;
-        take_images(r, coherent::quilt_pixels(example, example_tileable, options, readouts), readouts);
+        // The memory the analysis would hold is the quilting search's.
+        take_images(r,
+                    coherent::quilt_pixels(example, example_tileable, options, readouts,
+                                           coherent_analysis_memory(example.width, example.height, example.channels,
+                                                                    levels, coherence)),
+                    readouts);
         r.synthesise_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
         return r;
     }

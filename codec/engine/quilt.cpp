@@ -10,24 +10,16 @@
 #include "common/error.hpp"
 #include "common/hash.hpp"
 #include "common/parallel.hpp"
-#include "dsp/dsp.hpp"
 #include "engine/coherent_positions.hpp"
 #include "engine/min_cut.hpp"
+#include "engine/quilt_search.hpp"
 
 namespace vqtex {
 namespace {
 
 constexpr uint32_t kUnplaced = 0xFFFFFFFFu;
 
-// How far, in example pixels, around the places where the overlapping
-// blocks' copies would go on, the places that set the search's first limit
-// lie.
-constexpr int kSeedReach = 2;
-// The cost of a place dropped by the search.
-constexpr int64_t kDropped = std::numeric_limits<int64_t>::max();
-
-// Sum of squared differences of n bytes: the tail the dispatched kernel
-// leaves (it takes whole 16-byte chunks), and one pixel's distance.
+// One pixel's squared colour distance.
 inline uint32_t ssd_bytes(const uint8_t* a, const uint8_t* b, int n) {
     uint32_t s = 0;
     for (int i = 0; i < n; ++i) {
@@ -36,11 +28,6 @@ inline uint32_t ssd_bytes(const uint8_t* a, const uint8_t* b, int n) {
     }
     return s;
 }
-
-// A run of already placed pixels on one row of a block.
-struct Run {
-    int dy, dx, length;
-};
 
 }  // namespace
 
@@ -64,7 +51,8 @@ QuiltGrid quilt_grid(int block, int width, int height) {
 }
 
 std::vector<uint32_t> quilt_positions(const Image& example, int width, int height, int block, uint64_t seed,
-                                      int threads, const std::function<bool(uint64_t, uint64_t)>& progress) {
+                                      int threads, const std::function<bool(uint64_t, uint64_t)>& progress,
+                                      uint64_t search_memory) {
     const QuiltGrid grid = quilt_grid(block, width, height);
     const int B = grid.block, nx = grid.nx, ny = grid.ny, ch = example.channels;
     // Origins of a block inside the example.
@@ -80,12 +68,13 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
     std::vector<std::pair<int, int>> excluded;
     std::vector<uint8_t> old(std::size_t(B) * std::size_t(B) * std::size_t(ch));
     std::vector<int> node(std::size_t(B) * std::size_t(B));
-    std::vector<Run> runs;
-    std::vector<int64_t> cost(std::size_t(cx) * std::size_t(cy));
+    std::vector<QuiltRun> runs;
     std::vector<uint32_t> near;
+    QuiltSearch search(example, B,
+                       QuiltSearch::transform_memory(example.width, example.height, ch, B) <= search_memory
+                           ? QuiltSearch::Method::kTransform
+                           : QuiltSearch::Method::kDirect);
     MinCut cut;
-    // The byte distance kernel of this machine (exact: the same sums on any).
-    const dsp::Kernels& kernel = dsp::kernels();
     const auto out_index = [&](int x, int y) {
         return std::size_t(Image::wrap(y, height)) * std::size_t(width) + std::size_t(Image::wrap(x, width));
     };
@@ -134,66 +123,13 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
                     if (ox <= -B || ox >= B || oy <= -B || oy >= B) continue;
                     excluded.push_back({o.sx - ox, o.sy - oy});
                 }
-            const int n_excluded = int(excluded.size());
-            const auto is_excluded = [&](int sx, int sy) {
-                for (int k = 0; k < n_excluded; ++k)
-                    if (excluded[k].first == sx && excluded[k].second == sy) return true;
-                return false;
-            };
             const uint64_t salt = mix64(seed ^ mix64((uint64_t(bj) << 32) | uint64_t(bi)));
             int sx = 0, sy = 0;
-            constexpr int tolp = kQuiltTolerancePercent;
             if (runs.empty()) {
                 sx = int(salt % uint64_t(cx));
                 sy = int((salt >> 32) % uint64_t(cy));
             } else {
-                // Exact, with an early limit. The whole costs of the places
-                // near where the overlapping blocks' copies would go on
-                // (within kSeedReach), which are often the best, set a
-                // first limit: the tolerance over the least of them. Then
-                // every place's cost is summed row by row and dropped as
-                // soon as it passes that limit. What is dropped cannot be
-                // near-best (the final limit is no higher), so the
-                // near-best set is the exhaustive one, and each place's
-                // fate depends on the first limit alone, the same on any
-                // thread count.
-                const auto whole_cost = [&](int x, int y, int64_t limit) {
-                    int64_t s = 0;
-                    for (const Run& r : runs) {
-                        const uint8_t* e = example.at(x + r.dx, y + r.dy);
-                        const uint8_t* o = old.data() + (std::size_t(r.dy) * std::size_t(B) + std::size_t(r.dx)) *
-                                                            std::size_t(ch);
-                        const int bytes = r.length * ch;
-                        const int whole = bytes / int(dsp::kVectorAlign) * int(dsp::kVectorAlign);
-                        s += int64_t(whole ? kernel.ssd(e, o, std::size_t(whole)) : 0) +
-                             int64_t(ssd_bytes(e + whole, o + whole, bytes - whole));
-                        if (s > limit) return kDropped;
-                    }
-                    return s;
-                };
-                const bool all_excluded = std::size_t(n_excluded) >= cost.size();
-                const auto allowed = [&](int x, int y) { return all_excluded || !is_excluded(x, y); };
-                int64_t first = kDropped;
-                for (const auto& [ex, ey] : excluded)
-                    for (int dy = -kSeedReach; dy <= kSeedReach; ++dy)
-                        for (int dx = -kSeedReach; dx <= kSeedReach; ++dx) {
-                            const int x = ex + dx, y = ey + dy;
-                            if (x >= 0 && y >= 0 && x < cx && y < cy && allowed(x, y))
-                                first = std::min(first, whole_cost(x, y, first));
-                        }
-                const int64_t limit = first == kDropped ? kDropped : first + first * tolp / 100;
-                parallel_for(threads, std::size_t(cy), 4, [&](std::size_t y0, std::size_t y1) {
-                    for (std::size_t y = y0; y < y1; ++y)
-                        for (int x = 0; x < cx; ++x)
-                            cost[y * std::size_t(cx) + std::size_t(x)] =
-                                allowed(x, int(y)) ? whole_cost(x, int(y), limit) : kDropped;
-                });
-                int64_t best = kDropped;
-                for (const int64_t c : cost) best = std::min(best, c);
-                near.clear();
-                const int64_t final_limit = best + best * tolp / 100;
-                for (std::size_t i = 0; i < cost.size(); ++i)
-                    if (cost[i] <= final_limit) near.push_back(uint32_t(i));
+                search.near_places(runs, old.data(), excluded, threads, near);
                 // The near-best places, in raster order; the seed picks one.
                 const uint32_t at = near[std::size_t(salt % near.size())];
                 sx = int(at % uint32_t(cx));

@@ -53,9 +53,13 @@ QuiltGrid quilt_grid(int block, int width, int height);
 // The width x height torus of packed example positions
 // (coherent_positions.hpp) laid out with blocks of `block` pixels.
 // `progress` (may be empty) hears of each row of blocks done; false
-// cancels (VQTEX_ERROR_CANCELLED).
+// cancels (VQTEX_ERROR_CANCELLED). The search by transforms, the faster,
+// is used when it needs at most `search_memory` bytes (the decoder's
+// memory check reserves the engine's analysis, which quilting does not
+// run); the direct search otherwise, with the same result.
 std::vector<uint32_t> quilt_positions(const Image& example, int width, int height, int block, uint64_t seed,
                                       int threads,
-                                      const std::function<bool(uint64_t done, uint64_t total)>& progress = {});
+                                      const std::function<bool(uint64_t done, uint64_t total)>& progress = {},
+                                      uint64_t search_memory = UINT64_MAX);
 
 }  // namespace vqtex

@@ -1,0 +1,240 @@
+// quilt_search.cpp - the near-best places of a quilting block, exactly,
+// by transforms or directly. See quilt_search.hpp.
+#include "engine/quilt_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "common/parallel.hpp"
+#include "dsp/dsp.hpp"
+#include "dsp/fft.hpp"
+#include "engine/quilt.hpp"
+
+namespace vqtex {
+namespace {
+
+// How far, in example pixels, around the places where the overlapping
+// blocks' copies would go on, the places that set the direct search's
+// first limit lie.
+constexpr int kSeedReach = 2;
+constexpr int64_t kDropped = std::numeric_limits<int64_t>::max();
+
+// Sum of squared differences of n bytes: the tail the dispatched kernel
+// leaves (it takes whole 16-byte chunks).
+inline uint32_t ssd_bytes(const uint8_t* a, const uint8_t* b, int n) {
+    uint32_t s = 0;
+    for (int i = 0; i < n; ++i) {
+        const int d = int(a[i]) - int(b[i]);
+        s += uint32_t(d * d);
+    }
+    return s;
+}
+
+int power_of_two_at_least(int n) {
+    int p = 1;
+    while (p < n) p <<= 1;
+    return p;
+}
+
+int64_t near_limit(int64_t best) { return best + best * kQuiltTolerancePercent / 100; }
+
+}  // namespace
+
+QuiltSearch::QuiltSearch(const Image& example, int block, Method method)
+    : example_(example),
+      block_(block),
+      places_x_(example.width - block + 1),
+      places_y_(example.height - block + 1),
+      method_(method),
+      cost_(std::size_t(places_x_) * std::size_t(places_y_)) {
+    if (method_ != Method::kTransform) return;
+    const int pw = power_of_two_at_least(example.width), ph = power_of_two_at_least(example.height);
+    fft_ = std::make_unique<dsp::Fft2d>(pw, ph);
+    const std::size_t points = std::size_t(pw) * std::size_t(ph);
+    // The example's planes: its channels, then the sum of their squares
+    // (what the block's mask of placed pixels is correlated with), two to
+    // a complex plane.
+    const int ch = example.channels, planes = ch + 1, pairs = (planes + 1) / 2;
+    const auto plane = [&](int k, int x, int y) -> double {
+        const uint8_t* p = example.at(x, y);
+        if (k < ch) return p[k];
+        int64_t q = 0;
+        for (int c = 0; c < ch; ++c) q += int64_t(p[c]) * p[c];
+        return double(q);
+    };
+    for (int p = 0; p < pairs; ++p) {
+        std::vector<double> re(points, 0.0), im(points, 0.0);
+        double norm = 0;
+        for (int y = 0; y < example.height; ++y)
+            for (int x = 0; x < example.width; ++x) {
+                const std::size_t i = std::size_t(y) * std::size_t(pw) + std::size_t(x);
+                re[i] = plane(2 * p, x, y);
+                im[i] = 2 * p + 1 < planes ? plane(2 * p + 1, x, y) : 0.0;
+                norm += re[i] * re[i] + im[i] * im[i];
+            }
+        fft_->forward(re.data(), im.data(), example.height);
+        example_re_.push_back(std::move(re));
+        example_im_.push_back(std::move(im));
+        example_norms_.push_back(std::sqrt(norm));
+        block_re_.emplace_back(points);
+        block_im_.emplace_back(points);
+    }
+    sum_re_.resize(points);
+    sum_im_.resize(points);
+}
+
+QuiltSearch::~QuiltSearch() = default;
+
+uint64_t QuiltSearch::transform_memory(int example_width, int example_height, int channels, int block) {
+    const uint64_t pw = uint64_t(power_of_two_at_least(example_width)),
+                   ph = uint64_t(power_of_two_at_least(example_height)), pairs = uint64_t(channels + 2) / 2;
+    // The example's and the block's transformed pairs, the sum, the
+    // transposed rows, the rounded and the exact costs.
+    const uint64_t rows = uint64_t(std::max(block, example_height - block + 1));
+    return sizeof(double) * (pw * ph * (4 * pairs + 2) + 2 * pw * rows) +
+           sizeof(int64_t) * uint64_t(example_width - block + 1) * uint64_t(example_height - block + 1);
+}
+
+int64_t QuiltSearch::cost(const std::vector<QuiltRun>& runs, const uint8_t* old, int x, int y, int64_t limit) const {
+    const dsp::Kernels& kernel = dsp::kernels();
+    const int ch = example_.channels;
+    int64_t s = 0;
+    for (const QuiltRun& r : runs) {
+        const uint8_t* e = example_.at(x + r.dx, y + r.dy);
+        const uint8_t* o = old + (std::size_t(r.dy) * std::size_t(block_) + std::size_t(r.dx)) * std::size_t(ch);
+        const int bytes = r.length * ch;
+        const int whole = bytes / int(dsp::kVectorAlign) * int(dsp::kVectorAlign);
+        s += int64_t(whole ? kernel.ssd(e, o, std::size_t(whole)) : 0) +
+             int64_t(ssd_bytes(e + whole, o + whole, bytes - whole));
+        if (s > limit) return -1;
+    }
+    return s;
+}
+
+// Every place's cost at once, rounded: with O the output's colours under the
+// block (zero where it holds none), M the mask of those it holds and E the
+// example, sum over the mask of |E - O|^2 = corr(M, |E|^2) - 2 corr(O, E) +
+// |O|^2, the correlations through one transform per pair of planes and one
+// inverse (the real part of corr(a + ib, e + if) is corr(a, e) + corr(b,
+// f)). margin_ bounds the rounding.
+void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8_t* old) {
+    const int pw = fft_->width(), ch = example_.channels, planes = ch + 1;
+    const std::size_t points = std::size_t(pw) * std::size_t(fft_->height());
+    int64_t own = 0;
+    for (auto& v : block_re_) std::fill(v.begin(), v.end(), 0.0);
+    for (auto& v : block_im_) std::fill(v.begin(), v.end(), 0.0);
+    for (const QuiltRun& r : runs)
+        for (int k = 0; k < r.length; ++k) {
+            const int dx = r.dx + k;
+            const uint8_t* o = old + (std::size_t(r.dy) * std::size_t(block_) + std::size_t(dx)) * std::size_t(ch);
+            const std::size_t i = std::size_t(r.dy) * std::size_t(pw) + std::size_t(dx);
+            for (int q = 0; q < planes; ++q) {
+                const double v = q < ch ? -2.0 * o[q] : 1.0;
+                if (q < ch) own += int64_t(o[q]) * o[q];
+                (q % 2 ? block_im_ : block_re_)[std::size_t(q / 2)][i] = v;
+            }
+        }
+    double norms = 0;
+    std::fill(sum_re_.begin(), sum_re_.end(), 0.0);
+    std::fill(sum_im_.begin(), sum_im_.end(), 0.0);
+    for (std::size_t p = 0; p < block_re_.size(); ++p) {
+        double* __restrict zr = block_re_[p].data();
+        double* __restrict zi = block_im_[p].data();
+        double norm = 0;
+        for (std::size_t i = 0; i < points; ++i) norm += zr[i] * zr[i] + zi[i] * zi[i];
+        norms += std::sqrt(norm) * example_norms_[p];
+        fft_->forward(zr, zi, block_);
+        const double* __restrict wr = example_re_[p].data();
+        const double* __restrict wi = example_im_[p].data();
+        double* __restrict sr = sum_re_.data();
+        double* __restrict si = sum_im_.data();
+        // conj(z) w
+        for (std::size_t i = 0; i < points; ++i) {
+            sr[i] += zr[i] * wr[i] + zi[i] * wi[i];
+            si[i] += zr[i] * wi[i] - zi[i] * wr[i];
+        }
+    }
+    fft_->inverse(sum_re_.data(), sum_im_.data(), places_y_);
+    const double scale = 1.0 / double(points);
+    for (int y = 0; y < places_y_; ++y)
+        for (int x = 0; x < places_x_; ++x)
+            sum_im_[std::size_t(y) * std::size_t(places_x_) + std::size_t(x)] =
+                sum_re_[std::size_t(y) * std::size_t(pw) + std::size_t(x)] * scale + double(own);
+    // The rounding of the sum of the rounded correlation and |O|^2 besides.
+    margin_ = dsp::fft_correlation_error_bound(points, norms) + 1.0;
+}
+
+void QuiltSearch::near_places(const std::vector<QuiltRun>& runs, const uint8_t* old,
+                              const std::vector<std::pair<int, int>>& excluded, int threads,
+                              std::vector<uint32_t>& near) {
+    const int n_excluded = int(excluded.size());
+    const bool all_excluded = std::size_t(n_excluded) >= cost_.size();
+    const auto allowed = [&](int x, int y) {
+        if (all_excluded) return true;
+        for (int k = 0; k < n_excluded; ++k)
+            if (excluded[std::size_t(k)].first == x && excluded[std::size_t(k)].second == y) return false;
+        return true;
+    };
+    near.clear();
+    if (method_ == Method::kTransform) {
+        transform_costs(runs, old);
+        const double* approx = sum_im_.data();
+        double least = std::numeric_limits<double>::infinity();
+        for (int y = 0; y < places_y_; ++y)
+            for (int x = 0; x < places_x_; ++x) {
+                const double a = approx[std::size_t(y) * std::size_t(places_x_) + std::size_t(x)];
+                if (a < least && allowed(x, y)) least = a;
+            }
+        // Every place whose exact cost could be within the tolerance of the
+        // least exact cost: that is at most least + margin, and a place's
+        // exact cost at least its rounded cost - margin.
+        const double bound = (least + margin_) * (1.0 + kQuiltTolerancePercent / 100.0) + margin_;
+        int64_t best = kDropped;
+        for (int y = 0; y < places_y_; ++y)
+            for (int x = 0; x < places_x_; ++x) {
+                const std::size_t i = std::size_t(y) * std::size_t(places_x_) + std::size_t(x);
+                cost_[i] = kDropped;
+                if (approx[i] > bound || !allowed(x, y)) continue;
+                const int64_t c = cost(runs, old, x, y, best == kDropped ? kDropped : near_limit(best));
+                if (c < 0) continue;
+                cost_[i] = c;
+                best = std::min(best, c);
+            }
+        const int64_t limit = near_limit(best);
+        for (std::size_t i = 0; i < cost_.size(); ++i)
+            if (cost_[i] <= limit) near.push_back(uint32_t(i));
+        return;
+    }
+    // Directly: the whole costs of the places near where the overlapping
+    // blocks' copies would go on (within kSeedReach), which are often the
+    // best, set a first limit, the tolerance over the least of them. Then
+    // every place's cost is summed run by run and dropped as soon as it
+    // passes that limit. What is dropped cannot be near-best (the final
+    // limit is no higher), and each place's fate depends on the first limit
+    // alone, the same on any thread count.
+    int64_t first = kDropped;
+    for (const auto& [ex, ey] : excluded)
+        for (int dy = -kSeedReach; dy <= kSeedReach; ++dy)
+            for (int dx = -kSeedReach; dx <= kSeedReach; ++dx) {
+                const int x = ex + dx, y = ey + dy;
+                if (x < 0 || y < 0 || x >= places_x_ || y >= places_y_ || !allowed(x, y)) continue;
+                const int64_t c = cost(runs, old, x, y, first);
+                if (c >= 0) first = std::min(first, c);
+            }
+    const int64_t limit = first == kDropped ? kDropped : near_limit(first);
+    parallel_for(threads, std::size_t(places_y_), 4, [&](std::size_t y0, std::size_t y1) {
+        for (std::size_t y = y0; y < y1; ++y)
+            for (int x = 0; x < places_x_; ++x) {
+                const int64_t c = allowed(x, int(y)) ? cost(runs, old, x, int(y), limit) : -1;
+                cost_[y * std::size_t(places_x_) + std::size_t(x)] = c < 0 ? kDropped : c;
+            }
+    });
+    int64_t best = kDropped;
+    for (const int64_t c : cost_) best = std::min(best, c);
+    const int64_t final_limit = near_limit(best);
+    for (std::size_t i = 0; i < cost_.size(); ++i)
+        if (cost_[i] <= final_limit) near.push_back(uint32_t(i));
+}
+
+}  // namespace vqtex
