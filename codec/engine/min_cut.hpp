@@ -33,24 +33,34 @@ public:
     bool source_side(int v) const { return reached_[std::size_t(v)] != 0; }
 
 private:
-    struct Edge {
-        int to, next;
+    // The edges as added, turned into arcs grouped by their tail (arcs of
+    // one node side by side: a node's arcs are read together) when solve()
+    // starts; rev is the index of the arc back.
+    struct Added {
+        int a, b;
+        int64_t ab, ba;
+    };
+    struct Arc {
+        int to, rev;
         int64_t cap;
     };
     enum : int8_t { kFree = 0, kSourceTree = 1, kSinkTree = 2 };
-    int parent_node(int v) const;
+    void build_arcs();
     bool rooted(int v);
     int grow();
     int64_t augment(int bridge);
     void adopt();
     int n_;
-    std::vector<int> head_;
-    std::vector<Edge> edges_;
+    std::vector<Added> added_;
+    std::vector<Arc> arcs_;
+    std::vector<int> first_;  // node v's arcs: first_[v] .. first_[v + 1]
     std::vector<int8_t> tree_;
-    // The edge that joins a node to its parent, carrying flow towards the
+    // A node's parent in its tree (-1 for a root, a free node or an
+    // orphan), and the arc that joins them, carrying flow towards the
     // sink: parent -> node in the source tree, node -> parent in the sink
-    // tree; -1 for a root, a free node or an orphan.
-    std::vector<int> parent_;
+    // tree. The parent is kept beside the arc so that a walk to the root
+    // reads one value a step.
+    std::vector<int> parent_, parent_arc_;
     std::vector<int> active_, orphans_;
     // Nodes found rooted since the trees last lost a node (stamp_ ==
     // time_), so that a walk to the root stops at them (Boykov &
