@@ -228,6 +228,7 @@ TEST(Fft, CorrelationsAreWithinTheirBound) {
     Rng rng(5);
     for (const auto& [w, h] : std::vector<std::pair<int, int>>{{8, 8}, {32, 16}, {16, 64}, {128, 128}}) {
         const dsp::Fft2d fft(w, h);
+        dsp::FftScratch scratch;
         const std::size_t n = std::size_t(w) * std::size_t(h);
         std::vector<double> a(n, 0.0), e(n), are(n), aim(n, 0.0), ere(n), eim(n, 0.0);
         const int bw = std::max(1, w / 2), bh = std::max(1, h / 2);
@@ -241,14 +242,14 @@ TEST(Fft, CorrelationsAreWithinTheirBound) {
         }
         are = a;
         ere = e;
-        fft.forward(are.data(), aim.data(), bh);
-        fft.forward(ere.data(), eim.data(), h);
+        fft.forward(are.data(), aim.data(), bh, scratch);
+        fft.forward(ere.data(), eim.data(), h, scratch);
         std::vector<double> sre(n), sim(n);
         for (std::size_t i = 0; i < n; ++i) {
             sre[i] = are[i] * ere[i] + aim[i] * eim[i];
             sim[i] = are[i] * eim[i] - aim[i] * ere[i];
         }
-        fft.inverse(sre.data(), sim.data(), h);
+        fft.inverse(sre.data(), sim.data(), h, scratch);
         const double bound = dsp::fft_correlation_error_bound(n, std::sqrt(na) * std::sqrt(ne));
         double worst = 0;
         for (int sy = 0; sy < h; ++sy)

@@ -91,28 +91,30 @@ void transpose(const double* src, int rows, int cols, int src_stride, double* ds
 
 }  // namespace
 
-void Fft2d::rows(double* re, double* im, int count, int sign) const {
+void Fft2d::rows(double* re, double* im, int count, int sign, FftScratch& scratch) const {
     const std::size_t n = std::size_t(w_) * std::size_t(count);
-    if (tre_.size() < n) {
-        tre_.resize(n);
-        tim_.resize(n);
+    if (scratch.re.size() < n) {
+        scratch.re.resize(n);
+        scratch.im.resize(n);
     }
-    transpose(re, count, w_, w_, tre_.data(), count);
-    transpose(im, count, w_, w_, tim_.data(), count);
-    columns(tre_.data(), tim_.data(), w_, count, count, sign);
-    transpose(tre_.data(), w_, count, count, re, w_);
-    transpose(tim_.data(), w_, count, count, im, w_);
+    double* tre = scratch.re.data();
+    double* tim = scratch.im.data();
+    transpose(re, count, w_, w_, tre, count);
+    transpose(im, count, w_, w_, tim, count);
+    columns(tre, tim, w_, count, count, sign);
+    transpose(tre, w_, count, count, re, w_);
+    transpose(tim, w_, count, count, im, w_);
 }
 
-void Fft2d::forward(double* re, double* im, int rows_in) const {
+void Fft2d::forward(double* re, double* im, int rows_in, FftScratch& scratch) const {
     // Rows that are zero stay zero along their own length.
-    rows(re, im, std::min(rows_in, h_), -1);
+    rows(re, im, std::min(rows_in, h_), -1, scratch);
     columns(re, im, h_, w_, w_, -1);
 }
 
-void Fft2d::inverse(double* re, double* im, int rows_out) const {
+void Fft2d::inverse(double* re, double* im, int rows_out, FftScratch& scratch) const {
     columns(re, im, h_, w_, w_, 1);
-    rows(re, im, std::min(rows_out, h_), 1);
+    rows(re, im, std::min(rows_out, h_), 1, scratch);
 }
 
 double fft_correlation_error_bound(std::size_t points, double norm_products) {

@@ -16,6 +16,11 @@
 
 namespace vqtex::dsp {
 
+// Working memory of a transform; one per thread that transforms at once.
+struct FftScratch {
+    std::vector<double> re, im;
+};
+
 class Fft2d {
 public:
     // A transform of `width` x `height` points, both powers of two.
@@ -24,11 +29,11 @@ public:
     int height() const { return h_; }
     // Forward transform of re + i im (height rows of width values), in
     // place. Only the first `rows_in` rows may hold values other than zero.
-    void forward(double* re, double* im, int rows_in) const;
+    void forward(double* re, double* im, int rows_in, FftScratch& scratch) const;
     // Inverse transform, not divided by width x height, in place. Only the
     // first `rows_out` rows of the result are computed; the others hold
     // intermediate values.
-    void inverse(double* re, double* im, int rows_out) const;
+    void inverse(double* re, double* im, int rows_out, FftScratch& scratch) const;
 
 private:
     // Transforms every column of a rows x cols array along its rows
@@ -37,12 +42,11 @@ private:
     void columns(double* re, double* im, int rows, int cols, int stride, int sign) const;
     // Transforms the first `rows` rows of a height_ x width_ array along
     // their own length, through a transposed copy.
-    void rows(double* re, double* im, int rows, int sign) const;
+    void rows(double* re, double* im, int rows, int sign, FftScratch& scratch) const;
     int w_, h_;
     // cos and sin of 2 pi k / n for the larger side n, k < n / 2.
     std::vector<double> cos_, sin_;
     int n_;
-    mutable std::vector<double> tre_, tim_;
 };
 
 // A bound on the absolute error of a correlation computed as

@@ -8,7 +8,6 @@
 
 #include "common/parallel.hpp"
 #include "dsp/dsp.hpp"
-#include "dsp/fft.hpp"
 #include "engine/quilt.hpp"
 
 namespace vqtex {
@@ -63,6 +62,7 @@ QuiltSearch::QuiltSearch(const Image& example, int block, Method method)
         for (int c = 0; c < ch; ++c) q += int64_t(p[c]) * p[c];
         return double(q);
     };
+    dsp::FftScratch spare;
     for (int p = 0; p < pairs; ++p) {
         std::vector<double> re(points, 0.0), im(points, 0.0);
         double norm = 0;
@@ -73,12 +73,13 @@ QuiltSearch::QuiltSearch(const Image& example, int block, Method method)
                 im[i] = 2 * p + 1 < planes ? plane(2 * p + 1, x, y) : 0.0;
                 norm += re[i] * re[i] + im[i] * im[i];
             }
-        fft_->forward(re.data(), im.data(), example.height);
+        fft_->forward(re.data(), im.data(), example.height, spare);
         example_re_.push_back(std::move(re));
         example_im_.push_back(std::move(im));
         example_norms_.push_back(std::sqrt(norm));
         block_re_.emplace_back(points);
         block_im_.emplace_back(points);
+        scratch_.emplace_back();
     }
     sum_re_.resize(points);
     sum_im_.resize(points);
@@ -118,51 +119,75 @@ int64_t QuiltSearch::cost(const std::vector<QuiltRun>& runs, const uint8_t* old,
 // |O|^2, the correlations through one transform per pair of planes and one
 // inverse (the real part of corr(a + ib, e + if) is corr(a, e) + corr(b,
 // f)). margin_ bounds the rounding.
-void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8_t* old) {
+void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8_t* old, int threads) {
     const int pw = fft_->width(), ch = example_.channels, planes = ch + 1;
     const std::size_t points = std::size_t(pw) * std::size_t(fft_->height());
+    const int pairs = int(block_re_.size());
     int64_t own = 0;
-    for (auto& v : block_re_) std::fill(v.begin(), v.end(), 0.0);
-    for (auto& v : block_im_) std::fill(v.begin(), v.end(), 0.0);
     for (const QuiltRun& r : runs)
-        for (int k = 0; k < r.length; ++k) {
-            const int dx = r.dx + k;
-            const uint8_t* o = old + (std::size_t(r.dy) * std::size_t(block_) + std::size_t(dx)) * std::size_t(ch);
-            const std::size_t i = std::size_t(r.dy) * std::size_t(pw) + std::size_t(dx);
-            for (int q = 0; q < planes; ++q) {
-                const double v = q < ch ? -2.0 * o[q] : 1.0;
-                if (q < ch) own += int64_t(o[q]) * o[q];
-                (q % 2 ? block_im_ : block_re_)[std::size_t(q / 2)][i] = v;
-            }
+        for (int k = 0; k < r.length * ch; ++k) {
+            const uint8_t o = old[(std::size_t(r.dy) * std::size_t(block_) + std::size_t(r.dx)) * std::size_t(ch) +
+                                  std::size_t(k)];
+            own += int64_t(o) * o;
         }
-    double norms = 0;
-    std::fill(sum_re_.begin(), sum_re_.end(), 0.0);
-    std::fill(sum_im_.begin(), sum_im_.end(), 0.0);
-    for (std::size_t p = 0; p < block_re_.size(); ++p) {
-        double* __restrict zr = block_re_[p].data();
-        double* __restrict zi = block_im_[p].data();
+    // Each pair of planes is laid out, transformed and multiplied by the
+    // example's on a thread of its own; the products are summed in a fixed
+    // order, so the rounded costs are the same for any thread count.
+    std::vector<double> norms(std::size_t(pairs), 0.0);
+    const auto pair_job = [&](int p) {
+        double* __restrict zr = block_re_[std::size_t(p)].data();
+        double* __restrict zi = block_im_[std::size_t(p)].data();
+        std::fill(zr, zr + points, 0.0);
+        std::fill(zi, zi + points, 0.0);
         double norm = 0;
-        for (std::size_t i = 0; i < points; ++i) norm += zr[i] * zr[i] + zi[i] * zi[i];
-        norms += std::sqrt(norm) * example_norms_[p];
-        fft_->forward(zr, zi, block_);
-        const double* __restrict wr = example_re_[p].data();
-        const double* __restrict wi = example_im_[p].data();
-        double* __restrict sr = sum_re_.data();
-        double* __restrict si = sum_im_.data();
-        // conj(z) w
+        for (const QuiltRun& r : runs)
+            for (int k = 0; k < r.length; ++k) {
+                const int dx = r.dx + k;
+                const uint8_t* o = old + (std::size_t(r.dy) * std::size_t(block_) + std::size_t(dx)) * std::size_t(ch);
+                const std::size_t i = std::size_t(r.dy) * std::size_t(pw) + std::size_t(dx);
+                for (int q = 2 * p; q < std::min(2 * p + 2, planes); ++q) {
+                    const double v = q < ch ? -2.0 * o[q] : 1.0;
+                    (q % 2 ? zi : zr)[i] = v;
+                    norm += v * v;
+                }
+            }
+        norms[std::size_t(p)] = std::sqrt(norm) * example_norms_[std::size_t(p)];
+        fft_->forward(zr, zi, block_, scratch_[std::size_t(p)]);
+        // conj(z) w, in place.
+        const double* __restrict wr = example_re_[std::size_t(p)].data();
+        const double* __restrict wi = example_im_[std::size_t(p)].data();
         for (std::size_t i = 0; i < points; ++i) {
-            sr[i] += zr[i] * wr[i] + zi[i] * wi[i];
-            si[i] += zr[i] * wi[i] - zi[i] * wr[i];
+            const double r = zr[i] * wr[i] + zi[i] * wi[i], m = zr[i] * wi[i] - zi[i] * wr[i];
+            zr[i] = r;
+            zi[i] = m;
+        }
+    };
+    const int workers = std::max(1, std::min(threads, pairs));
+    run_together(workers, [&](int w) {
+        for (int p = w; p < pairs; p += workers) pair_job(p);
+    });
+    double* __restrict sr = sum_re_.data();
+    double* __restrict si = sum_im_.data();
+    std::copy_n(block_re_[0].data(), points, sr);
+    std::copy_n(block_im_[0].data(), points, si);
+    for (int p = 1; p < pairs; ++p) {
+        const double* __restrict zr = block_re_[std::size_t(p)].data();
+        const double* __restrict zi = block_im_[std::size_t(p)].data();
+        for (std::size_t i = 0; i < points; ++i) {
+            sr[i] += zr[i];
+            si[i] += zi[i];
         }
     }
-    fft_->inverse(sum_re_.data(), sum_im_.data(), places_y_);
+    fft_->inverse(sr, si, places_y_, scratch_[0]);
     const double scale = 1.0 / double(points);
     for (int y = 0; y < places_y_; ++y)
         for (int x = 0; x < places_x_; ++x)
-            sum_im_[std::size_t(y) * std::size_t(places_x_) + std::size_t(x)] =
-                sum_re_[std::size_t(y) * std::size_t(pw) + std::size_t(x)] * scale + double(own);
+            si[std::size_t(y) * std::size_t(places_x_) + std::size_t(x)] =
+                sr[std::size_t(y) * std::size_t(pw) + std::size_t(x)] * scale + double(own);
     // The rounding of the sum of the rounded correlation and |O|^2 besides.
-    margin_ = dsp::fft_correlation_error_bound(points, norms) + 1.0;
+    double bound_norms = 0;
+    for (const double n : norms) bound_norms += n;
+    margin_ = dsp::fft_correlation_error_bound(points, bound_norms) + 1.0;
 }
 
 void QuiltSearch::near_places(const std::vector<QuiltRun>& runs, const uint8_t* old,
@@ -178,7 +203,7 @@ void QuiltSearch::near_places(const std::vector<QuiltRun>& runs, const uint8_t* 
     };
     near.clear();
     if (method_ == Method::kTransform) {
-        transform_costs(runs, old);
+        transform_costs(runs, old, threads);
         const double* approx = sum_im_.data();
         double least = std::numeric_limits<double>::infinity();
         for (int y = 0; y < places_y_; ++y)

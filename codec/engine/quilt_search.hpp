@@ -21,12 +21,9 @@
 #include <vector>
 
 #include "common/image.hpp"
+#include "dsp/fft.hpp"
 
 namespace vqtex {
-
-namespace dsp {
-class Fft2d;
-}
 
 // A run of the block's pixels, on one of its rows, that the output already
 // holds.
@@ -55,7 +52,7 @@ public:
     int64_t cost(const std::vector<QuiltRun>& runs, const uint8_t* old, int x, int y, int64_t limit) const;
 
 private:
-    void transform_costs(const std::vector<QuiltRun>& runs, const uint8_t* old);
+    void transform_costs(const std::vector<QuiltRun>& runs, const uint8_t* old, int threads);
     const Image& example_;
     int block_, places_x_, places_y_;
     Method method_;
@@ -65,6 +62,7 @@ private:
     std::unique_ptr<dsp::Fft2d> fft_;
     std::vector<std::vector<double>> example_re_, example_im_, block_re_, block_im_;
     std::vector<double> sum_re_, sum_im_, example_norms_;
+    std::vector<dsp::FftScratch> scratch_;
     double margin_ = 0;
 };
 
