@@ -190,14 +190,20 @@ int main(int argc, char** argv) {
                     vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, barred);
                 write(out / "decode" / (name + "_v15.vqt"), v15.data(), v15.size());
                 ++files;
-                // Version 19: the same atlas laid out by quilting.
+                // Versions 20 and 19: the same atlas laid out by quilting,
+                // its blocks in wavefront and in raster order.
                 vqtex::AtlasSynthesisParams quilted = sp;
                 quilted.quilt = vqtex::quilt_block(f.atlas.width, f.atlas.height);
                 if (quilted.quilt > 0) {
-                    const std::vector<uint8_t> v19 =
+                    const std::vector<uint8_t> v20 =
                         vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, quilted);
+                    write(out / "decode" / (name + "_v20.vqt"), v20.data(), v20.size());
+                    std::vector<uint8_t> v19 = v20;
+                    v19[8] = 19;
+                    const uint32_t crc = vqtex::crc32(v19.data(), v19.size() - 4);
+                    for (int i = 0; i < 4; ++i) v19[v19.size() - 4 + std::size_t(i)] = uint8_t(crc >> (8 * i));
                     write(out / "decode" / (name + "_v19.vqt"), v19.data(), v19.size());
-                    ++files;
+                    files += 2;
                 }
                 // Version 13: the atlas a part of a larger exemplar, its
                 // origin stored.

@@ -877,11 +877,25 @@ TEST(AtlasFile, GoldenQuiltFileDecodesToKnownPixels) {
     EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).quilt_block, 64u);
 }
 
-// The layout asked of the encoder: quilting writes version 19 for a
+// Pins format version 20, quilting in wavefront order: cellular_v19.vqt's
+// bytes with the version 20, so that the two decodes differ by the order
+// the blocks are laid in alone; the same pixels for any thread count.
+TEST(AtlasFile, GoldenWavefrontQuiltFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes =
+        check_golden_compact("cellular_v20.vqt", 20, 0xa25bea9c77b475b7ull, 0xa7dd1b38084cb8a9ull, 256, 256, 19);
+    if (bytes.empty()) return;
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
+    EXPECT_EQ(f.params.quilt, 64);
+    EXPECT_TRUE(f.params.quilt_wavefront);
+    const vqtex::Image one = decode(bytes, decode_params(256, 256, 5, 1));
+    for (uint32_t threads : {2u, 3u, 8u}) EXPECT_EQ(decode(bytes, decode_params(256, 256, 5, threads)).pixels, one.pixels);
+}
+
+// The layout asked of the encoder: quilting writes version 20 for a
 // wrapping example (the same atlas as the engine's file), decoded alike on
 // any thread count, differently for another seed, and tiling; an example
 // that does not wrap keeps the engine.
-TEST(AtlasFile, QuiltLayoutIsVersion19OnWrappingExamplesOnly) {
+TEST(AtlasFile, QuiltLayoutIsVersion20OnWrappingExamplesOnly) {
     const vqtex::Image ex = load_corpus("cellular_128.png");
     vqtex_encode_params p = atlas_params();
     p.layout = VQTEX_LAYOUT_COHERENT;
@@ -890,7 +904,7 @@ TEST(AtlasFile, QuiltLayoutIsVersion19OnWrappingExamplesOnly) {
     vqtex_encode_stats stats{};
     const std::vector<uint8_t> quilted = encode(ex, p, &stats);
     EXPECT_EQ(vqtex_cpp::inspect(coherent.data(), coherent.size()).format_version, 15u);
-    EXPECT_EQ(vqtex_cpp::inspect(quilted.data(), quilted.size()).format_version, 19u);
+    EXPECT_EQ(vqtex_cpp::inspect(quilted.data(), quilted.size()).format_version, 20u);
     EXPECT_EQ(stats.quilt, 1u);
     EXPECT_EQ(stats.period_bar, 0u);
     ASSERT_EQ(coherent.size(), quilted.size()) << "the same atlas, one more version";
@@ -899,7 +913,7 @@ TEST(AtlasFile, QuiltLayoutIsVersion19OnWrappingExamplesOnly) {
     for (uint32_t threads : {2u, 3u}) EXPECT_EQ(decode(quilted, decode_params(200, 150, 3, threads)).pixels, one.pixels);
     EXPECT_NE(decode(quilted, decode_params(200, 150, 4, 2)).pixels, one.pixels);
     EXPECT_NE(decode(coherent, decode_params(200, 150, 3, 2)).pixels, one.pixels);
-    // The progress callback hears of the quilt's rows and can cancel it.
+    // The progress callback hears of the quilt's blocks and can cancel it.
     vqtex_decode_params cancel = decode_params(200, 150, 3, 2);
     int calls = 0;
     cancel.progress_user = &calls;
@@ -927,7 +941,7 @@ TEST(AtlasFile, QuiltLayoutIsVersion19OnWrappingExamplesOnly) {
     EXPECT_NE(std::string(err.detail).find("layout"), std::string::npos) << err.detail;
 }
 
-// A version 19 file whose atlas is too small to quilt is corrupt.
+// A version 19 or 20 file whose atlas is too small to quilt is corrupt.
 TEST(AtlasFile, QuiltFileOfATinyAtlasIsCorrupt) {
     std::vector<uint8_t> file = encode(make_random(12, 12, 3, 8), atlas_params());
     ASSERT_EQ(vqtex_cpp::inspect(file.data(), file.size()).format_version, 10u);

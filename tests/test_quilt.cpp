@@ -196,6 +196,35 @@ TEST(Quilt, SameForAnyThreadCountAndChangedBySeed) {
     EXPECT_NE(quilt_positions(ex, 150, 110, block, 5, 2), one);
 }
 
+TEST(Quilt, WavefrontOrderGivesTheSameBytesOnAnyThreadCount) {
+    // Blocks laid at once must read what they would read one after the
+    // other in the wavefront order: the same positions for any thread
+    // count and any grid, the small ones whose blocks meet across the torus
+    // included; and the order is not raster order's.
+    const Image ex = load_corpus("cellular_128.png");
+    const int block = quilt_block(ex.width, ex.height);
+    for (const auto& [w, h] : std::vector<std::pair<int, int>>{{512, 384}, {150, 110}, {97, 300}, {64, 40}, {30, 30}, {7, 5}}) {
+        const std::vector<uint32_t> one = quilt_positions(ex, w, h, block, 4, 1, {}, UINT64_MAX, QuiltOrder::kWavefront);
+        for (int threads : {2, 3, 8})
+            EXPECT_EQ(quilt_positions(ex, w, h, block, 4, threads, {}, UINT64_MAX, QuiltOrder::kWavefront), one)
+                << w << "x" << h << ", " << threads << " threads";
+        // With room for one search only, the blocks are laid one at a time,
+        // by the direct search when not even the transforms' fit.
+        EXPECT_EQ(quilt_positions(ex, w, h, block, 4, 3, {}, 0, QuiltOrder::kWavefront), one) << w << "x" << h;
+        if (w >= 150) {
+            EXPECT_NE(quilt_positions(ex, w, h, block, 4, 2), one) << w << "x" << h;
+        }
+    }
+    // Every block in the sequence once; block (i, j) at step i + 2j.
+    const std::vector<int> order = quilt_order(5, 3, QuiltOrder::kWavefront);
+    ASSERT_EQ(order.size(), 15u);
+    for (std::size_t r = 1; r < order.size(); ++r) {
+        const int a = order[r - 1], b = order[r];
+        EXPECT_LE(a % 5 + 2 * (a / 5), b % 5 + 2 * (b / 5));
+    }
+    EXPECT_EQ(std::vector<int>(order.begin(), order.begin() + 4), (std::vector<int>{0, 1, 2, 5}));
+}
+
 TEST(Quilt, TheSynthesisCallQuiltsOnRequest) {
     const Image ex = load_corpus("cellular_128.png");
     vqtex_synth_params p = vqtex_test::default_params(96, 80, 2);
@@ -289,8 +318,9 @@ TEST(QuiltSearch, TransformAndDirectGiveTheSameNearPlaces) {
                 for (int x = 0; x < ew; ++x)
                     for (int c = 0; c < ch; ++c) ex.at(x, y)[c] = uint8_t((x * 3 + y * 2 + c * 40) % 256);
         const int block = std::max(4, quilt_block(ew, eh));
-        QuiltSearch transform(ex, block, QuiltSearch::Method::kTransform);
-        QuiltSearch direct(ex, block, QuiltSearch::Method::kDirect);
+        const QuiltExample by_transform(ex, block, QuiltExample::Method::kTransform);
+        const QuiltExample by_sums(ex, block, QuiltExample::Method::kDirect);
+        QuiltSearch transform(by_transform, true), one_pair_at_a_time(by_transform, false), direct(by_sums, true);
         const int px = ew - block + 1, py = eh - block + 1;
         const int ox = int(rng.below(uint64_t(px))), oy = int(rng.below(uint64_t(py)));
         const int noise = int(rng.below(3)) * 4;
@@ -326,10 +356,12 @@ TEST(QuiltSearch, TransformAndDirectGiveTheSameNearPlaces) {
         for (int k = 0; k < int(rng.below(4)); ++k)
             excluded.push_back({int(rng.below(uint64_t(px))), int(rng.below(uint64_t(py)))});
         if (trial % 5 == 0) excluded.push_back({ox, oy});
-        std::vector<uint32_t> a, b;
-        transform.near_places(runs, old.data(), excluded, 1, a);
+        std::vector<uint32_t> a, b, c;
+        transform.near_places(runs, old.data(), excluded, 2, a);
+        one_pair_at_a_time.near_places(runs, old.data(), excluded, 1, c);
         direct.near_places(runs, old.data(), excluded, 2, b);
         ASSERT_FALSE(b.empty());
+        EXPECT_EQ(c, b) << "trial " << trial << ", one pair at a time";
         EXPECT_EQ(a, b) << "trial " << trial << ": " << ch << " channels, " << ew << "x" << eh << ", block " << block
                         << ", shape " << shape << ", noise " << noise;
         ++checked;

@@ -25,6 +25,7 @@ CoherentOptions coherent_options(const AtlasSynthesisParams& params, int width, 
     opt.period_bar = params.period_bar && params.example_tileable;
     opt.blend_straight_alpha = params.blend_straight_alpha;
     opt.quilt = params.quilt;
+    opt.quilt_wavefront = params.quilt_wavefront;
     return opt;
 }
 

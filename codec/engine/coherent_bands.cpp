@@ -181,7 +181,8 @@ std::vector<ReadImage> quilt_pixels(const Image& example, bool wraps, const Cohe
                                     const std::vector<Readout>& readouts, uint64_t search_memory) {
     PositionMap map{options.width, options.height,
                     quilt_positions(example, options.width, options.height, options.quilt, options.seed,
-                                    options.threads, options.progress, search_memory)};
+                                    options.threads, options.progress, search_memory,
+                                    options.quilt_wavefront ? QuiltOrder::kWavefront : QuiltOrder::kRaster)};
     return read_whole(example, std::move(map), options, readouts, wraps);
 }
 

@@ -5,6 +5,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <queue>
 #include <utility>
 
 #include "common/error.hpp"
@@ -29,7 +33,104 @@ inline uint32_t ssd_bytes(const uint8_t* a, const uint8_t* b, int n) {
     return s;
 }
 
+// Whether two blocks of `block` pixels at these origins, each with the ring
+// of pixels around it that laying it reads, meet on the width x height
+// torus.
+bool blocks_meet(std::pair<int, int> a, std::pair<int, int> b, int block, int width, int height) {
+    const auto meet = [&](int u, int v, int side) {
+        const int d = Image::wrap(v - u, side), reach = block + 2;
+        return reach >= side || d < reach || d > side - reach;
+    };
+    return meet(a.first, b.first, width) && meet(a.second, b.second, height);
+}
+
+// Lays every block of `sequence` through lay(k, worker) on `workers`
+// threads at once, each block as soon as every block before it in the
+// sequence that it meets is laid. A block then reads what it would read
+// if the blocks were laid one after the other in the sequence, so the
+// output is the same for any number of workers. Blocks three or more
+// steps apart never meet (a step is at least three quarters of a block).
+void lay_in_parallel(const std::vector<int>& sequence, int nx, int ny, int width, int height, int block, int workers,
+                     const std::function<bool(uint64_t, uint64_t)>& progress,
+                     const std::function<void(int k, int worker)>& lay) {
+    const int count = nx * ny;
+    std::vector<int> rank(static_cast<std::size_t>(count)), pending(static_cast<std::size_t>(count), 0);
+    for (int r = 0; r < count; ++r) rank[std::size_t(sequence[std::size_t(r)])] = r;
+    const auto origin = [&](int k) {
+        return std::pair<int, int>{int(int64_t(k % nx) * width / nx), int(int64_t(k / nx) * height / ny)};
+    };
+    std::vector<std::vector<int>> after(static_cast<std::size_t>(count));
+    std::vector<int> seen;
+    for (int k = 0; k < count; ++k) {
+        seen.clear();
+        for (int dj = -2; dj <= 2; ++dj)
+            for (int di = -2; di <= 2; ++di) {
+                const int m = ((k / nx + dj) % ny + ny) % ny * nx + ((k % nx + di) % nx + nx) % nx;
+                if (m == k || std::find(seen.begin(), seen.end(), m) != seen.end()) continue;
+                seen.push_back(m);
+                if (!blocks_meet(origin(k), origin(m), block, width, height)) continue;
+                if (rank[std::size_t(m)] < rank[std::size_t(k)])
+                    ++pending[std::size_t(k)];
+                else
+                    after[std::size_t(k)].push_back(m);
+            }
+    }
+    // Ready blocks, the earliest in the sequence first.
+    std::priority_queue<std::pair<int, int>, std::vector<std::pair<int, int>>, std::greater<>> ready;
+    for (int k = 0; k < count; ++k)
+        if (pending[std::size_t(k)] == 0) ready.push({rank[std::size_t(k)], k});
+    std::mutex lock;
+    std::condition_variable changed;
+    int done = 0;
+    bool stop = false, cancelled = false;
+    run_together(workers, [&](int worker) {
+        std::unique_lock<std::mutex> held(lock);
+        for (;;) {
+            changed.wait(held, [&] { return stop || done == count || !ready.empty(); });
+            if (stop || ready.empty()) return;
+            const int k = ready.top().second;
+            ready.pop();
+            held.unlock();
+            try {
+                lay(k, worker);
+            } catch (...) {
+                held.lock();
+                stop = true;
+                changed.notify_all();
+                throw;
+            }
+            held.lock();
+            ++done;
+            for (const int m : after[std::size_t(k)])
+                if (--pending[std::size_t(m)] == 0) ready.push({rank[std::size_t(m)], m});
+            changed.notify_all();
+            // Progress is heard on the calling thread only.
+            if (worker == 0 && progress) {
+                const int now = done;
+                held.unlock();
+                const bool go_on = progress(uint64_t(now), uint64_t(count));
+                held.lock();
+                if (!go_on) {
+                    stop = cancelled = true;
+                    changed.notify_all();
+                }
+            }
+        }
+    });
+    if (cancelled) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+}
+
 }  // namespace
+
+std::vector<int> quilt_order(int nx, int ny, QuiltOrder order) {
+    std::vector<int> sequence(std::size_t(nx) * std::size_t(ny));
+    for (std::size_t k = 0; k < sequence.size(); ++k) sequence[k] = int(k);
+    if (order == QuiltOrder::kWavefront)
+        std::stable_sort(sequence.begin(), sequence.end(), [&](int a, int b) {
+            return a % nx + 2 * (a / nx) < b % nx + 2 * (b / nx);
+        });
+    return sequence;
+}
 
 int quilt_block(int example_width, int example_height) {
     if (std::min(example_width, example_height) < kMinQuiltSide) return 0;
@@ -52,146 +153,195 @@ QuiltGrid quilt_grid(int block, int width, int height) {
 
 std::vector<uint32_t> quilt_positions(const Image& example, int width, int height, int block, uint64_t seed,
                                       int threads, const std::function<bool(uint64_t, uint64_t)>& progress,
-                                      uint64_t search_memory) {
+                                      uint64_t search_memory, QuiltOrder order) {
     const QuiltGrid grid = quilt_grid(block, width, height);
     const int B = grid.block, nx = grid.nx, ny = grid.ny, ch = example.channels;
+    const int count = nx * ny;
     // Origins of a block inside the example.
     const int cx = example.width - B + 1, cy = example.height - B + 1;
     const std::size_t n = std::size_t(width) * std::size_t(height);
     std::vector<uint32_t> pos(n, kUnplaced);
     std::vector<uint8_t> colour(n * std::size_t(ch));
-    // Each block's place in the output and in the example (sx < 0: not yet).
-    struct Placed {
-        int xo, yo, sx, sy;
+    // Each block's place in the output, and in the example once it is
+    // laid (sx < 0: not yet).
+    struct Source {
+        int sx, sy;
     };
-    std::vector<Placed> blocks(std::size_t(nx) * std::size_t(ny), Placed{0, 0, -1, -1});
-    std::vector<std::pair<int, int>> excluded;
-    std::vector<uint8_t> old(std::size_t(B) * std::size_t(B) * std::size_t(ch));
-    std::vector<int> node(std::size_t(B) * std::size_t(B));
-    std::vector<QuiltRun> runs;
-    std::vector<uint32_t> near;
-    QuiltSearch search(example, B,
-                       QuiltSearch::transform_memory(example.width, example.height, ch, B) <= search_memory
-                           ? QuiltSearch::Method::kTransform
-                           : QuiltSearch::Method::kDirect);
-    MinCut cut;
+    std::vector<std::pair<int, int>> origin(static_cast<std::size_t>(count));
+    for (int k = 0; k < count; ++k)
+        origin[std::size_t(k)] = {int(int64_t(k % nx) * width / nx), int(int64_t(k / nx) * height / ny)};
+    std::vector<Source> source(std::size_t(count), Source{-1, -1});
+    // Which blocks are laid at once: in raster order one after the other;
+    // in wavefront order any that are ready, each on a thread of its own
+    // with a search of its own, as many as the searches' memory allows.
+    // The search by transforms is used when it fits `search_memory`, the
+    // direct search otherwise (the same places).
+    const int ew = example.width, eh = example.height;
+    const uint64_t shared = QuiltExample::shared_memory(ew, eh, ch);
+    const auto fits = [&](int searches, bool pairs_at_once) {
+        return shared + uint64_t(searches) * QuiltExample::search_memory(ew, eh, ch, B, pairs_at_once) <= search_memory;
+    };
+    int workers = 1;
+    if (order == QuiltOrder::kWavefront)
+        while (workers < std::min(std::max(threads, 1), count) && fits(workers + 1, false)) ++workers;
+    const bool pairs_at_once = workers == 1 && fits(1, true);
+    const QuiltExample shared_example(example, B,
+                                      workers > 1 || fits(1, false) ? QuiltExample::Method::kTransform
+                                                                    : QuiltExample::Method::kDirect);
+    struct Worker {
+        std::vector<std::pair<int, int>> excluded;
+        std::vector<uint8_t> old;
+        std::vector<int> node;
+        std::vector<QuiltRun> runs;
+        std::vector<uint32_t> near;
+        std::unique_ptr<QuiltSearch> search;
+        MinCut cut;
+    };
+    std::vector<Worker> pool(static_cast<std::size_t>(workers));
+    for (Worker& wk : pool) {
+        wk.old.resize(std::size_t(B) * std::size_t(B) * std::size_t(ch));
+        wk.node.resize(std::size_t(B) * std::size_t(B));
+        wk.search = std::make_unique<QuiltSearch>(shared_example, pairs_at_once);
+    }
+    // A block's search shares the threads only when blocks are laid one at
+    // a time.
+    const int inner_threads = workers == 1 ? threads : 1;
     const auto out_index = [&](int x, int y) {
         return std::size_t(Image::wrap(y, height)) * std::size_t(width) + std::size_t(Image::wrap(x, width));
     };
     // One pixel's squared colour distance.
     const auto d2 = [&](const uint8_t* a, const uint8_t* b) { return int64_t(ssd_bytes(a, b, ch)); };
-    for (int bj = 0; bj < ny; ++bj) {
-        if (progress && !progress(uint64_t(bj), uint64_t(ny)))
-            fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
-        for (int bi = 0; bi < nx; ++bi) {
-            const int xo = int(int64_t(bi) * width / nx), yo = int(int64_t(bj) * height / ny);
-            // What the output already holds under the block, row by row in
-            // runs, and its colours.
-            runs.clear();
-            int placed = 0;
-            for (int dy = 0; dy < B; ++dy) {
-                int start = -1;
-                for (int dx = 0; dx < B; ++dx) {
-                    const std::size_t i = out_index(xo + dx, yo + dy);
-                    const bool known = pos[i] != kUnplaced;
-                    node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)] = known ? placed++ : -1;
-                    if (known) {
-                        std::copy_n(colour.data() + i * std::size_t(ch), ch,
-                                    old.data() + (std::size_t(dy) * std::size_t(B) + std::size_t(dx)) * std::size_t(ch));
-                        if (start < 0) start = dx;
-                    } else if (start >= 0) {
-                        runs.push_back({dy, start, dx - start});
-                        start = -1;
-                    }
+    // Lays block k (k = bj * nx + bi): reads and writes the output only
+    // within the block and the ring of pixels around it.
+    const auto lay = [&](int k, Worker& w) {
+        std::vector<std::pair<int, int>>& excluded = w.excluded;
+        std::vector<uint8_t>& old = w.old;
+        std::vector<int>& node = w.node;
+        std::vector<QuiltRun>& runs = w.runs;
+        std::vector<uint32_t>& near = w.near;
+        MinCut& cut = w.cut;
+        const int bi = k % nx, bj = k / nx;
+        const int xo = origin[std::size_t(k)].first, yo = origin[std::size_t(k)].second;
+        // What the output already holds under the block, row by row in
+        // runs, and its colours.
+        runs.clear();
+        int placed = 0;
+        for (int dy = 0; dy < B; ++dy) {
+            int start = -1;
+            for (int dx = 0; dx < B; ++dx) {
+                const std::size_t i = out_index(xo + dx, yo + dy);
+                const bool known = pos[i] != kUnplaced;
+                node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)] = known ? placed++ : -1;
+                if (known) {
+                    std::copy_n(colour.data() + i * std::size_t(ch), ch,
+                                old.data() + (std::size_t(dy) * std::size_t(B) + std::size_t(dx)) * std::size_t(ch));
+                    if (start < 0) start = dx;
+                } else if (start >= 0) {
+                    runs.push_back({dy, start, dx - start});
+                    start = -1;
                 }
-                if (start >= 0) runs.push_back({dy, start, B - start});
             }
-            // The places where an overlapping block's copy would simply go
-            // on: excluded, or the output would be the example again.
-            excluded.clear();
-            for (int dj = -1; dj <= 1; ++dj)
-                for (int di = -1; di <= 1; ++di) {
-                    if (!di && !dj) continue;
-                    const int ii = (bi + di + nx) % nx, jj = (bj + dj + ny) % ny;
-                    const Placed& o = blocks[std::size_t(jj) * std::size_t(nx) + std::size_t(ii)];
-                    if (o.sx < 0) continue;
-                    // The other block's place relative to this one's, the
-                    // nearer way round the torus.
-                    int ox = Image::wrap(o.xo - xo, width), oy = Image::wrap(o.yo - yo, height);
-                    if (ox > width / 2) ox -= width;
-                    if (oy > height / 2) oy -= height;
-                    if (ox <= -B || ox >= B || oy <= -B || oy >= B) continue;
-                    excluded.push_back({o.sx - ox, o.sy - oy});
-                }
-            const uint64_t salt = mix64(seed ^ mix64((uint64_t(bj) << 32) | uint64_t(bi)));
-            int sx = 0, sy = 0;
-            if (runs.empty()) {
-                sx = int(salt % uint64_t(cx));
-                sy = int((salt >> 32) % uint64_t(cy));
-            } else {
-                search.near_places(runs, old.data(), excluded, threads, near);
-                // The near-best places, in raster order; the seed picks one.
-                const uint32_t at = near[std::size_t(salt % near.size())];
-                sx = int(at % uint32_t(cx));
-                sy = int(at / uint32_t(cx));
+            if (start >= 0) runs.push_back({dy, start, B - start});
+        }
+        // The places where an overlapping block's copy would simply go
+        // on: excluded, or the output would be the example again.
+        excluded.clear();
+        for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) {
+                if (!di && !dj) continue;
+                const int ii = (bi + di + nx) % nx, jj = (bj + dj + ny) % ny;
+                const std::size_t m = std::size_t(jj) * std::size_t(nx) + std::size_t(ii);
+                // The other block's place relative to this one's, the
+                // nearer way round the torus. Only a block that overlaps
+                // this one is read: it is placed before it or after it,
+                // never at the same time.
+                int ox = Image::wrap(origin[m].first - xo, width), oy = Image::wrap(origin[m].second - yo, height);
+                if (ox > width / 2) ox -= width;
+                if (oy > height / 2) oy -= height;
+                if (ox <= -B || ox >= B || oy <= -B || oy >= B) continue;
+                const Source& o = source[m];
+                if (o.sx < 0) continue;
+                excluded.push_back({o.sx - ox, o.sy - oy});
             }
-            blocks[std::size_t(bj) * std::size_t(nx) + std::size_t(bi)] = {xo, yo, sx, sy};
-            // The patch insertion cut over the placed pixels: the source
-            // side keeps the output as it is, the sink side takes the new
-            // block. Between two neighbours on different sides the seam
-            // costs how much old and new differ at both (Kwatra et al.'s
-            // cost); a pixel next to one of the block that is not placed yet
-            // (which will be new) pays its own difference if it stays old;
-            // one next to a placed pixel outside the block (which stays old)
-            // pays both differences if it turns new.
-            const auto fresh = [&](int dx, int dy) { return example.at(sx + dx, sy + dy); };
-            const auto was = [&](int dx, int dy) {
-                return old.data() + (std::size_t(dy) * std::size_t(B) + std::size_t(dx)) * std::size_t(ch);
-            };
-            std::vector<char> take(std::size_t(placed), 1);
-            if (placed > 0) {
-                cut.reset(placed);
-                for (int dy = 0; dy < B; ++dy)
-                    for (int dx = 0; dx < B; ++dx) {
-                        const int v = node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)];
-                        if (v < 0) continue;
-                        const int64_t here = d2(fresh(dx, dy), was(dx, dy));
-                        const int sx4[4] = {1, -1, 0, 0}, sy4[4] = {0, 0, 1, -1};
-                        for (int k = 0; k < 4; ++k) {
-                            const int ex = dx + sx4[k], ey = dy + sy4[k];
-                            if (ex >= 0 && ey >= 0 && ex < B && ey < B) {
-                                const int u = node[std::size_t(ey) * std::size_t(B) + std::size_t(ex)];
-                                if (u < 0) {
-                                    cut.add(v, cut.sink(), here, 0);
-                                } else if (k == 0 || k == 2) {
-                                    const int64_t c = here + d2(fresh(ex, ey), was(ex, ey));
-                                    cut.add(v, u, c, c);
-                                }
-                                continue;
-                            }
-                            const std::size_t j = out_index(xo + ex, yo + ey);
-                            if (pos[j] == kUnplaced) continue;
-                            const int X = sx + ex, Y = sy + ey;
-                            const bool inside = X >= 0 && Y >= 0 && X < example.width && Y < example.height;
-                            const int64_t there =
-                                inside ? d2(example.at(X, Y), colour.data() + j * std::size_t(ch)) : here;
-                            cut.add(cut.source(), v, here + there, 0);
-                        }
-                    }
-                cut.solve();
-                for (int v = 0; v < placed; ++v) take[std::size_t(v)] = !cut.source_side(v);
-            }
+        const uint64_t salt = mix64(seed ^ mix64((uint64_t(bj) << 32) | uint64_t(bi)));
+        int sx = 0, sy = 0;
+        if (runs.empty()) {
+            sx = int(salt % uint64_t(cx));
+            sy = int((salt >> 32) % uint64_t(cy));
+        } else {
+            w.search->near_places(runs, old.data(), excluded, inner_threads, near);
+            // The near-best places, in raster order; the seed picks one.
+            const uint32_t at = near[std::size_t(salt % near.size())];
+            sx = int(at % uint32_t(cx));
+            sy = int(at / uint32_t(cx));
+        }
+        source[std::size_t(k)] = {sx, sy};
+        // The patch insertion cut over the placed pixels: the source
+        // side keeps the output as it is, the sink side takes the new
+        // block. Between two neighbours on different sides the seam
+        // costs how much old and new differ at both (Kwatra et al.'s
+        // cost); a pixel next to one of the block that is not placed yet
+        // (which will be new) pays its own difference if it stays old;
+        // one next to a placed pixel outside the block (which stays old)
+        // pays both differences if it turns new.
+        const auto fresh = [&](int dx, int dy) { return example.at(sx + dx, sy + dy); };
+        const auto was = [&](int dx, int dy) {
+            return old.data() + (std::size_t(dy) * std::size_t(B) + std::size_t(dx)) * std::size_t(ch);
+        };
+        std::vector<char> take(std::size_t(placed), 1);
+        if (placed > 0) {
+            cut.reset(placed);
             for (int dy = 0; dy < B; ++dy)
                 for (int dx = 0; dx < B; ++dx) {
                     const int v = node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)];
-                    if (v >= 0 && !take[std::size_t(v)]) continue;
-                    const std::size_t i = out_index(xo + dx, yo + dy);
-                    pos[i] = pack_position(sx + dx, sy + dy);
-                    std::copy_n(fresh(dx, dy), ch, colour.data() + i * std::size_t(ch));
+                    if (v < 0) continue;
+                    const int64_t here = d2(fresh(dx, dy), was(dx, dy));
+                    const int sx4[4] = {1, -1, 0, 0}, sy4[4] = {0, 0, 1, -1};
+                    for (int side = 0; side < 4; ++side) {
+                        const int ex = dx + sx4[side], ey = dy + sy4[side];
+                        if (ex >= 0 && ey >= 0 && ex < B && ey < B) {
+                            const int u = node[std::size_t(ey) * std::size_t(B) + std::size_t(ex)];
+                            if (u < 0) {
+                                cut.add(v, cut.sink(), here, 0);
+                            } else if (side == 0 || side == 2) {
+                                const int64_t c = here + d2(fresh(ex, ey), was(ex, ey));
+                                cut.add(v, u, c, c);
+                            }
+                            continue;
+                        }
+                        const std::size_t j = out_index(xo + ex, yo + ey);
+                        if (pos[j] == kUnplaced) continue;
+                        const int X = sx + ex, Y = sy + ey;
+                        const bool inside = X >= 0 && Y >= 0 && X < example.width && Y < example.height;
+                        const int64_t there =
+                            inside ? d2(example.at(X, Y), colour.data() + j * std::size_t(ch)) : here;
+                        cut.add(cut.source(), v, here + there, 0);
+                    }
                 }
+            cut.solve();
+            for (int v = 0; v < placed; ++v) take[std::size_t(v)] = !cut.source_side(v);
         }
+        for (int dy = 0; dy < B; ++dy)
+            for (int dx = 0; dx < B; ++dx) {
+                const int v = node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)];
+                if (v >= 0 && !take[std::size_t(v)]) continue;
+                const std::size_t i = out_index(xo + dx, yo + dy);
+                pos[i] = pack_position(sx + dx, sy + dy);
+                std::copy_n(fresh(dx, dy), ch, colour.data() + i * std::size_t(ch));
+            }
+    };
+    const std::vector<int> sequence = quilt_order(nx, ny, order);
+    if (workers == 1) {
+        for (int r = 0; r < count; ++r) {
+            if (progress && !progress(uint64_t(r), uint64_t(count)))
+                fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
+            lay(sequence[std::size_t(r)], pool[0]);
+        }
+    } else {
+        lay_in_parallel(sequence, nx, ny, width, height, B, workers, progress,
+                        [&](int k, int worker) { lay(k, pool[std::size_t(worker)]); });
     }
-    if (progress && !progress(uint64_t(ny), uint64_t(ny)))
+    if (progress && !progress(uint64_t(count), uint64_t(count)))
         fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     return pos;
 }

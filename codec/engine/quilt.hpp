@@ -16,7 +16,8 @@
 // overlap its first ones across the torus, so it tiles.
 //
 // Every cost is an exact integer and each block's search runs over all the
-// example's places, so the positions are the same for any thread count.
+// example's places (quilt_search.hpp), and blocks laid at the same time
+// never meet, so the positions are the same for any thread count.
 #pragma once
 
 #include <cstdint>
@@ -50,6 +51,17 @@ struct QuiltGrid {
 };
 QuiltGrid quilt_grid(int block, int width, int height);
 
+// The order blocks are laid in. Raster order (format 19) lays them one
+// after the other: each row's first block meets the row above's last
+// across the torus, so no two can be laid at once. Wavefront order
+// (format 20) lays block (i, j) at step i + 2j, rows in order within a
+// step: a block then meets only blocks of earlier steps or later ones, and
+// the blocks of a step, and of nearby steps, are laid at the same time on
+// as many threads as there are.
+enum class QuiltOrder { kRaster, kWavefront };
+// The blocks (j * nx + i) in the order they are laid.
+std::vector<int> quilt_order(int nx, int ny, QuiltOrder order);
+
 // The width x height torus of packed example positions
 // (coherent_positions.hpp) laid out with blocks of `block` pixels.
 // `progress` (may be empty) hears of each row of blocks done; false
@@ -60,6 +72,6 @@ QuiltGrid quilt_grid(int block, int width, int height);
 std::vector<uint32_t> quilt_positions(const Image& example, int width, int height, int block, uint64_t seed,
                                       int threads,
                                       const std::function<bool(uint64_t done, uint64_t total)>& progress = {},
-                                      uint64_t search_memory = UINT64_MAX);
+                                      uint64_t search_memory = UINT64_MAX, QuiltOrder order = QuiltOrder::kRaster);
 
 }  // namespace vqtex

@@ -40,20 +40,16 @@ int64_t near_limit(int64_t best) { return best + best * kQuiltTolerancePercent /
 
 }  // namespace
 
-QuiltSearch::QuiltSearch(const Image& example, int block, Method method)
+QuiltExample::QuiltExample(const Image& example, int block, Method method)
     : example_(example),
       block_(block),
       places_x_(example.width - block + 1),
       places_y_(example.height - block + 1),
-      method_(method),
-      cost_(std::size_t(places_x_) * std::size_t(places_y_)) {
+      method_(method) {
     if (method_ != Method::kTransform) return;
     const int pw = power_of_two_at_least(example.width), ph = power_of_two_at_least(example.height);
     fft_ = std::make_unique<dsp::Fft2d>(pw, ph);
     const std::size_t points = std::size_t(pw) * std::size_t(ph);
-    // The example's planes: its channels, then the sum of their squares
-    // (what the block's mask of placed pixels is correlated with), two to
-    // a complex plane.
     const int ch = example.channels, planes = ch + 1, pairs = (planes + 1) / 2;
     const auto plane = [&](int k, int x, int y) -> double {
         const uint8_t* p = example.at(x, y);
@@ -62,7 +58,7 @@ QuiltSearch::QuiltSearch(const Image& example, int block, Method method)
         for (int c = 0; c < ch; ++c) q += int64_t(p[c]) * p[c];
         return double(q);
     };
-    dsp::FftScratch spare;
+    dsp::FftScratch scratch;
     for (int p = 0; p < pairs; ++p) {
         std::vector<double> re(points, 0.0), im(points, 0.0);
         double norm = 0;
@@ -73,10 +69,37 @@ QuiltSearch::QuiltSearch(const Image& example, int block, Method method)
                 im[i] = 2 * p + 1 < planes ? plane(2 * p + 1, x, y) : 0.0;
                 norm += re[i] * re[i] + im[i] * im[i];
             }
-        fft_->forward(re.data(), im.data(), example.height, spare);
-        example_re_.push_back(std::move(re));
-        example_im_.push_back(std::move(im));
-        example_norms_.push_back(std::sqrt(norm));
+        fft_->forward(re.data(), im.data(), example.height, scratch);
+        re_.push_back(std::move(re));
+        im_.push_back(std::move(im));
+        norms_.push_back(std::sqrt(norm));
+    }
+}
+
+uint64_t QuiltExample::shared_memory(int example_width, int example_height, int channels) {
+    const uint64_t pw = uint64_t(power_of_two_at_least(example_width)),
+                   ph = uint64_t(power_of_two_at_least(example_height)), pairs = uint64_t(channels + 2) / 2;
+    return sizeof(double) * pw * ph * 2 * pairs;
+}
+
+uint64_t QuiltExample::search_memory(int example_width, int example_height, int channels, int block,
+                                     bool pairs_at_once) {
+    const uint64_t pw = uint64_t(power_of_two_at_least(example_width)),
+                   ph = uint64_t(power_of_two_at_least(example_height)), pairs = uint64_t(channels + 2) / 2;
+    // The block's pairs, the sum, the transposed rows of each pair
+    // transformed at once, the rounded and the exact costs.
+    const uint64_t at_once = pairs_at_once ? pairs : 1;
+    const uint64_t rows = uint64_t(std::max(block, example_height - block + 1));
+    return sizeof(double) * (pw * ph * (2 * at_once + 2) + 2 * pw * rows * at_once) +
+           sizeof(int64_t) * uint64_t(example_width - block + 1) * uint64_t(example_height - block + 1);
+}
+
+QuiltSearch::QuiltSearch(const QuiltExample& example, bool pairs_at_once)
+    : ex_(example), cost_(std::size_t(example.places_x()) * std::size_t(example.places_y())) {
+    if (ex_.method() != QuiltExample::Method::kTransform) return;
+    const std::size_t points = std::size_t(ex_.fft_->width()) * std::size_t(ex_.fft_->height());
+    const std::size_t at_once = pairs_at_once ? ex_.re_.size() : 1;
+    for (std::size_t p = 0; p < at_once; ++p) {
         block_re_.emplace_back(points);
         block_im_.emplace_back(points);
         scratch_.emplace_back();
@@ -85,25 +108,14 @@ QuiltSearch::QuiltSearch(const Image& example, int block, Method method)
     sum_im_.resize(points);
 }
 
-QuiltSearch::~QuiltSearch() = default;
-
-uint64_t QuiltSearch::transform_memory(int example_width, int example_height, int channels, int block) {
-    const uint64_t pw = uint64_t(power_of_two_at_least(example_width)),
-                   ph = uint64_t(power_of_two_at_least(example_height)), pairs = uint64_t(channels + 2) / 2;
-    // The example's and the block's transformed pairs, the sum, the
-    // transposed rows, the rounded and the exact costs.
-    const uint64_t rows = uint64_t(std::max(block, example_height - block + 1));
-    return sizeof(double) * (pw * ph * (4 * pairs + 2) + 2 * pw * rows) +
-           sizeof(int64_t) * uint64_t(example_width - block + 1) * uint64_t(example_height - block + 1);
-}
-
 int64_t QuiltSearch::cost(const std::vector<QuiltRun>& runs, const uint8_t* old, int x, int y, int64_t limit) const {
     const dsp::Kernels& kernel = dsp::kernels();
-    const int ch = example_.channels;
+    const Image& example = ex_.image();
+    const int ch = example.channels, block = ex_.block();
     int64_t s = 0;
     for (const QuiltRun& r : runs) {
-        const uint8_t* e = example_.at(x + r.dx, y + r.dy);
-        const uint8_t* o = old + (std::size_t(r.dy) * std::size_t(block_) + std::size_t(r.dx)) * std::size_t(ch);
+        const uint8_t* e = example.at(x + r.dx, y + r.dy);
+        const uint8_t* o = old + (std::size_t(r.dy) * std::size_t(block) + std::size_t(r.dx)) * std::size_t(ch);
         const int bytes = r.length * ch;
         const int whole = bytes / int(dsp::kVectorAlign) * int(dsp::kVectorAlign);
         s += int64_t(whole ? kernel.ssd(e, o, std::size_t(whole)) : 0) +
@@ -120,30 +132,32 @@ int64_t QuiltSearch::cost(const std::vector<QuiltRun>& runs, const uint8_t* old,
 // inverse (the real part of corr(a + ib, e + if) is corr(a, e) + corr(b,
 // f)). margin_ bounds the rounding.
 void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8_t* old, int threads) {
-    const int pw = fft_->width(), ch = example_.channels, planes = ch + 1;
-    const std::size_t points = std::size_t(pw) * std::size_t(fft_->height());
-    const int pairs = int(block_re_.size());
+    const dsp::Fft2d& fft = *ex_.fft_;
+    const int pw = fft.width(), ch = ex_.image().channels, planes = ch + 1, block = ex_.block();
+    const std::size_t points = std::size_t(pw) * std::size_t(fft.height());
+    const int pairs = int(ex_.re_.size());
     int64_t own = 0;
     for (const QuiltRun& r : runs)
         for (int k = 0; k < r.length * ch; ++k) {
-            const uint8_t o = old[(std::size_t(r.dy) * std::size_t(block_) + std::size_t(r.dx)) * std::size_t(ch) +
+            const uint8_t o = old[(std::size_t(r.dy) * std::size_t(block) + std::size_t(r.dx)) * std::size_t(ch) +
                                   std::size_t(k)];
             own += int64_t(o) * o;
         }
-    // Each pair of planes is laid out, transformed and multiplied by the
-    // example's on a thread of its own; the products are summed in a fixed
-    // order, so the rounded costs are the same for any thread count.
+    // Pair p is laid out in buffer `slot`, transformed and multiplied by the
+    // example's; with a buffer per pair, each on a thread of its own. The
+    // products are summed in a fixed order, so the rounded costs are the
+    // same for any thread count.
     std::vector<double> norms(std::size_t(pairs), 0.0);
-    const auto pair_job = [&](int p) {
-        double* __restrict zr = block_re_[std::size_t(p)].data();
-        double* __restrict zi = block_im_[std::size_t(p)].data();
+    const auto pair_job = [&](int p, int slot) {
+        double* __restrict zr = block_re_[std::size_t(slot)].data();
+        double* __restrict zi = block_im_[std::size_t(slot)].data();
         std::fill(zr, zr + points, 0.0);
         std::fill(zi, zi + points, 0.0);
         double norm = 0;
         for (const QuiltRun& r : runs)
             for (int k = 0; k < r.length; ++k) {
                 const int dx = r.dx + k;
-                const uint8_t* o = old + (std::size_t(r.dy) * std::size_t(block_) + std::size_t(dx)) * std::size_t(ch);
+                const uint8_t* o = old + (std::size_t(r.dy) * std::size_t(block) + std::size_t(dx)) * std::size_t(ch);
                 const std::size_t i = std::size_t(r.dy) * std::size_t(pw) + std::size_t(dx);
                 for (int q = 2 * p; q < std::min(2 * p + 2, planes); ++q) {
                     const double v = q < ch ? -2.0 * o[q] : 1.0;
@@ -151,38 +165,49 @@ void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8
                     norm += v * v;
                 }
             }
-        norms[std::size_t(p)] = std::sqrt(norm) * example_norms_[std::size_t(p)];
-        fft_->forward(zr, zi, block_, scratch_[std::size_t(p)]);
+        norms[std::size_t(p)] = std::sqrt(norm) * ex_.norms_[std::size_t(p)];
+        fft.forward(zr, zi, block, scratch_[std::size_t(slot)]);
         // conj(z) w, in place.
-        const double* __restrict wr = example_re_[std::size_t(p)].data();
-        const double* __restrict wi = example_im_[std::size_t(p)].data();
+        const double* __restrict wr = ex_.re_[std::size_t(p)].data();
+        const double* __restrict wi = ex_.im_[std::size_t(p)].data();
         for (std::size_t i = 0; i < points; ++i) {
-            const double r = zr[i] * wr[i] + zi[i] * wi[i], m = zr[i] * wi[i] - zi[i] * wr[i];
-            zr[i] = r;
-            zi[i] = m;
+            const double re = zr[i] * wr[i] + zi[i] * wi[i], im = zr[i] * wi[i] - zi[i] * wr[i];
+            zr[i] = re;
+            zi[i] = im;
         }
     };
-    const int workers = std::max(1, std::min(threads, pairs));
-    run_together(workers, [&](int w) {
-        for (int p = w; p < pairs; p += workers) pair_job(p);
-    });
     double* __restrict sr = sum_re_.data();
     double* __restrict si = sum_im_.data();
-    std::copy_n(block_re_[0].data(), points, sr);
-    std::copy_n(block_im_[0].data(), points, si);
-    for (int p = 1; p < pairs; ++p) {
-        const double* __restrict zr = block_re_[std::size_t(p)].data();
-        const double* __restrict zi = block_im_[std::size_t(p)].data();
+    const auto add = [&](int slot, bool first) {
+        const double* __restrict zr = block_re_[std::size_t(slot)].data();
+        const double* __restrict zi = block_im_[std::size_t(slot)].data();
+        if (first) {
+            std::copy_n(zr, points, sr);
+            std::copy_n(zi, points, si);
+            return;
+        }
         for (std::size_t i = 0; i < points; ++i) {
             sr[i] += zr[i];
             si[i] += zi[i];
         }
+    };
+    if (block_re_.size() == std::size_t(pairs)) {
+        const int workers = std::max(1, std::min(threads, pairs));
+        run_together(workers, [&](int w) {
+            for (int p = w; p < pairs; p += workers) pair_job(p, p);
+        });
+        for (int p = 0; p < pairs; ++p) add(p, p == 0);
+    } else {
+        for (int p = 0; p < pairs; ++p) {
+            pair_job(p, 0);
+            add(0, p == 0);
+        }
     }
-    fft_->inverse(sr, si, places_y_, scratch_[0]);
+    fft.inverse(sr, si, ex_.places_y(), scratch_[0]);
     const double scale = 1.0 / double(points);
-    for (int y = 0; y < places_y_; ++y)
-        for (int x = 0; x < places_x_; ++x)
-            si[std::size_t(y) * std::size_t(places_x_) + std::size_t(x)] =
+    for (int y = 0; y < ex_.places_y(); ++y)
+        for (int x = 0; x < ex_.places_x(); ++x)
+            si[std::size_t(y) * std::size_t(ex_.places_x()) + std::size_t(x)] =
                 sr[std::size_t(y) * std::size_t(pw) + std::size_t(x)] * scale + double(own);
     // The rounding of the sum of the rounded correlation and |O|^2 besides.
     double bound_norms = 0;
@@ -202,13 +227,13 @@ void QuiltSearch::near_places(const std::vector<QuiltRun>& runs, const uint8_t* 
         return true;
     };
     near.clear();
-    if (method_ == Method::kTransform) {
+    if (ex_.method() == QuiltExample::Method::kTransform) {
         transform_costs(runs, old, threads);
         const double* approx = sum_im_.data();
         double least = std::numeric_limits<double>::infinity();
-        for (int y = 0; y < places_y_; ++y)
-            for (int x = 0; x < places_x_; ++x) {
-                const double a = approx[std::size_t(y) * std::size_t(places_x_) + std::size_t(x)];
+        for (int y = 0; y < ex_.places_y(); ++y)
+            for (int x = 0; x < ex_.places_x(); ++x) {
+                const double a = approx[std::size_t(y) * std::size_t(ex_.places_x()) + std::size_t(x)];
                 if (a < least && allowed(x, y)) least = a;
             }
         // Every place whose exact cost could be within the tolerance of the
@@ -216,9 +241,9 @@ void QuiltSearch::near_places(const std::vector<QuiltRun>& runs, const uint8_t* 
         // exact cost at least its rounded cost - margin.
         const double bound = (least + margin_) * (1.0 + kQuiltTolerancePercent / 100.0) + margin_;
         int64_t best = kDropped;
-        for (int y = 0; y < places_y_; ++y)
-            for (int x = 0; x < places_x_; ++x) {
-                const std::size_t i = std::size_t(y) * std::size_t(places_x_) + std::size_t(x);
+        for (int y = 0; y < ex_.places_y(); ++y)
+            for (int x = 0; x < ex_.places_x(); ++x) {
+                const std::size_t i = std::size_t(y) * std::size_t(ex_.places_x()) + std::size_t(x);
                 cost_[i] = kDropped;
                 if (approx[i] > bound || !allowed(x, y)) continue;
                 const int64_t c = cost(runs, old, x, y, best == kDropped ? kDropped : near_limit(best));
@@ -243,16 +268,16 @@ void QuiltSearch::near_places(const std::vector<QuiltRun>& runs, const uint8_t* 
         for (int dy = -kSeedReach; dy <= kSeedReach; ++dy)
             for (int dx = -kSeedReach; dx <= kSeedReach; ++dx) {
                 const int x = ex + dx, y = ey + dy;
-                if (x < 0 || y < 0 || x >= places_x_ || y >= places_y_ || !allowed(x, y)) continue;
+                if (x < 0 || y < 0 || x >= ex_.places_x() || y >= ex_.places_y() || !allowed(x, y)) continue;
                 const int64_t c = cost(runs, old, x, y, first);
                 if (c >= 0) first = std::min(first, c);
             }
     const int64_t limit = first == kDropped ? kDropped : near_limit(first);
-    parallel_for(threads, std::size_t(places_y_), 4, [&](std::size_t y0, std::size_t y1) {
+    parallel_for(threads, std::size_t(ex_.places_y()), 4, [&](std::size_t y0, std::size_t y1) {
         for (std::size_t y = y0; y < y1; ++y)
-            for (int x = 0; x < places_x_; ++x) {
+            for (int x = 0; x < ex_.places_x(); ++x) {
                 const int64_t c = allowed(x, int(y)) ? cost(runs, old, x, int(y), limit) : -1;
-                cost_[y * std::size_t(places_x_) + std::size_t(x)] = c < 0 ? kDropped : c;
+                cost_[y * std::size_t(ex_.places_x()) + std::size_t(x)] = c < 0 ? kDropped : c;
             }
     });
     int64_t best = kDropped;

@@ -31,16 +31,41 @@ struct QuiltRun {
     int dy, dx, length;
 };
 
-class QuiltSearch {
+// What every search of one example shares: the example, the block side,
+// and for the transform way the example's planes transformed.
+class QuiltExample {
 public:
     enum class Method { kTransform, kDirect };
-    // Searches `example` for blocks of `block` pixels.
-    QuiltSearch(const Image& example, int block, Method method = Method::kTransform);
-    // The bytes the transform way holds for such an example.
-    static uint64_t transform_memory(int example_width, int example_height, int channels, int block);
-    ~QuiltSearch();
-    QuiltSearch(const QuiltSearch&) = delete;
-    QuiltSearch& operator=(const QuiltSearch&) = delete;
+    QuiltExample(const Image& example, int block, Method method = Method::kTransform);
+    // The bytes the transform way holds for such an example: what the
+    // searches share, and each search's own (`pairs_at_once`: the pairs of
+    // planes transformed at the same time, one or all).
+    static uint64_t shared_memory(int example_width, int example_height, int channels);
+    static uint64_t search_memory(int example_width, int example_height, int channels, int block, bool pairs_at_once);
+    const Image& image() const { return example_; }
+    int block() const { return block_; }
+    int places_x() const { return places_x_; }
+    int places_y() const { return places_y_; }
+    Method method() const { return method_; }
+
+private:
+    friend class QuiltSearch;
+    const Image& example_;
+    int block_, places_x_, places_y_;
+    Method method_;
+    // The example's planes, its channels then the sum of their squares, two
+    // to a complex plane, transformed (re, im), and each pair's 2-norm.
+    std::unique_ptr<dsp::Fft2d> fft_;
+    std::vector<std::vector<double>> re_, im_;
+    std::vector<double> norms_;
+};
+
+// One search's working memory; one per block being laid at a time.
+class QuiltSearch {
+public:
+    // `pairs_at_once`: transform the block's pairs of planes on threads of
+    // their own (memory for each), or one after the other.
+    QuiltSearch(const QuiltExample& example, bool pairs_at_once);
     // The places (y x (example width - block + 1) + x, in raster order)
     // within the tolerance of the least cost, over the places not in
     // `excluded` (unless every place is). `runs` (not empty) are the pixels
@@ -53,15 +78,12 @@ public:
 
 private:
     void transform_costs(const std::vector<QuiltRun>& runs, const uint8_t* old, int threads);
-    const Image& example_;
-    int block_, places_x_, places_y_;
-    Method method_;
+    const QuiltExample& ex_;
     std::vector<int64_t> cost_;
-    // The transform way: the transform, the example's pairs of planes
-    // transformed (re, im), the block's, and the rounded costs.
-    std::unique_ptr<dsp::Fft2d> fft_;
-    std::vector<std::vector<double>> example_re_, example_im_, block_re_, block_im_;
-    std::vector<double> sum_re_, sum_im_, example_norms_;
+    // The transform way: the block's pairs of planes (one or all), the sum
+    // of their products with the example's, and the rounded costs.
+    std::vector<std::vector<double>> block_re_, block_im_;
+    std::vector<double> sum_re_, sum_im_;
     std::vector<dsp::FftScratch> scratch_;
     double margin_ = 0;
 };

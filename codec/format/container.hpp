@@ -90,14 +90,21 @@ inline constexpr uint16_t kPredictedOriginMaterialFormatVersion = 18;
 // in place of 10 or 15, for an example that tiles when quilting scores
 // better on it (docs/ATLAS.md "Examples that tile").
 inline constexpr uint16_t kQuiltAtlasFormatVersion = 19;
-// Versions 4 to 11 and 13 to 19: one still atlas or a set of maps behind
+// Version 20 (docs/FORMAT.md §2.8, §4.18): version 19 with its blocks laid
+// in wavefront order (engine/quilt.hpp, QuiltOrder), so that blocks that do
+// not meet are laid at the same time on several threads. The encoder
+// writes it in place of 19.
+inline constexpr uint16_t kWavefrontQuiltFormatVersion = 20;
+// Versions 4 to 11 and 13 to 20: one still atlas or a set of maps behind
 // the compact header.
 inline bool is_compact_atlas_version(uint16_t version) {
     return (version >= kCompactAtlasFormatVersion && version <= kCoverMaterialFormatVersion) ||
-           (version >= kOriginAtlasFormatVersion && version <= kQuiltAtlasFormatVersion);
+           (version >= kOriginAtlasFormatVersion && version <= kWavefrontQuiltFormatVersion);
 }
-// Whether a compact version's file is laid out by quilting (19).
-inline bool quilts(uint16_t version) { return version == kQuiltAtlasFormatVersion; }
+// Whether a compact version's file is laid out by quilting (19, 20).
+inline bool quilts(uint16_t version) {
+    return version == kQuiltAtlasFormatVersion || version == kWavefrontQuiltFormatVersion;
+}
 // Whether a compact version's file has maps predicted from others (17, 18).
 inline bool predicts_maps(uint16_t version) {
     return version == kPredictedMaterialFormatVersion || version == kPredictedOriginMaterialFormatVersion;
