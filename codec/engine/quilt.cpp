@@ -196,6 +196,8 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         std::vector<uint32_t> near;
         std::unique_ptr<QuiltSearch> search;
         MinCut cut;
+        std::vector<char> take;
+        std::vector<int64_t> own;
     };
     std::vector<Worker> pool(static_cast<std::size_t>(workers));
     for (Worker& wk : pool) {
@@ -288,14 +290,21 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         const auto was = [&](int dx, int dy) {
             return old.data() + (std::size_t(dy) * std::size_t(B) + std::size_t(dx)) * std::size_t(ch);
         };
-        std::vector<char> take(std::size_t(placed), 1);
+        std::vector<char>& take = w.take;
+        take.assign(std::size_t(placed), 1);
         if (placed > 0) {
+            // Each placed pixel's own difference, once: the runs list the
+            // placed pixels in the nodes' order.
+            std::vector<int64_t>& own = w.own;
+            own.clear();
+            for (const QuiltRun& r : runs)
+                for (int i = 0; i < r.length; ++i) own.push_back(d2(fresh(r.dx + i, r.dy), was(r.dx + i, r.dy)));
             cut.reset(placed);
             for (int dy = 0; dy < B; ++dy)
                 for (int dx = 0; dx < B; ++dx) {
                     const int v = node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)];
                     if (v < 0) continue;
-                    const int64_t here = d2(fresh(dx, dy), was(dx, dy));
+                    const int64_t here = own[std::size_t(v)];
                     const int sx4[4] = {1, -1, 0, 0}, sy4[4] = {0, 0, 1, -1};
                     for (int side = 0; side < 4; ++side) {
                         const int ex = dx + sx4[side], ey = dy + sy4[side];
@@ -304,7 +313,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
                             if (u < 0) {
                                 cut.add(v, cut.sink(), here, 0);
                             } else if (side == 0 || side == 2) {
-                                const int64_t c = here + d2(fresh(ex, ey), was(ex, ey));
+                                const int64_t c = here + own[std::size_t(u)];
                                 cut.add(v, u, c, c);
                             }
                             continue;
