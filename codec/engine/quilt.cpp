@@ -23,16 +23,6 @@ namespace {
 
 constexpr uint32_t kUnplaced = 0xFFFFFFFFu;
 
-// One pixel's squared colour distance.
-inline uint32_t ssd_bytes(const uint8_t* a, const uint8_t* b, int n) {
-    uint32_t s = 0;
-    for (int i = 0; i < n; ++i) {
-        const int d = int(a[i]) - int(b[i]);
-        s += uint32_t(d * d);
-    }
-    return s;
-}
-
 // Whether two blocks of `block` pixels at these origins, each with the ring
 // of pixels around it that laying it reads, meet on the width x height
 // torus.
@@ -212,7 +202,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         return std::size_t(Image::wrap(y, height)) * std::size_t(width) + std::size_t(Image::wrap(x, width));
     };
     // One pixel's squared colour distance.
-    const auto d2 = [&](const uint8_t* a, const uint8_t* b) { return int64_t(ssd_bytes(a, b, ch)); };
+    const auto d2 = [&](const uint8_t* a, const uint8_t* b) { return int64_t(byte_ssd(a, b, ch)); };
     // Lays block k (k = bj * nx + bi): reads and writes the output only
     // within the block and the ring of pixels around it.
     const auto lay = [&](int k, Worker& w) {

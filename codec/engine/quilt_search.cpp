@@ -19,17 +19,6 @@ namespace {
 constexpr int kSeedReach = 2;
 constexpr int64_t kDropped = std::numeric_limits<int64_t>::max();
 
-// Sum of squared differences of n bytes: the tail the dispatched kernel
-// leaves (it takes whole 16-byte chunks).
-inline uint32_t ssd_bytes(const uint8_t* a, const uint8_t* b, int n) {
-    uint32_t s = 0;
-    for (int i = 0; i < n; ++i) {
-        const int d = int(a[i]) - int(b[i]);
-        s += uint32_t(d * d);
-    }
-    return s;
-}
-
 int power_of_two_at_least(int n) {
     int p = 1;
     while (p < n) p <<= 1;
@@ -119,7 +108,7 @@ int64_t QuiltSearch::cost(const std::vector<QuiltRun>& runs, const uint8_t* old,
         const int bytes = r.length * ch;
         const int whole = bytes / int(dsp::kVectorAlign) * int(dsp::kVectorAlign);
         s += int64_t(whole ? kernel.ssd(e, o, std::size_t(whole)) : 0) +
-             int64_t(ssd_bytes(e + whole, o + whole, bytes - whole));
+             int64_t(byte_ssd(e + whole, o + whole, bytes - whole));
         if (s > limit) return -1;
     }
     return s;
