@@ -195,14 +195,13 @@ int main(int argc, char** argv) {
                 vqtex::AtlasSynthesisParams quilted = sp;
                 quilted.quilt = vqtex::quilt_block(f.atlas.width, f.atlas.height);
                 if (quilted.quilt > 0) {
+                    const std::vector<uint8_t> v19 =
+                        vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, quilted);
+                    write(out / "decode" / (name + "_v19.vqt"), v19.data(), v19.size());
+                    quilted.quilt_wavefront = true;
                     const std::vector<uint8_t> v20 =
                         vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, quilted);
                     write(out / "decode" / (name + "_v20.vqt"), v20.data(), v20.size());
-                    std::vector<uint8_t> v19 = v20;
-                    v19[8] = 19;
-                    const uint32_t crc = vqtex::crc32(v19.data(), v19.size() - 4);
-                    for (int i = 0; i < 4; ++i) v19[v19.size() - 4 + std::size_t(i)] = uint8_t(crc >> (8 * i));
-                    write(out / "decode" / (name + "_v19.vqt"), v19.data(), v19.size());
                     files += 2;
                 }
                 // Version 13: the atlas a part of a larger exemplar, its

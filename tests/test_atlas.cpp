@@ -17,6 +17,7 @@
 #include "common/checksum.hpp"
 #include "common/error.hpp"
 #include "engine/coherent_synthesis.hpp"
+#include "engine/quilt.hpp"
 #include "format/atlas_coder.hpp"
 #include "writer/atlas_encoder.hpp"
 #include "format/atlas_file.hpp"
@@ -874,7 +875,12 @@ TEST(AtlasFile, GoldenQuiltFileDecodesToKnownPixels) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
     EXPECT_EQ(f.params.quilt, 64);
     EXPECT_FALSE(f.params.period_bar);
+    EXPECT_FALSE(f.params.quilt_wavefront);
     EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).quilt_block, 64u);
+    // Written again from what was read, it is a version 19 file still.
+    const std::vector<uint8_t> bits(bytes.begin() + std::ptrdiff_t(f.bitstream_offset),
+                                    bytes.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
+    EXPECT_EQ(vqtex::encode_atlas_file(f.header, f.atlas.width, f.atlas.height, bits, f.params), bytes);
 }
 
 // Pins format version 20, quilting in wavefront order: cellular_v19.vqt's
@@ -887,8 +893,36 @@ TEST(AtlasFile, GoldenWavefrontQuiltFileDecodesToKnownPixels) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
     EXPECT_EQ(f.params.quilt, 64);
     EXPECT_TRUE(f.params.quilt_wavefront);
+    const std::vector<uint8_t> bits(bytes.begin() + std::ptrdiff_t(f.bitstream_offset),
+                                    bytes.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
+    EXPECT_EQ(vqtex::encode_atlas_file(f.header, f.atlas.width, f.atlas.height, bits, f.params), bytes);
     const vqtex::Image one = decode(bytes, decode_params(256, 256, 5, 1));
     for (uint32_t threads : {2u, 3u, 8u}) EXPECT_EQ(decode(bytes, decode_params(256, 256, 5, threads)).pixels, one.pixels);
+}
+
+// A quilted file's memory check counts quilting's search and graphs in
+// place of the analysis (docs/FORMAT.md §4.1): a limit of exactly the sum
+// decodes, a byte less is refused before anything is laid.
+TEST(AtlasFile, QuiltedFileMemoryCheckCountsQuiltingsTerm) {
+    const std::vector<uint8_t> bytes = read_file(std::string(VQTEX_GOLDEN_DIR) + "/cellular_v20.vqt");
+    ASSERT_FALSE(bytes.empty());
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
+    const uint64_t quilted = vqtex::atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels,
+                                                        f.header.levels, f.params.coherence, 200, 150, true);
+    const uint64_t engine = vqtex::atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels,
+                                                       f.header.levels, f.params.coherence, 200, 150, false);
+    EXPECT_EQ(quilted + vqtex::coherent_analysis_memory(f.atlas.width, f.atlas.height, f.atlas.channels,
+                                                        f.header.levels, f.params.coherence),
+              engine + vqtex::quilt_memory(f.atlas.width, f.atlas.height, f.atlas.channels, vqtex::kQuiltWorkers));
+    vqtex_decode_params p = decode_params(200, 150, 5, 4);
+    p.memory_limit = f.input_bytes + quilted;
+    vqtex_status st = VQTEX_OK;
+    const vqtex::Image at_limit = decode(bytes, p, &st);
+    EXPECT_EQ(st, VQTEX_OK);
+    EXPECT_EQ(at_limit.pixels, decode(bytes, decode_params(200, 150, 5, 1)).pixels);
+    p.memory_limit -= 1;
+    decode(bytes, p, &st);
+    EXPECT_EQ(st, VQTEX_ERROR_LIMIT_EXCEEDED);
 }
 
 // The layout asked of the encoder: quilting writes version 20 for a

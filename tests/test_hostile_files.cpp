@@ -20,6 +20,7 @@
 #include "common/bitstream.hpp"
 #include "common/checksum.hpp"
 #include "engine/neighborhood.hpp"
+#include "engine/quilt.hpp"
 #include "format/atlas_file.hpp"
 #include "format/container.hpp"
 #include "writer/byte_writer.hpp"
@@ -172,8 +173,9 @@ struct Outcome {
     std::size_t peak;  // live heap bytes above the start, at most
 };
 
-Outcome decode_with_limit(const std::vector<uint8_t>& file, uint64_t limit, uint32_t w = 16, uint32_t h = 16) {
-    vqtex_decode_params p = decode_params(w, h);
+Outcome decode_with_limit(const std::vector<uint8_t>& file, uint64_t limit, uint32_t w = 16, uint32_t h = 16,
+                          uint32_t threads = 1) {
+    vqtex_decode_params p = decode_params(w, h, VQTEX_SEED_FROM_FILE, threads);
     p.memory_limit = limit;
     Outcome o{};
     vqtex_image out{};
@@ -522,17 +524,17 @@ TEST(HostileFiles, MissingDuplicatedAndSurplusSections) {
 // The least limit a decode of `file` at two sizes succeeds with (found by
 // bisection): the decode's peak allocation is within it, and 1 KiB less is
 // refused.
-void expect_limit_is_kept(const std::vector<uint8_t>& file) {
+void expect_limit_is_kept(const std::vector<uint8_t>& file, uint32_t threads = 1) {
     for (const auto& [w, h] : {std::pair{96u, 64u}, {256u, 200u}}) {
         uint64_t lo = 1 << 10, hi = 256u << 20;
         while (hi - lo > 1024) {
             const uint64_t mid = (lo + hi) / 2;
-            (decode_with_limit(file, mid, w, h).status == VQTEX_OK ? hi : lo) = mid;
+            (decode_with_limit(file, mid, w, h, threads).status == VQTEX_OK ? hi : lo) = mid;
         }
-        const Outcome at = decode_with_limit(file, hi, w, h);
+        const Outcome at = decode_with_limit(file, hi, w, h, threads);
         ASSERT_EQ(at.status, VQTEX_OK) << at.detail;
         EXPECT_LE(at.peak, hi) << w << "x" << h;
-        EXPECT_EQ(decode_with_limit(file, lo, w, h).status, VQTEX_ERROR_LIMIT_EXCEEDED);
+        EXPECT_EQ(decode_with_limit(file, lo, w, h, threads).status, VQTEX_ERROR_LIMIT_EXCEEDED);
     }
 }
 
@@ -543,6 +545,46 @@ TEST(HostileFiles, DecodingStaysWithinTheMemoryLimit) {
     vqtex_encode_params ep = fast_encode_params();
     const std::vector<uint8_t> file = encode(load_corpus("cellular_128.png"), ep);
     expect_limit_is_kept(file);
+}
+
+// Quilted files (formats 19 and 20): the search, the blocks' graphs and
+// the blocks laid at once (up to 4 on 4 threads) stay within the limit the
+// check computes.
+TEST(HostileFiles, QuiltedFilesStayWithinTheMemoryLimit) {
+    vqtex_encode_params ep;
+    vqtex_encode_params_init(&ep);
+    ep.codebook = VQTEX_CODEBOOK_ATLAS;
+    ep.threads = 1;
+    ep.target_size = 1500;
+    ep.layout = VQTEX_LAYOUT_QUILT;
+    const std::vector<uint8_t> v20 = encode(load_corpus("cellular_128.png"), ep);
+    ASSERT_EQ(v20[8], 20);
+    std::vector<uint8_t> v19 = v20;
+    v19[8] = 19;
+    const uint32_t crc = vqtex::crc32(v19.data(), v19.size() - 4);
+    for (int i = 0; i < 4; ++i) v19[v19.size() - 4 + std::size_t(i)] = uint8_t(crc >> (8 * i));
+    for (uint32_t threads : {1u, 4u}) {
+        SCOPED_TRACE(threads);
+        expect_limit_is_kept(v20, threads);
+        expect_limit_is_kept(v19, threads);
+    }
+}
+
+// Quilting itself, beside the output's positions and colours, holds no
+// more than quilt_memory, the term the memory check counts for it, with as
+// many blocks laid at once as it allows.
+TEST(HostileFiles, QuiltingStaysWithinItsMemory) {
+    const vqtex::Image ex = load_corpus("cellular_128.png");
+    const int block = vqtex::quilt_block(ex.width, ex.height);
+    const uint64_t budget = vqtex::quilt_memory(ex.width, ex.height, ex.channels, vqtex::kQuiltWorkers);
+    for (const auto& [w, h] : {std::pair{256, 200}, {512, 512}})
+        for (int threads : {1, 4}) {
+            const uint64_t output = uint64_t(w) * uint64_t(h) * (4 + uint64_t(ex.channels));
+            const std::size_t peak = peak_bytes_during([&] {
+                vqtex::quilt_positions(ex, w, h, block, 3, threads, {}, budget, vqtex::QuiltOrder::kWavefront);
+            });
+            EXPECT_LE(peak, budget + output) << w << "x" << h << ", " << threads << " threads";
+        }
 }
 
 // Formats v3 to v7 (docs/FORMAT.md §4.1, §A): the atlas's announced size

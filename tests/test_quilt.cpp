@@ -255,7 +255,7 @@ TEST(Fft, CorrelationsAreWithinTheirBound) {
     // every error within the bound the quilting search's margin uses, and
     // the bound far below one cost unit on a quilting-sized problem.
     Rng rng(5);
-    for (const auto& [w, h] : std::vector<std::pair<int, int>>{{8, 8}, {32, 16}, {16, 64}, {128, 128}}) {
+    for (const auto& [w, h] : std::vector<std::pair<int, int>>{{1, 1}, {2, 4}, {4, 2}, {8, 8}, {32, 16}, {16, 64}, {128, 128}}) {
         const dsp::Fft2d fft(w, h);
         dsp::FftScratch scratch;
         const std::size_t n = std::size_t(w) * std::size_t(h);
@@ -293,7 +293,10 @@ TEST(Fft, CorrelationsAreWithinTheirBound) {
                 const std::size_t i = std::size_t(sy * w + sx);
                 worst = std::max({worst, std::abs(sre[i] / double(n) - double(exact)), std::abs(sim[i] / double(n))});
             }
-        EXPECT_GT(worst, 0.0) << "rounding is seen";
+        // (Sides of 4 or less have only exact twiddles.)
+        if (w * h >= 64) {
+            EXPECT_GT(worst, 0.0) << "rounding is seen";
+        }
         EXPECT_LE(worst, bound) << w << "x" << h;
         EXPECT_LT(bound, 0.5) << w << "x" << h;
     }

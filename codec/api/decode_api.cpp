@@ -125,7 +125,7 @@ std::vector<NamedMap> decode_atlas_maps(const vqtex_decode_params* p, const uint
     }
     check_output_memory(f.input_bytes + atlases +
                             atlas_decode_memory(f.atlas.width, f.atlas.height, f.atlas.channels, f.header.levels,
-                                                f.params.coherence, w, h) +
+                                                f.params.coherence, w, h, f.params.quilt > 0) +
                             (f.maps.empty() && !coords ? 0 : coherent_output_memory(w, h, channels + (coords ? 4 : 0))),
                         limit, out_size.name());
     CoherentOptions opt = coherent_options(f.params, int(w), int(h), seed_of(p, f.header));

@@ -11,6 +11,7 @@
 #include "engine/coherent_bands.hpp"
 #include "engine/coherent_levels.hpp"
 #include "engine/coherent_pixel_correction.hpp"
+#include "engine/quilt.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex {
@@ -92,11 +93,11 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
         if (example.width < options.quilt || example.height < options.quilt)
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "the quilting block is larger than the example");
         CoherentResult r;
-        // The memory the analysis would hold is the quilting search's.
+        // No analysis: the memory the decoder reserves for quilting instead.
         take_images(r,
                     coherent::quilt_pixels(example, example_tileable, options, readouts,
-                                           coherent_analysis_memory(example.width, example.height, example.channels,
-                                                                    levels, coherence)),
+                                           quilt_memory(example.width, example.height, example.channels,
+                                                        kQuiltWorkers)),
                     readouts);
         r.synthesise_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
         return r;

@@ -79,7 +79,7 @@ struct CoherentOptions : CoherentRun {
     int quilt = 0;
     // Whether the quilting blocks are laid in wavefront order, several at
     // once (quilt.hpp, QuiltOrder; format 20), or in raster order (19).
-    bool quilt_wavefront = true;
+    bool quilt_wavefront = false;
     // The frame, in example pixels, that the copies are laid out inside of
     // (copy_margin), so that a cut always has that much of each copy to
     // move into; 0: none.

@@ -14,6 +14,7 @@ void MinCut::reset(int nodes) {
     parent_.assign(n, -1);
     parent_arc_.assign(n, -1);
     reached_.assign(n, 0);
+    queued_.assign(n, 0);
     stamp_.assign(n, 0);
     time_ = 1;
     added_.clear();
@@ -58,6 +59,19 @@ bool MinCut::rooted(int v) {
 // Grows the trees from their active nodes until they touch; returns the
 // arc from the source tree to the sink tree with capacity left, or -1
 // when they cannot grow any more.
+void MinCut::activate(int v) {
+    if (queued_[std::size_t(v)]) return;
+    queued_[std::size_t(v)] = 1;
+    // The list holds each node once at most; what was taken off its front
+    // is dropped once it is as long as the rest can be, so that it stays
+    // within twice the nodes.
+    if (active_at_ > 0 && active_at_ >= queued_.size()) {
+        active_.erase(active_.begin(), active_.begin() + std::ptrdiff_t(active_at_));
+        active_at_ = 0;
+    }
+    active_.push_back(v);
+}
+
 int MinCut::grow() {
     while (active_at_ < active_.size()) {
         const int p = active_[active_at_];
@@ -73,12 +87,13 @@ int MinCut::grow() {
                     tree_[std::size_t(q)] = t;
                     parent_[std::size_t(q)] = p;
                     parent_arc_[std::size_t(q)] = toward;
-                    active_.push_back(q);
+                    activate(q);
                 } else if (tree_[std::size_t(q)] != t) {
                     return toward;  // p stays active
                 }
             }
         }
+        queued_[std::size_t(p)] = 0;
         ++active_at_;
     }
     return -1;
@@ -141,7 +156,7 @@ void MinCut::adopt() {
             const int u = arcs_[std::size_t(a)].to;
             if (tree_[std::size_t(u)] != t) continue;
             const int toward = t == kSourceTree ? arcs_[std::size_t(a)].rev : a;
-            if (arcs_[std::size_t(toward)].cap > 0) active_.push_back(u);
+            if (arcs_[std::size_t(toward)].cap > 0) activate(u);
             if (parent_[std::size_t(u)] == v) {
                 parent_[std::size_t(u)] = -1;
                 parent_arc_[std::size_t(u)] = -1;
@@ -158,7 +173,8 @@ int64_t MinCut::solve() {
     build_arcs();
     tree_[std::size_t(source())] = kSourceTree;
     tree_[std::size_t(sink())] = kSinkTree;
-    active_ = {source(), sink()};
+    activate(source());
+    activate(sink());
     int64_t flow = 0;
     for (int bridge; (bridge = grow()) >= 0;) {
         flow += augment(bridge);

@@ -46,6 +46,7 @@ private:
     };
     enum : int8_t { kFree = 0, kSourceTree = 1, kSinkTree = 2 };
     void build_arcs();
+    void activate(int v);
     bool rooted(int v);
     int grow();
     int64_t augment(int bridge);
@@ -69,6 +70,8 @@ private:
     int time_ = 1;
     std::size_t active_at_ = 0;
     std::vector<char> reached_;
+    // Whether a node is on the active list (its front not taken yet).
+    std::vector<char> queued_;
 };
 
 }  // namespace vqtex

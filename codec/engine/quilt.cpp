@@ -34,47 +34,72 @@ bool blocks_meet(std::pair<int, int> a, std::pair<int, int> b, int block, int wi
     return meet(a.first, b.first, width) && meet(a.second, b.second, height);
 }
 
-// Lays every block of `sequence` through lay(k, worker) on `workers`
-// threads at once, each block as soon as every block before it in the
-// sequence that it meets is laid. A block then reads what it would read
-// if the blocks were laid one after the other in the sequence, so the
-// output is the same for any number of workers. Blocks three or more
-// steps apart never meet (a step is at least three quarters of a block).
-void lay_in_parallel(const std::vector<int>& sequence, int nx, int ny, int width, int height, int block, int workers,
+// Where block k (= j * nx + i) comes in `order`: a key that sorts as the
+// order does (raster: k; wavefront: step i + 2j, then j).
+int64_t order_key(int k, int nx, QuiltOrder order) {
+    if (order == QuiltOrder::kRaster) return k;
+    return (int64_t(k % nx + 2 * (k / nx)) << 32) | int64_t(k / nx);
+}
+
+// Calls fn(k) for every block in `order`.
+template <typename Fn>
+void each_in_order(int nx, int ny, QuiltOrder order, Fn&& fn) {
+    if (order == QuiltOrder::kRaster) {
+        for (int k = 0; k < nx * ny; ++k) fn(k);
+        return;
+    }
+    for (int t = 0; t <= (nx - 1) + 2 * (ny - 1); ++t)
+        for (int j = 0; j < ny; ++j)
+            if (t - 2 * j >= 0 && t - 2 * j < nx) fn(j * nx + (t - 2 * j));
+}
+
+// Lays every block through lay(k, worker) on `workers` threads at once,
+// each block as soon as every block before it in `order` that it meets is
+// laid. A block then reads what it would read if the blocks were laid one
+// after the other in that order, so the output is the same for any number
+// of workers. Blocks three or more steps apart never meet (a step is at
+// least three quarters of a block), so a block's neighbours are found
+// within two steps, when needed, and only a count per block is held.
+void lay_in_parallel(int nx, int ny, int width, int height, int block, QuiltOrder order, int workers,
                      const std::function<bool(uint64_t, uint64_t)>& progress,
                      const std::function<void(int k, int worker)>& lay) {
     const int count = nx * ny;
-    std::vector<int> rank(static_cast<std::size_t>(count)), pending(static_cast<std::size_t>(count), 0);
-    for (int r = 0; r < count; ++r) rank[std::size_t(sequence[std::size_t(r)])] = r;
     const auto origin = [&](int k) {
         return std::pair<int, int>{int(int64_t(k % nx) * width / nx), int(int64_t(k / nx) * height / ny)};
     };
-    std::vector<std::vector<int>> after(static_cast<std::size_t>(count));
-    std::vector<int> seen;
-    for (int k = 0; k < count; ++k) {
-        seen.clear();
+    // fn(m) for every other block m that block k meets.
+    const auto each_met = [&](int k, auto&& fn) {
+        int seen[25], n_seen = 0;
         for (int dj = -2; dj <= 2; ++dj)
             for (int di = -2; di <= 2; ++di) {
                 const int m = ((k / nx + dj) % ny + ny) % ny * nx + ((k % nx + di) % nx + nx) % nx;
-                if (m == k || std::find(seen.begin(), seen.end(), m) != seen.end()) continue;
-                seen.push_back(m);
-                if (!blocks_meet(origin(k), origin(m), block, width, height)) continue;
-                if (rank[std::size_t(m)] < rank[std::size_t(k)])
-                    ++pending[std::size_t(k)];
-                else
-                    after[std::size_t(k)].push_back(m);
+                if (m == k || std::find(seen, seen + n_seen, m) != seen + n_seen) continue;
+                seen[n_seen++] = m;
+                if (blocks_meet(origin(k), origin(m), block, width, height)) fn(m);
             }
-    }
-    // Ready blocks, the earliest in the sequence first.
-    std::priority_queue<std::pair<int, int>, std::vector<std::pair<int, int>>, std::greater<>> ready;
+    };
+    // How many of the blocks it meets that come before it are not laid yet
+    // (at most 24).
+    std::vector<uint8_t> pending(static_cast<std::size_t>(count), 0);
     for (int k = 0; k < count; ++k)
-        if (pending[std::size_t(k)] == 0) ready.push({rank[std::size_t(k)], k});
+        each_met(k, [&](int m) {
+            if (order_key(m, nx, order) < order_key(k, nx, order)) ++pending[std::size_t(k)];
+        });
+    // Ready blocks, the earliest in the order first.
+    std::priority_queue<std::pair<int64_t, int>, std::vector<std::pair<int64_t, int>>, std::greater<>> ready;
+    for (int k = 0; k < count; ++k)
+        if (pending[std::size_t(k)] == 0) ready.push({order_key(k, nx, order), k});
     std::mutex lock;
     std::condition_variable changed;
     int done = 0;
     bool stop = false, cancelled = false;
     run_together(workers, [&](int worker) {
         std::unique_lock<std::mutex> held(lock);
+        // Whatever a worker throws, the others stop at their next block.
+        const auto halt = [&] {
+            stop = true;
+            changed.notify_all();
+        };
         for (;;) {
             changed.wait(held, [&] { return stop || done == count || !ready.empty(); });
             if (stop || ready.empty()) return;
@@ -85,24 +110,32 @@ void lay_in_parallel(const std::vector<int>& sequence, int nx, int ny, int width
                 lay(k, worker);
             } catch (...) {
                 held.lock();
-                stop = true;
-                changed.notify_all();
+                halt();
                 throw;
             }
             held.lock();
             ++done;
-            for (const int m : after[std::size_t(k)])
-                if (--pending[std::size_t(m)] == 0) ready.push({rank[std::size_t(m)], m});
+            each_met(k, [&](int m) {
+                if (order_key(k, nx, order) < order_key(m, nx, order) && --pending[std::size_t(m)] == 0)
+                    ready.push({order_key(m, nx, order), m});
+            });
             changed.notify_all();
             // Progress is heard on the calling thread only.
             if (worker == 0 && progress) {
                 const int now = done;
                 held.unlock();
-                const bool go_on = progress(uint64_t(now), uint64_t(count));
+                bool go_on = false;
+                try {
+                    go_on = progress(uint64_t(now), uint64_t(count));
+                } catch (...) {
+                    held.lock();
+                    halt();
+                    throw;
+                }
                 held.lock();
                 if (!go_on) {
-                    stop = cancelled = true;
-                    changed.notify_all();
+                    cancelled = true;
+                    halt();
                 }
             }
         }
@@ -113,13 +146,34 @@ void lay_in_parallel(const std::vector<int>& sequence, int nx, int ny, int width
 }  // namespace
 
 std::vector<int> quilt_order(int nx, int ny, QuiltOrder order) {
-    std::vector<int> sequence(std::size_t(nx) * std::size_t(ny));
-    for (std::size_t k = 0; k < sequence.size(); ++k) sequence[k] = int(k);
-    if (order == QuiltOrder::kWavefront)
-        std::stable_sort(sequence.begin(), sequence.end(), [&](int a, int b) {
-            return a % nx + 2 * (a / nx) < b % nx + 2 * (b / nx);
-        });
+    std::vector<int> sequence;
+    each_in_order(nx, ny, order, [&](int k) { sequence.push_back(k); });
     return sequence;
+}
+
+namespace {
+
+// A bound on the bytes one block's graph and working lists take, per pixel
+// of the block: the minimum cut's nodes and arcs (at most four edges a
+// pixel, each added, then two arcs), the active and orphan lists, and the
+// block's runs, colours, costs and sides.
+constexpr uint64_t kBlockBytesPerPixel = 320;
+
+uint64_t worker_memory(int example_width, int example_height, int block) {
+    return kBlockBytesPerPixel * uint64_t(block) * uint64_t(block) +
+           sizeof(uint32_t) * uint64_t(example_width - block + 1) * uint64_t(example_height - block + 1);
+}
+
+}  // namespace
+
+uint64_t quilt_memory(int example_width, int example_height, int channels, int workers) {
+    const int block = quilt_block(example_width, example_height);
+    if (block == 0) return 0;
+    const bool at_once = workers <= 1;
+    return QuiltExample::shared_memory(example_width, example_height, channels) +
+           uint64_t(std::max(workers, 1)) *
+               (QuiltExample::search_memory(example_width, example_height, channels, block, at_once) +
+                worker_memory(example_width, example_height, block));
 }
 
 int quilt_block(int example_width, int example_height) {
@@ -157,9 +211,10 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
     struct Source {
         int sx, sy;
     };
-    std::vector<std::pair<int, int>> origin(static_cast<std::size_t>(count));
-    for (int k = 0; k < count; ++k)
-        origin[std::size_t(k)] = {int(int64_t(k % nx) * width / nx), int(int64_t(k / nx) * height / ny)};
+    const auto origin = [&](std::size_t k) {
+        return std::pair<int, int>{int(int64_t(k % std::size_t(nx)) * width / nx),
+                                   int(int64_t(k / std::size_t(nx)) * height / ny)};
+    };
     std::vector<Source> source(std::size_t(count), Source{-1, -1});
     // Which blocks are laid at once: in raster order one after the other;
     // in wavefront order any that are ready, each on a thread of its own
@@ -169,11 +224,13 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
     const int ew = example.width, eh = example.height;
     const uint64_t shared = QuiltExample::shared_memory(ew, eh, ch);
     const auto fits = [&](int searches, bool pairs_at_once) {
-        return shared + uint64_t(searches) * QuiltExample::search_memory(ew, eh, ch, B, pairs_at_once) <= search_memory;
+        return shared + uint64_t(searches) * (QuiltExample::search_memory(ew, eh, ch, B, pairs_at_once) +
+                                              worker_memory(ew, eh, B)) <=
+               search_memory;
     };
     int workers = 1;
     if (order == QuiltOrder::kWavefront)
-        while (workers < std::min(std::max(threads, 1), count) && fits(workers + 1, false)) ++workers;
+        while (workers < std::min({std::max(threads, 1), count, kQuiltWorkers}) && fits(workers + 1, false)) ++workers;
     const bool pairs_at_once = workers == 1 && fits(1, true);
     const QuiltExample shared_example(example, B,
                                       workers > 1 || fits(1, false) ? QuiltExample::Method::kTransform
@@ -213,7 +270,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         std::vector<uint32_t>& near = w.near;
         MinCut& cut = w.cut;
         const int bi = k % nx, bj = k / nx;
-        const int xo = origin[std::size_t(k)].first, yo = origin[std::size_t(k)].second;
+        const int xo = origin(std::size_t(k)).first, yo = origin(std::size_t(k)).second;
         // What the output already holds under the block, row by row in
         // runs, and its colours.
         runs.clear();
@@ -247,7 +304,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
                 // nearer way round the torus. Only a block that overlaps
                 // this one is read: it is placed before it or after it,
                 // never at the same time.
-                int ox = Image::wrap(origin[m].first - xo, width), oy = Image::wrap(origin[m].second - yo, height);
+                int ox = Image::wrap(origin(m).first - xo, width), oy = Image::wrap(origin(m).second - yo, height);
                 if (ox > width / 2) ox -= width;
                 if (oy > height / 2) oy -= height;
                 if (ox <= -B || ox >= B || oy <= -B || oy >= B) continue;
@@ -263,6 +320,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         } else {
             w.search->near_places(runs, old.data(), excluded, inner_threads, near);
             // The near-best places, in raster order; the seed picks one.
+            if (near.empty()) fail(VQTEX_ERROR_INTERNAL, "quilting found no place for a block");
             const uint32_t at = near[std::size_t(salt % near.size())];
             sx = int(at % uint32_t(cx));
             sy = int(at / uint32_t(cx));
@@ -329,15 +387,18 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
                 std::copy_n(fresh(dx, dy), ch, colour.data() + i * std::size_t(ch));
             }
     };
-    const std::vector<int> sequence = quilt_order(nx, ny, order);
+    if (progress && !progress(0, uint64_t(count)))
+        fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
     if (workers == 1) {
-        for (int r = 0; r < count; ++r) {
-            if (progress && !progress(uint64_t(r), uint64_t(count)))
+        int laid = 0;
+        each_in_order(nx, ny, order, [&](int k) {
+            if (laid > 0 && progress && !progress(uint64_t(laid), uint64_t(count)))
                 fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
-            lay(sequence[std::size_t(r)], pool[0]);
-        }
+            lay(k, pool[0]);
+            ++laid;
+        });
     } else {
-        lay_in_parallel(sequence, nx, ny, width, height, B, workers, progress,
+        lay_in_parallel(nx, ny, width, height, B, order, workers, progress,
                         [&](int k, int worker) { lay(k, pool[std::size_t(worker)]); });
     }
     if (progress && !progress(uint64_t(count), uint64_t(count)))

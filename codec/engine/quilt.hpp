@@ -51,6 +51,14 @@ struct QuiltGrid {
 };
 QuiltGrid quilt_grid(int block, int width, int height);
 
+// The most blocks a decode lays at the same time (format 20), and the bytes
+// quilting holds beside the output for an example: the example's
+// transforms, and for each of `workers` blocks laid at once a search and
+// the block's graph (docs/FORMAT.md §2.8's memory check). quilt_positions
+// lays as many at once as fit the memory it is given.
+inline constexpr int kQuiltWorkers = 4;
+uint64_t quilt_memory(int example_width, int example_height, int channels, int workers);
+
 // The order blocks are laid in. Raster order (format 19) lays them one
 // after the other: each row's first block meets the row above's last
 // across the torus, so no two can be laid at once. Wavefront order
@@ -64,11 +72,11 @@ std::vector<int> quilt_order(int nx, int ny, QuiltOrder order);
 
 // The width x height torus of packed example positions
 // (coherent_positions.hpp) laid out with blocks of `block` pixels.
-// `progress` (may be empty) hears of each row of blocks done; false
-// cancels (VQTEX_ERROR_CANCELLED). The search by transforms, the faster,
-// is used when it needs at most `search_memory` bytes (the decoder's
-// memory check reserves the engine's analysis, which quilting does not
-// run); the direct search otherwise, with the same result.
+// `progress` (may be empty) hears of the blocks laid, on the calling
+// thread; false cancels (VQTEX_ERROR_CANCELLED). Blocks are laid as many
+// at once, and searched by transforms (the faster) rather than directly
+// (the same result), as fit `search_memory` bytes beside the output
+// (quilt_memory).
 std::vector<uint32_t> quilt_positions(const Image& example, int width, int height, int block, uint64_t seed,
                                       int threads,
                                       const std::function<bool(uint64_t done, uint64_t total)>& progress = {},

@@ -333,10 +333,12 @@ bool is_atlas_file(const uint8_t* data, std::size_t size) {
 }
 
 uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
-                             uint64_t width, uint64_t height) {
+                             uint64_t width, uint64_t height, bool quilted) {
     const uint64_t a = uint64_t(atlas_width) * uint64_t(atlas_height), ch = uint64_t(channels);
+    // Quilting runs no analysis; its search and blocks' graphs instead.
     return a * (ch + 8) + kDav1dFixedBytes +
-           coherent_analysis_memory(atlas_width, atlas_height, channels, levels, coherence) +
+           (quilted ? quilt_memory(atlas_width, atlas_height, channels, kQuiltWorkers)
+                    : coherent_analysis_memory(atlas_width, atlas_height, channels, levels, coherence)) +
            coherent_output_memory(width, height, channels);
 }
 

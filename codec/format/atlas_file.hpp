@@ -185,9 +185,10 @@ AtlasFile decode_atlas_file(const uint8_t* data, std::size_t size, std::size_t m
 
 // What decoding a file needs beside its sections, in bytes: the decoded
 // atlas, dav1d's frame buffers, the engine's appearance space and
-// coherence sets for `levels` levels, and a width x height output with its
-// position maps (docs/FORMAT.md §4.1 gives the formula).
+// coherence sets for `levels` levels (for a `quilted` file, quilting's
+// search and graphs instead: quilt_memory), and a width x height output
+// with its position maps (docs/FORMAT.md §4.1 gives the formula).
 uint64_t atlas_decode_memory(int atlas_width, int atlas_height, int channels, int levels, int coherence,
-                             uint64_t width, uint64_t height);
+                             uint64_t width, uint64_t height, bool quilted = false);
 
 }  // namespace vqtex
