@@ -865,6 +865,13 @@ TEST(AtlasFile, GoldenPeriodBarFileDecodesToKnownPixels) {
     EXPECT_TRUE(f.params.period_bar);
 }
 
+// A compact file written again from what was read of it.
+std::vector<uint8_t> written_again(const std::vector<uint8_t>& bytes, const vqtex::AtlasFile& f) {
+    const std::vector<uint8_t> bits(bytes.begin() + std::ptrdiff_t(f.bitstream_offset),
+                                    bytes.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
+    return vqtex::encode_atlas_file(f.header, f.atlas.width, f.atlas.height, bits, f.params);
+}
+
 // Pins format version 19 and its decoder, quilting: cellular_v15.vqt's
 // bytes with the version 19 (the same atlas, wrapping), so that the two
 // decodes differ by the layout alone.
@@ -878,9 +885,7 @@ TEST(AtlasFile, GoldenQuiltFileDecodesToKnownPixels) {
     EXPECT_FALSE(f.params.quilt_wavefront);
     EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).quilt_block, 64u);
     // Written again from what was read, it is a version 19 file still.
-    const std::vector<uint8_t> bits(bytes.begin() + std::ptrdiff_t(f.bitstream_offset),
-                                    bytes.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
-    EXPECT_EQ(vqtex::encode_atlas_file(f.header, f.atlas.width, f.atlas.height, bits, f.params), bytes);
+    EXPECT_EQ(written_again(bytes, f), bytes);
 }
 
 // Pins format version 20, quilting in wavefront order: cellular_v19.vqt's
@@ -893,9 +898,7 @@ TEST(AtlasFile, GoldenWavefrontQuiltFileDecodesToKnownPixels) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
     EXPECT_EQ(f.params.quilt, 64);
     EXPECT_TRUE(f.params.quilt_wavefront);
-    const std::vector<uint8_t> bits(bytes.begin() + std::ptrdiff_t(f.bitstream_offset),
-                                    bytes.begin() + std::ptrdiff_t(f.bitstream_offset + f.atlas_bytes));
-    EXPECT_EQ(vqtex::encode_atlas_file(f.header, f.atlas.width, f.atlas.height, bits, f.params), bytes);
+    EXPECT_EQ(written_again(bytes, f), bytes);
     const vqtex::Image one = decode(bytes, decode_params(256, 256, 5, 1));
     for (uint32_t threads : {2u, 3u, 8u}) EXPECT_EQ(decode(bytes, decode_params(256, 256, 5, threads)).pixels, one.pixels);
 }

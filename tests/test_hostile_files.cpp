@@ -538,6 +538,16 @@ void expect_limit_is_kept(const std::vector<uint8_t>& file, uint32_t threads = 1
     }
 }
 
+// The encoder's atlas files, small (1500 bytes).
+vqtex_encode_params small_atlas_params() {
+    vqtex_encode_params ep;
+    vqtex_encode_params_init(&ep);
+    ep.codebook = VQTEX_CODEBOOK_ATLAS;
+    ep.threads = 1;
+    ep.target_size = 1500;
+    return ep;
+}
+
 // For a real file, the smallest limit the decoder accepts really is the
 // most it allocates: every allocation (sections, trees, output pyramid,
 // synthesis buffers) is inside the limit it checked.
@@ -551,11 +561,7 @@ TEST(HostileFiles, DecodingStaysWithinTheMemoryLimit) {
 // the blocks laid at once (up to 4 on 4 threads) stay within the limit the
 // check computes.
 TEST(HostileFiles, QuiltedFilesStayWithinTheMemoryLimit) {
-    vqtex_encode_params ep;
-    vqtex_encode_params_init(&ep);
-    ep.codebook = VQTEX_CODEBOOK_ATLAS;
-    ep.threads = 1;
-    ep.target_size = 1500;
+    vqtex_encode_params ep = small_atlas_params();
     ep.layout = VQTEX_LAYOUT_QUILT;
     const std::vector<uint8_t> v20 = encode(load_corpus("cellular_128.png"), ep);
     ASSERT_EQ(v20[8], 20);
@@ -595,11 +601,7 @@ TEST(HostileFiles, QuiltingStaysWithinItsMemory) {
 // encoder writes v7 (a compact header, as v4 to v6); the v3 file is the same
 // content in the container.
 TEST(HostileFiles, AtlasFilesStayWithinTheMemoryLimit) {
-    vqtex_encode_params ep;
-    vqtex_encode_params_init(&ep);
-    ep.codebook = VQTEX_CODEBOOK_ATLAS;
-    ep.threads = 1;
-    ep.target_size = 1500;
+    vqtex_encode_params ep = small_atlas_params();
     ep.example_tileable = VQTEX_TILEABLE_NO;  // the layout of version 10
     const std::vector<uint8_t> v7 = encode(load_corpus("cellular_128.png"), ep);
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(v7.data(), v7.size(), 1u << 30);

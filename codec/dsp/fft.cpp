@@ -16,12 +16,16 @@ namespace {
 
 bool power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
 
-// One butterfly on n columns: a + w b and a - w b, w = wr + i wi. Built for
-// the widest vectors the CPU has (rounding may differ between the builds;
-// the callers' margin covers every one).
+// The butterflies are built for the widest vectors the CPU has (rounding
+// may differ between the builds; the callers' margin covers every one).
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(VQTEX_NO_TARGET_CLONES)
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define VQTEX_FFT_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define VQTEX_FFT_CLONES
 #endif
+
+// One butterfly on n columns: a + w b and a - w b, w = wr + i wi.
+VQTEX_FFT_CLONES
 void butterflies(double* __restrict ar, double* __restrict ai, double* __restrict br, double* __restrict bi,
                  double wr, double wi, int n) {
     for (int x = 0; x < n; ++x) {
@@ -38,9 +42,7 @@ void butterflies(double* __restrict ar, double* __restrict ai, double* __restric
 // pairs (a, b) and (c, d) with twiddle w1, the stage of 2L then (a, c)
 // with w2 and (b, d) with w3: the same arithmetic as the two stages one
 // after the other, in one pass over memory.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(VQTEX_NO_TARGET_CLONES)
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#endif
+VQTEX_FFT_CLONES
 void butterflies4(double* __restrict ar, double* __restrict ai, double* __restrict br, double* __restrict bi,
                   double* __restrict cr, double* __restrict ci, double* __restrict dr, double* __restrict di,
                   double w1r, double w1i, double w2r, double w2i, double w3r, double w3i, int n) {

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <limits>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -159,9 +158,17 @@ namespace {
 // block's runs, colours, costs and sides.
 constexpr uint64_t kBlockBytesPerPixel = 320;
 
-uint64_t worker_memory(int example_width, int example_height, int block) {
-    return kBlockBytesPerPixel * uint64_t(block) * uint64_t(block) +
-           sizeof(uint32_t) * uint64_t(example_width - block + 1) * uint64_t(example_height - block + 1);
+// The bytes of the example's transforms and `searches` searches, each with
+// its block's graph (a block's pairs of planes transformed together, or one
+// at a time).
+uint64_t layout_memory(int example_width, int example_height, int channels, int block, int searches,
+                       bool pairs_at_once) {
+    const uint64_t graph =
+        kBlockBytesPerPixel * uint64_t(block) * uint64_t(block) +
+        sizeof(uint32_t) * uint64_t(example_width - block + 1) * uint64_t(example_height - block + 1);
+    return QuiltExample::shared_memory(example_width, example_height, channels) +
+           uint64_t(searches) *
+               (QuiltExample::search_memory(example_width, example_height, channels, block, pairs_at_once) + graph);
 }
 
 }  // namespace
@@ -169,11 +176,7 @@ uint64_t worker_memory(int example_width, int example_height, int block) {
 uint64_t quilt_memory(int example_width, int example_height, int channels, int workers) {
     const int block = quilt_block(example_width, example_height);
     if (block == 0) return 0;
-    const bool at_once = workers <= 1;
-    return QuiltExample::shared_memory(example_width, example_height, channels) +
-           uint64_t(std::max(workers, 1)) *
-               (QuiltExample::search_memory(example_width, example_height, channels, block, at_once) +
-                worker_memory(example_width, example_height, block));
+    return layout_memory(example_width, example_height, channels, block, std::max(workers, 1), workers <= 1);
 }
 
 int quilt_block(int example_width, int example_height) {
@@ -221,12 +224,8 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
     // with a search of its own, as many as the searches' memory allows.
     // The search by transforms is used when it fits `search_memory`, the
     // direct search otherwise (the same places).
-    const int ew = example.width, eh = example.height;
-    const uint64_t shared = QuiltExample::shared_memory(ew, eh, ch);
     const auto fits = [&](int searches, bool pairs_at_once) {
-        return shared + uint64_t(searches) * (QuiltExample::search_memory(ew, eh, ch, B, pairs_at_once) +
-                                              worker_memory(ew, eh, B)) <=
-               search_memory;
+        return layout_memory(example.width, example.height, ch, B, searches, pairs_at_once) <= search_memory;
     };
     int workers = 1;
     if (order == QuiltOrder::kWavefront)
@@ -243,7 +242,6 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         std::vector<uint32_t> near;
         std::unique_ptr<QuiltSearch> search;
         MinCut cut;
-        std::vector<char> take;
         std::vector<int64_t> own;
     };
     std::vector<Worker> pool(static_cast<std::size_t>(workers));
@@ -338,8 +336,6 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         const auto was = [&](int dx, int dy) {
             return old.data() + (std::size_t(dy) * std::size_t(B) + std::size_t(dx)) * std::size_t(ch);
         };
-        std::vector<char>& take = w.take;
-        take.assign(std::size_t(placed), 1);
         if (placed > 0) {
             // Each placed pixel's own difference, once: the runs list the
             // placed pixels in the nodes' order.
@@ -376,12 +372,12 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
                     }
                 }
             cut.solve();
-            for (int v = 0; v < placed; ++v) take[std::size_t(v)] = !cut.source_side(v);
         }
         for (int dy = 0; dy < B; ++dy)
             for (int dx = 0; dx < B; ++dx) {
                 const int v = node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)];
-                if (v >= 0 && !take[std::size_t(v)]) continue;
+                // A placed pixel on the cut's source side keeps its copy.
+                if (v >= 0 && cut.source_side(v)) continue;
                 const std::size_t i = out_index(xo + dx, yo + dy);
                 pos[i] = pack_position(sx + dx, sy + dy);
                 std::copy_n(fresh(dx, dy), ch, colour.data() + i * std::size_t(ch));

@@ -25,6 +25,16 @@ int power_of_two_at_least(int n) {
     return p;
 }
 
+// The transform's sides for an example, and how many complex planes its
+// channels and the sum of their squares make.
+struct TransformSize {
+    uint64_t width, height, pairs;
+};
+TransformSize transform_size(int example_width, int example_height, int channels) {
+    return {uint64_t(power_of_two_at_least(example_width)), uint64_t(power_of_two_at_least(example_height)),
+            uint64_t(channels + 2) / 2};
+}
+
 int64_t near_limit(int64_t best) { return best + best * kQuiltTolerancePercent / 100; }
 
 }  // namespace
@@ -36,10 +46,11 @@ QuiltExample::QuiltExample(const Image& example, int block, Method method)
       places_y_(example.height - block + 1),
       method_(method) {
     if (method_ != Method::kTransform) return;
-    const int pw = power_of_two_at_least(example.width), ph = power_of_two_at_least(example.height);
-    fft_ = std::make_unique<dsp::Fft2d>(pw, ph);
-    const std::size_t points = std::size_t(pw) * std::size_t(ph);
-    const int ch = example.channels, planes = ch + 1, pairs = (planes + 1) / 2;
+    const TransformSize size = transform_size(example.width, example.height, example.channels);
+    const int pw = int(size.width);
+    fft_ = std::make_unique<dsp::Fft2d>(pw, int(size.height));
+    const std::size_t points = std::size_t(size.width * size.height);
+    const int ch = example.channels, planes = ch + 1, pairs = int(size.pairs);
     const auto plane = [&](int k, int x, int y) -> double {
         const uint8_t* p = example.at(x, y);
         if (k < ch) return p[k];
@@ -66,20 +77,19 @@ QuiltExample::QuiltExample(const Image& example, int block, Method method)
 }
 
 uint64_t QuiltExample::shared_memory(int example_width, int example_height, int channels) {
-    const uint64_t pw = uint64_t(power_of_two_at_least(example_width)),
-                   ph = uint64_t(power_of_two_at_least(example_height)), pairs = uint64_t(channels + 2) / 2;
-    return sizeof(double) * pw * ph * 2 * pairs;
+    const TransformSize size = transform_size(example_width, example_height, channels);
+    return sizeof(double) * size.width * size.height * 2 * size.pairs;
 }
 
 uint64_t QuiltExample::search_memory(int example_width, int example_height, int channels, int block,
                                      bool pairs_at_once) {
-    const uint64_t pw = uint64_t(power_of_two_at_least(example_width)),
-                   ph = uint64_t(power_of_two_at_least(example_height)), pairs = uint64_t(channels + 2) / 2;
-    // The block's pairs, the sum, the transposed rows of each pair
-    // transformed at once, the rounded and the exact costs.
-    const uint64_t at_once = pairs_at_once ? pairs : 1;
+    const TransformSize size = transform_size(example_width, example_height, channels);
+    // The block's pairs, the sum (whose imaginary half then holds the
+    // rounded costs), the transposed rows of each pair transformed at once,
+    // and the exact costs.
+    const uint64_t at_once = pairs_at_once ? size.pairs : 1;
     const uint64_t rows = uint64_t(std::max(block, example_height - block + 1));
-    return sizeof(double) * (pw * ph * (2 * at_once + 2) + 2 * pw * rows * at_once) +
+    return sizeof(double) * (size.width * size.height * (2 * at_once + 2) + 2 * size.width * rows * at_once) +
            sizeof(int64_t) * uint64_t(example_width - block + 1) * uint64_t(example_height - block + 1);
 }
 
@@ -193,6 +203,8 @@ void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8
         }
     }
     fft.inverse(sr, si, ex_.places_y(), scratch_[0]);
+    // The rounded costs, place by place, into the sum's imaginary half
+    // (which the inverse leaves as rounding only).
     const double scale = 1.0 / double(points);
     for (int y = 0; y < ex_.places_y(); ++y)
         for (int x = 0; x < ex_.places_x(); ++x)
@@ -215,24 +227,24 @@ void QuiltSearch::near_places(const std::vector<QuiltRun>& runs, const uint8_t* 
             if (excluded[std::size_t(k)].first == x && excluded[std::size_t(k)].second == y) return false;
         return true;
     };
-    near.clear();
+    const int px = ex_.places_x(), py = ex_.places_y();
     if (ex_.method() == QuiltExample::Method::kTransform) {
         transform_costs(runs, old, threads);
         const double* approx = sum_im_.data();
         double least = std::numeric_limits<double>::infinity();
-        for (int y = 0; y < ex_.places_y(); ++y)
-            for (int x = 0; x < ex_.places_x(); ++x) {
-                const double a = approx[std::size_t(y) * std::size_t(ex_.places_x()) + std::size_t(x)];
+        for (int y = 0; y < py; ++y)
+            for (int x = 0; x < px; ++x) {
+                const double a = approx[std::size_t(y) * std::size_t(px) + std::size_t(x)];
                 if (a < least && allowed(x, y)) least = a;
             }
         // Every place whose exact cost could be within the tolerance of the
-        // least exact cost: that is at most least + margin, and a place's
-        // exact cost at least its rounded cost - margin.
+        // least exact cost gets it: that is at most least + margin, and a
+        // place's exact cost at least its rounded cost - margin.
         const double bound = (least + margin_) * (1.0 + kQuiltTolerancePercent / 100.0) + margin_;
         int64_t best = kDropped;
-        for (int y = 0; y < ex_.places_y(); ++y)
-            for (int x = 0; x < ex_.places_x(); ++x) {
-                const std::size_t i = std::size_t(y) * std::size_t(ex_.places_x()) + std::size_t(x);
+        for (int y = 0; y < py; ++y)
+            for (int x = 0; x < px; ++x) {
+                const std::size_t i = std::size_t(y) * std::size_t(px) + std::size_t(x);
                 cost_[i] = kDropped;
                 if (approx[i] > bound || !allowed(x, y)) continue;
                 const int64_t c = cost(runs, old, x, y, best == kDropped ? kDropped : near_limit(best));
@@ -240,40 +252,41 @@ void QuiltSearch::near_places(const std::vector<QuiltRun>& runs, const uint8_t* 
                 cost_[i] = c;
                 best = std::min(best, c);
             }
-        const int64_t limit = near_limit(best);
-        for (std::size_t i = 0; i < cost_.size(); ++i)
-            if (cost_[i] <= limit) near.push_back(uint32_t(i));
-        return;
+    } else {
+        // Directly: the whole costs of the places near where the
+        // overlapping blocks' copies would go on (within kSeedReach), which
+        // are often the best, set a first limit, the tolerance over the
+        // least of them. Then every place's cost is summed run by run and
+        // dropped as soon as it passes that limit. What is dropped cannot
+        // be near-best (the final limit is no higher), and each place's
+        // fate depends on the first limit alone, the same on any thread
+        // count.
+        int64_t first = kDropped;
+        for (const auto& [ex, ey] : excluded)
+            for (int dy = -kSeedReach; dy <= kSeedReach; ++dy)
+                for (int dx = -kSeedReach; dx <= kSeedReach; ++dx) {
+                    const int x = ex + dx, y = ey + dy;
+                    if (x < 0 || y < 0 || x >= px || y >= py || !allowed(x, y)) continue;
+                    const int64_t c = cost(runs, old, x, y, first);
+                    if (c >= 0) first = std::min(first, c);
+                }
+        const int64_t limit = first == kDropped ? kDropped : near_limit(first);
+        parallel_for(threads, std::size_t(py), 4, [&](std::size_t y0, std::size_t y1) {
+            for (std::size_t y = y0; y < y1; ++y)
+                for (int x = 0; x < px; ++x) {
+                    const int64_t c = allowed(x, int(y)) ? cost(runs, old, x, int(y), limit) : -1;
+                    cost_[y * std::size_t(px) + std::size_t(x)] = c < 0 ? kDropped : c;
+                }
+        });
     }
-    // Directly: the whole costs of the places near where the overlapping
-    // blocks' copies would go on (within kSeedReach), which are often the
-    // best, set a first limit, the tolerance over the least of them. Then
-    // every place's cost is summed run by run and dropped as soon as it
-    // passes that limit. What is dropped cannot be near-best (the final
-    // limit is no higher), and each place's fate depends on the first limit
-    // alone, the same on any thread count.
-    int64_t first = kDropped;
-    for (const auto& [ex, ey] : excluded)
-        for (int dy = -kSeedReach; dy <= kSeedReach; ++dy)
-            for (int dx = -kSeedReach; dx <= kSeedReach; ++dx) {
-                const int x = ex + dx, y = ey + dy;
-                if (x < 0 || y < 0 || x >= ex_.places_x() || y >= ex_.places_y() || !allowed(x, y)) continue;
-                const int64_t c = cost(runs, old, x, y, first);
-                if (c >= 0) first = std::min(first, c);
-            }
-    const int64_t limit = first == kDropped ? kDropped : near_limit(first);
-    parallel_for(threads, std::size_t(ex_.places_y()), 4, [&](std::size_t y0, std::size_t y1) {
-        for (std::size_t y = y0; y < y1; ++y)
-            for (int x = 0; x < ex_.places_x(); ++x) {
-                const int64_t c = allowed(x, int(y)) ? cost(runs, old, x, int(y), limit) : -1;
-                cost_[y * std::size_t(ex_.places_x()) + std::size_t(x)] = c < 0 ? kDropped : c;
-            }
-    });
+    // The near-best set from the exact costs (a dropped place lies above
+    // it either way).
     int64_t best = kDropped;
     for (const int64_t c : cost_) best = std::min(best, c);
-    const int64_t final_limit = near_limit(best);
+    const int64_t limit = near_limit(best);
+    near.clear();
     for (std::size_t i = 0; i < cost_.size(); ++i)
-        if (cost_[i] <= final_limit) near.push_back(uint32_t(i));
+        if (cost_[i] <= limit) near.push_back(uint32_t(i));
 }
 
 }  // namespace vqtex
