@@ -178,7 +178,10 @@ std::vector<ReadImage> read_whole(const Image& example, PositionMap map, const C
 }  // namespace
 
 std::vector<ReadImage> quilt_pixels(const Image& example, bool wraps, const CoherentOptions& options,
-                                    const std::vector<Readout>& readouts, uint64_t search_memory) {
+                                    const std::vector<Readout>& readouts) {
+    // No analysis: what the decoder's memory check reserves for quilting
+    // instead.
+    const uint64_t search_memory = quilt_memory(example.width, example.height, example.channels, kQuiltWorkers);
     PositionMap map{options.width, options.height,
                     quilt_positions(example, options.width, options.height, options.quilt, options.seed,
                                     options.threads, options.progress, search_memory,

@@ -29,9 +29,9 @@ std::vector<ReadImage> synthesize_pixels(const Image& example, int margin, const
 // The output of `options`' size laid out by quilting with blocks of
 // options.quilt pixels (quilt.hpp) instead of the coherent passes, read as
 // synthesize_pixels reads; `wraps`: the example tiles (the read-out's blend
-// wraps across its edges). Needs no analysis; the search may take up to
-// `search_memory` bytes (quilt_positions).
+// wraps across its edges). Needs no analysis; quilting holds at most
+// quilt_memory beside the output.
 std::vector<ReadImage> quilt_pixels(const Image& example, bool wraps, const CoherentOptions& options,
-                                    const std::vector<Readout>& readouts, uint64_t search_memory);
+                                    const std::vector<Readout>& readouts = {});
 
 }  // namespace vqtex::coherent

@@ -11,7 +11,6 @@
 #include "engine/coherent_bands.hpp"
 #include "engine/coherent_levels.hpp"
 #include "engine/coherent_pixel_correction.hpp"
-#include "engine/quilt.hpp"
 #include "vqtex/vqtex.h"
 
 namespace vqtex {
@@ -93,12 +92,7 @@ CoherentResult synthesize_coherent(const Image& example, int levels, bool exampl
         if (example.width < options.quilt || example.height < options.quilt)
             fail(VQTEX_ERROR_INVALID_ARGUMENT, "the quilting block is larger than the example");
         CoherentResult r;
-        // No analysis: the memory the decoder reserves for quilting instead.
-        take_images(r,
-                    coherent::quilt_pixels(example, example_tileable, options, readouts,
-                                           quilt_memory(example.width, example.height, example.channels,
-                                                        kQuiltWorkers)),
-                    readouts);
+        take_images(r, coherent::quilt_pixels(example, example_tileable, options, readouts), readouts);
         r.synthesise_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
         return r;
     }
