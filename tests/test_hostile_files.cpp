@@ -583,8 +583,9 @@ TEST(HostileFiles, QuiltingStaysWithinItsMemory) {
     const vqtex::Image ex = load_corpus("cellular_128.png");
     const int block = vqtex::quilt_block(ex.width, ex.height);
     const uint64_t budget = vqtex::quilt_memory(ex.width, ex.height, ex.channels, vqtex::kQuiltWorkers);
-    for (const auto& [w, h] : {std::pair{256, 200}, {512, 512}})
+    for (const auto& size : {std::pair{256, 200}, {512, 512}})
         for (int threads : {1, 4}) {
+            const int w = size.first, h = size.second;  // a lambda may not capture structured bindings before C++20
             const uint64_t output = uint64_t(w) * uint64_t(h) * (4 + uint64_t(ex.channels));
             const std::size_t peak = peak_bytes_during([&] {
                 vqtex::quilt_positions(ex, w, h, block, 3, threads, {}, budget, vqtex::QuiltOrder::kWavefront);
