@@ -17,6 +17,7 @@
 #include "common/rng.hpp"
 #include "engine/coherent_positions.hpp"
 #include "engine/min_cut.hpp"
+#include "engine/planar_cut.hpp"
 #include "dsp/fft.hpp"
 #include "engine/quilt.hpp"
 #include "engine/quilt_search.hpp"
@@ -126,6 +127,112 @@ TEST(MinCut, EqualsAReferenceFlowOnGrids) {
         }
         EXPECT_EQ(cut.solve(), flow) << "trial " << trial << ", " << w << "x" << h;
     }
+}
+
+// The planar cut of a block whose placed pixels are a union of rectangles
+// that each touch its edge (as the blocks laid before it leave them), with
+// random costs, zeros and ties among them: when it applies, its cost is the
+// maximum flow of the same graph and of brute force on small ones, the
+// sides it returns cost what it says, and every fresh pixel is new. It
+// declines exactly when no fresh pixel is on the edge or the fresh pixels
+// are apart.
+TEST(PlanarCut, EqualsTheMaximumFlowOfTheSameGraph) {
+    Rng rng(29);
+    int solved = 0, declined = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const int side = 2 + int(rng.below(trial < 2000 ? 4 : 15));
+        const std::size_t n = std::size_t(side), lattice = n + 1;
+        std::vector<uint8_t> fresh(n * n, 1);
+        for (int r = 0, rects = 1 + int(rng.below(4)); r < rects; ++r) {
+            // A rectangle along one edge, sometimes across the block.
+            const int edge = int(rng.below(4)), depth = 1 + int(rng.below(uint64_t(side))),
+                      from = int(rng.below(uint64_t(side))), to = from + 1 + int(rng.below(uint64_t(side - from)));
+            for (int y = 0; y < side; ++y)
+                for (int x = 0; x < side; ++x) {
+                    const int along = edge < 2 ? x : y, into = edge == 0 ? y : edge == 1 ? side - 1 - y
+                                                            : edge == 2 ? x : side - 1 - x;
+                    if (along >= from && along < to && into < depth) fresh[std::size_t(y) * n + std::size_t(x)] = 0;
+                }
+        }
+        const auto cost = [&] { return int64_t(rng.below(4)) * int64_t(rng.below(30)); };
+        std::vector<int64_t> columns(lattice * n), rows(n * lattice);
+        for (int64_t& c : columns) c = cost();
+        for (int64_t& c : rows) c = cost();
+        // The same graph for a maximum flow: a node for each placed pixel.
+        std::vector<int> node(n * n, -1);
+        int placed = 0;
+        for (std::size_t v = 0; v < n * n; ++v)
+            if (!fresh[v]) node[v] = placed++;
+        MinCut flow(placed);
+        std::vector<Arc> arcs;
+        const auto add = [&](int a, int b, int64_t ab, int64_t ba) {
+            flow.add(a, b, ab, ba);
+            arcs.push_back({a, b, ab});
+            arcs.push_back({b, a, ba});
+        };
+        // Between pixels p and q (either may be outside: -1) at this cost.
+        const auto join = [&](int p, int q, int64_t c) {
+            const int u = p < 0 ? -1 : node[std::size_t(p)], v = q < 0 ? -1 : node[std::size_t(q)];
+            if (u >= 0 && v >= 0) add(u, v, c, c);
+            else if (u >= 0 && q >= 0) add(u, flow.sink(), c, 0);
+            else if (v >= 0 && p >= 0) add(v, flow.sink(), c, 0);
+            else if (u >= 0 || v >= 0) add(flow.source(), u >= 0 ? u : v, c, 0);
+        };
+        for (int y = 0; y < side; ++y)
+            for (int x = 0; x <= side; ++x)
+                join(x > 0 ? y * side + x - 1 : -1, x < side ? y * side + x : -1,
+                     columns[std::size_t(y) * lattice + std::size_t(x)]);
+        for (int y = 0; y <= side; ++y)
+            for (int x = 0; x < side; ++x)
+                join(y > 0 ? (y - 1) * side + x : -1, y < side ? y * side + x : -1, rows[std::size_t(y) * n + std::size_t(x)]);
+        const int64_t least = flow.solve();
+        PlanarCut cut;
+        bool on_edge = false;
+        for (int i = 0; i < side; ++i)
+            on_edge = on_edge || fresh[std::size_t(i)] || fresh[(n - 1) * n + std::size_t(i)] ||
+                      fresh[std::size_t(i) * n] || fresh[std::size_t(i) * n + n - 1];
+        if (!cut.solve(side, fresh, columns, rows)) {
+            ++declined;
+            // Declined: the fresh pixels are off the edge or apart.
+            std::vector<uint8_t> seen(n * n, 0);
+            std::vector<std::size_t> stack;
+            for (std::size_t v = 0; v < n * n && stack.empty(); ++v)
+                if (fresh[v]) stack.push_back(v), seen[v] = 1;
+            std::size_t joined = stack.size();
+            while (!stack.empty()) {
+                const std::size_t v = stack.back();
+                stack.pop_back();
+                for (std::size_t u : {v + 1, v - 1, v + n, v - n})
+                    if (u < n * n && (u / n == v / n || u % n == v % n) && fresh[u] && !seen[u]) seen[u] = 1, stack.push_back(u), ++joined;
+            }
+            const std::size_t total = std::size_t(std::count(fresh.begin(), fresh.end(), uint8_t(1)));
+            EXPECT_TRUE(total == 0 || !on_edge || joined < total) << "trial " << trial;
+            continue;
+        }
+        ++solved;
+        ASSERT_EQ(cut.cost(), least) << "trial " << trial << ", side " << side;
+        uint32_t source_side = 0;
+        for (int y = 0; y < side; ++y)
+            for (int x = 0; x < side; ++x) {
+                const std::size_t v = std::size_t(y) * n + std::size_t(x);
+                if (fresh[v]) {
+                    EXPECT_FALSE(cut.source_side(x, y)) << "trial " << trial;
+                } else if (cut.source_side(x, y) && placed <= 31) {
+                    source_side |= 1u << node[v];
+                }
+            }
+        if (placed <= 31) {
+            EXPECT_EQ(cut_cost(arcs, placed, source_side), least) << "trial " << trial;
+        }
+        if (placed <= 12) {
+            int64_t best = INT64_MAX;
+            for (uint32_t m = 0; m < (1u << placed); ++m) best = std::min(best, cut_cost(arcs, placed, m));
+            EXPECT_EQ(best, least) << "trial " << trial;
+        }
+    }
+    // Both kinds of block come up.
+    EXPECT_GT(solved, 1000);
+    EXPECT_GT(declined, 50);
 }
 
 TEST(Quilt, BlockAndGridFollowTheExampleAndTheOutput) {
