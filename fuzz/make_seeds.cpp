@@ -190,8 +190,9 @@ int main(int argc, char** argv) {
                     vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, barred);
                 write(out / "decode" / (name + "_v15.vqt"), v15.data(), v15.size());
                 ++files;
-                // Versions 20 and 19: the same atlas laid out by quilting,
-                // its blocks in wavefront and in raster order.
+                // Versions 21, 20 and 19: the same atlas laid out by quilting,
+                // its blocks in wavefront and in raster order, cut as planar
+                // graphs or by maximum flow.
                 vqtex::AtlasSynthesisParams quilted = sp;
                 quilted.quilt = vqtex::quilt_block(f.atlas.width, f.atlas.height);
                 if (quilted.quilt > 0) {
@@ -202,7 +203,11 @@ int main(int argc, char** argv) {
                     const std::vector<uint8_t> v20 =
                         vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, quilted);
                     write(out / "decode" / (name + "_v20.vqt"), v20.data(), v20.size());
-                    files += 2;
+                    quilted.quilt_planar_cut = true;
+                    const std::vector<uint8_t> v21 =
+                        vqtex::encode_atlas_file(h, f.atlas.width, f.atlas.height, bits, quilted);
+                    write(out / "decode" / (name + "_v21.vqt"), v21.data(), v21.size());
+                    files += 3;
                 }
                 // Version 13: the atlas a part of a larger exemplar, its
                 // origin stored.

@@ -36,6 +36,7 @@ decode_all() {  # $1 = output directory
   "$decode" "$golden/cellular_v15.vqt" "$1/atlas_v15.png" --size 300x220 --seed 15 -j 2 --quiet
   "$decode" "$golden/cellular_v19.vqt" "$1/atlas_v19.png" --size 310x230 --seed 19 -j 2 --quiet
   "$decode" "$golden/cellular_v20.vqt" "$1/atlas_v20.png" --size 330x250 --seed 20 -j 3 --quiet
+  "$decode" "$golden/cellular_v21.vqt" "$1/atlas_v21.png" --size 330x250 --seed 21 -j 3 --quiet
   mkdir -p "$1/anim_v12"
   "$decode" "$golden/waves_v12.vqt" "$1/anim_v12/f_%03d.png" --frames 9 --size 70x60 --seed 11 -j 2 --quiet
   "$synth" "$corpus/cellular_128.png" "$1/coherent.png" --size 210x150 --seed 4 -j 2 --quiet

@@ -898,6 +898,24 @@ TEST(AtlasFile, GoldenWavefrontQuiltFileDecodesToKnownPixels) {
     const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
     EXPECT_EQ(f.params.quilt, 64);
     EXPECT_TRUE(f.params.quilt_wavefront);
+    EXPECT_FALSE(f.params.quilt_planar_cut);
+    EXPECT_EQ(written_again(bytes, f), bytes);
+    const vqtex::Image one = decode(bytes, decode_params(256, 256, 5, 1));
+    for (uint32_t threads : {2u, 3u, 8u}) EXPECT_EQ(decode(bytes, decode_params(256, 256, 5, threads)).pixels, one.pixels);
+}
+
+// Pins format version 21, quilting with the planar cut: cellular_v20.vqt's
+// bytes with the version 21, so that the two decodes differ by which of
+// the minimum cuts each block takes alone; the same pixels for any thread
+// count.
+TEST(AtlasFile, GoldenPlanarCutQuiltFileDecodesToKnownPixels) {
+    const std::vector<uint8_t> bytes =
+        check_golden_compact("cellular_v21.vqt", 21, 0x6c942ea7fb3ff0a9ull, 0xa25bea9c77b475b7ull, 256, 256, 20);
+    if (bytes.empty()) return;
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
+    EXPECT_EQ(f.params.quilt, 64);
+    EXPECT_TRUE(f.params.quilt_wavefront);
+    EXPECT_TRUE(f.params.quilt_planar_cut);
     EXPECT_EQ(written_again(bytes, f), bytes);
     const vqtex::Image one = decode(bytes, decode_params(256, 256, 5, 1));
     for (uint32_t threads : {2u, 3u, 8u}) EXPECT_EQ(decode(bytes, decode_params(256, 256, 5, threads)).pixels, one.pixels);
@@ -928,11 +946,11 @@ TEST(AtlasFile, QuiltedFileMemoryCheckCountsQuiltingsTerm) {
     EXPECT_EQ(st, VQTEX_ERROR_LIMIT_EXCEEDED);
 }
 
-// The layout asked of the encoder: quilting writes version 20 for a
+// The layout asked of the encoder: quilting writes version 21 for a
 // wrapping example (the same atlas as the engine's file), decoded alike on
 // any thread count, differently for another seed, and tiling; an example
 // that does not wrap keeps the engine.
-TEST(AtlasFile, QuiltLayoutIsVersion20OnWrappingExamplesOnly) {
+TEST(AtlasFile, QuiltLayoutIsVersion21OnWrappingExamplesOnly) {
     const vqtex::Image ex = load_corpus("cellular_128.png");
     vqtex_encode_params p = atlas_params();
     p.layout = VQTEX_LAYOUT_COHERENT;
@@ -941,7 +959,7 @@ TEST(AtlasFile, QuiltLayoutIsVersion20OnWrappingExamplesOnly) {
     vqtex_encode_stats stats{};
     const std::vector<uint8_t> quilted = encode(ex, p, &stats);
     EXPECT_EQ(vqtex_cpp::inspect(coherent.data(), coherent.size()).format_version, 15u);
-    EXPECT_EQ(vqtex_cpp::inspect(quilted.data(), quilted.size()).format_version, 20u);
+    EXPECT_EQ(vqtex_cpp::inspect(quilted.data(), quilted.size()).format_version, 21u);
     EXPECT_EQ(stats.quilt, 1u);
     EXPECT_EQ(stats.period_bar, 0u);
     ASSERT_EQ(coherent.size(), quilted.size()) << "the same atlas, one more version";

@@ -557,22 +557,23 @@ TEST(HostileFiles, DecodingStaysWithinTheMemoryLimit) {
     expect_limit_is_kept(file);
 }
 
-// Quilted files (formats 19 and 20): the search, the blocks' graphs and
-// the blocks laid at once (up to 4 on 4 threads) stay within the limit the
-// check computes.
+// Quilted files (formats 19 to 21): the search, the blocks' graphs and
+// cuts and the blocks laid at once (up to 4 on 4 threads) stay within the
+// limit the check computes.
 TEST(HostileFiles, QuiltedFilesStayWithinTheMemoryLimit) {
     vqtex_encode_params ep = small_atlas_params();
     ep.layout = VQTEX_LAYOUT_QUILT;
-    const std::vector<uint8_t> v20 = encode(load_corpus("cellular_128.png"), ep);
-    ASSERT_EQ(v20[8], 20);
-    std::vector<uint8_t> v19 = v20;
-    v19[8] = 19;
-    const uint32_t crc = vqtex::crc32(v19.data(), v19.size() - 4);
-    for (int i = 0; i < 4; ++i) v19[v19.size() - 4 + std::size_t(i)] = uint8_t(crc >> (8 * i));
-    for (uint32_t threads : {1u, 4u}) {
-        SCOPED_TRACE(threads);
-        expect_limit_is_kept(v20, threads);
-        expect_limit_is_kept(v19, threads);
+    const std::vector<uint8_t> v21 = encode(load_corpus("cellular_128.png"), ep);
+    ASSERT_EQ(v21[8], 21);
+    for (uint8_t version : {21, 20, 19}) {
+        std::vector<uint8_t> file = v21;
+        file[8] = version;
+        const uint32_t crc = vqtex::crc32(file.data(), file.size() - 4);
+        for (int i = 0; i < 4; ++i) file[file.size() - 4 + std::size_t(i)] = uint8_t(crc >> (8 * i));
+        for (uint32_t threads : {1u, 4u}) {
+            SCOPED_TRACE(std::to_string(version) + ", " + std::to_string(threads) + " threads");
+            expect_limit_is_kept(file, threads);
+        }
     }
 }
 
@@ -587,10 +588,12 @@ TEST(HostileFiles, QuiltingStaysWithinItsMemory) {
         for (int threads : {1, 4}) {
             const int w = size.first, h = size.second;  // a lambda may not capture structured bindings before C++20
             const uint64_t output = uint64_t(w) * uint64_t(h) * (4 + uint64_t(ex.channels));
-            const std::size_t peak = peak_bytes_during([&] {
-                vqtex::quilt_positions(ex, w, h, block, 3, threads, {}, budget, vqtex::QuiltOrder::kWavefront);
-            });
-            EXPECT_LE(peak, budget + output) << w << "x" << h << ", " << threads << " threads";
+            for (vqtex::QuiltCut cut : {vqtex::QuiltCut::kMaxFlow, vqtex::QuiltCut::kPlanar}) {
+                const std::size_t peak = peak_bytes_during([&] {
+                    vqtex::quilt_positions(ex, w, h, block, 3, threads, {}, budget, vqtex::QuiltOrder::kWavefront, cut);
+                });
+                EXPECT_LE(peak, budget + output) << w << "x" << h << ", " << threads << " threads, cut " << int(cut);
+            }
         }
 }
 

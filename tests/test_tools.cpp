@@ -188,7 +188,7 @@ TEST(Tools, EncodeDecodeInfoRoundTrip) {
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("\"period_bar\":false,\"quilt\":true,"), std::string::npos) << r.output;
     r = info_tool(quilted);
-    EXPECT_NE(r.output.find("format 20"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("format 21"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("image quilting, blocks of 64x64 pixels"), std::string::npos) << r.output;
     r = info_tool(quilted + " --json");
     EXPECT_NE(r.output.find("\"quilt_block\":64"), std::string::npos) << r.output;

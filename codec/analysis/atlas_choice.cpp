@@ -145,6 +145,7 @@ std::vector<uint8_t> quilted_file(const std::vector<uint8_t>& file) {
     sp.period_bar = false;
     sp.quilt = quilt_block(f.atlas.width, f.atlas.height);
     sp.quilt_wavefront = true;
+    sp.quilt_planar_cut = true;
     return encode_atlas_file(f.header, f.atlas.width, f.atlas.height,
                              std::vector<uint8_t>(file.begin() + long(f.bitstream_offset),
                                                   file.begin() + long(f.bitstream_offset + f.atlas_bytes)),

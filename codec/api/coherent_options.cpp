@@ -26,6 +26,7 @@ CoherentOptions coherent_options(const AtlasSynthesisParams& params, int width, 
     opt.blend_straight_alpha = params.blend_straight_alpha;
     opt.quilt = params.quilt;
     opt.quilt_wavefront = params.quilt_wavefront;
+    opt.quilt_planar_cut = params.quilt_planar_cut;
     return opt;
 }
 

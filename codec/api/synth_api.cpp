@@ -54,9 +54,10 @@ void synthesize_coherent_api(const vqtex_synth_params& params, const Image& exam
     CoherentOptions opt = coherent_options(engine, int(params.width), int(params.height), params.seed);
     opt.margin = int(c.margin);
     if (c.quilt) {
-        // As a format 20 file lays it out.
+        // As a format 21 file lays it out.
         opt.quilt = quilt_block(example.width, example.height);
         opt.quilt_wavefront = true;
+        opt.quilt_planar_cut = true;
         if (opt.quilt == 0)
             fail(VQTEX_ERROR_IMAGE_TOO_SMALL, "quilting needs an example of at least " + std::to_string(kMinQuiltSide) +
                                                   "x" + std::to_string(kMinQuiltSide) + " pixels");

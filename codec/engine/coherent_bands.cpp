@@ -185,7 +185,8 @@ std::vector<ReadImage> quilt_pixels(const Image& example, bool wraps, const Cohe
     PositionMap map{options.width, options.height,
                     quilt_positions(example, options.width, options.height, options.quilt, options.seed,
                                     options.threads, options.progress, search_memory,
-                                    options.quilt_wavefront ? QuiltOrder::kWavefront : QuiltOrder::kRaster)};
+                                    options.quilt_wavefront ? QuiltOrder::kWavefront : QuiltOrder::kRaster,
+                                    options.quilt_planar_cut ? QuiltCut::kPlanar : QuiltCut::kMaxFlow)};
     return read_whole(example, std::move(map), options, readouts, wraps);
 }
 

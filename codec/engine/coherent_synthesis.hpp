@@ -80,6 +80,9 @@ struct CoherentOptions : CoherentRun {
     // Whether the quilting blocks are laid in wavefront order, several at
     // once (quilt.hpp, QuiltOrder; format 20), or in raster order (19).
     bool quilt_wavefront = false;
+    // Whether each block's cut is the planar one (QuiltCut; format 21) or
+    // the maximum flow's (19, 20).
+    bool quilt_planar_cut = false;
     // The frame, in example pixels, that the copies are laid out inside of
     // (copy_margin), so that a cut always has that much of each copy to
     // move into; 0: none.

@@ -57,14 +57,20 @@ private:
     // times.
     class RadixHeap {
     public:
-        void clear();
+        // Empty, with room for `capacity` pushes.
+        void clear(std::size_t capacity);
         bool empty() const { return size_ == 0; }
         void push(uint64_t entry);
         uint64_t pop();
 
     private:
-        void put(uint64_t entry);
-        std::vector<uint64_t> buckets_[65];
+        void link(int32_t slot);
+        // The numbers pushed, each in a slot of its own, and each bucket a
+        // list through them (-1 ends it): the memory is the pushes', never
+        // 65 buckets' worth.
+        std::vector<uint64_t> entry_;
+        std::vector<int32_t> next_;
+        int32_t head_[65];
         // Which of buckets 0 to 63 hold numbers, and whether bucket 64 does.
         uint64_t filled_ = 0;
         bool filled_top_ = false;
@@ -82,7 +88,7 @@ private:
     std::vector<uint64_t> key_;
     // The curve's upright edges (lattice x, y to x, y + 1), and the new
     // pixels.
-    std::vector<uint8_t> crossed_, sink_;
+    std::vector<uint8_t> padded_, crossed_, sink_;
     RadixHeap heap_;
 };
 

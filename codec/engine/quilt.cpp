@@ -15,6 +15,7 @@
 #include "common/parallel.hpp"
 #include "engine/coherent_positions.hpp"
 #include "engine/min_cut.hpp"
+#include "engine/planar_cut.hpp"
 #include "engine/quilt_search.hpp"
 
 namespace vqtex {
@@ -152,11 +153,13 @@ std::vector<int> quilt_order(int nx, int ny, QuiltOrder order) {
 
 namespace {
 
-// A bound on the bytes one block's graph and working lists take, per pixel
-// of the block: the minimum cut's nodes and arcs (at most four edges a
-// pixel, each added, then two arcs), the active and orphan lists, and the
-// block's runs, colours, costs and sides.
-constexpr uint64_t kBlockBytesPerPixel = 320;
+// A bound on the bytes one block's graphs and working lists take, per
+// pixel of the block: the maximum flow's nodes and arcs (at most four edges
+// a pixel, each added, then two arcs), its active and orphan lists, and the
+// block's runs, colours, costs and sides (320 together); the planar cut's
+// edge costs, keys and heap (four pushes a lattice point at most) on (B +
+// 1)^2 lattice points, about 74 bytes each, at most 1.56 a pixel (B >= 4).
+constexpr uint64_t kBlockBytesPerPixel = 448;
 
 // The bytes of the example's transforms and `searches` searches, each with
 // its block's graph (a block's pairs of planes transformed together, or one
@@ -200,7 +203,7 @@ QuiltGrid quilt_grid(int block, int width, int height) {
 
 std::vector<uint32_t> quilt_positions(const Image& example, int width, int height, int block, uint64_t seed,
                                       int threads, const std::function<bool(uint64_t, uint64_t)>& progress,
-                                      uint64_t search_memory, QuiltOrder order) {
+                                      uint64_t search_memory, QuiltOrder order, QuiltCut cut_method) {
     const QuiltGrid grid = quilt_grid(block, width, height);
     const int B = grid.block, nx = grid.nx, ny = grid.ny, ch = example.channels;
     const int count = nx * ny;
@@ -242,7 +245,10 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         std::vector<uint32_t> near;
         std::unique_ptr<QuiltSearch> search;
         MinCut cut;
-        std::vector<int64_t> own;
+        PlanarCut planar;
+        std::vector<int64_t> own, columns, rows;
+        std::vector<uint8_t> unplaced;
+        std::vector<std::size_t> columns_at, rows_at;
     };
     std::vector<Worker> pool(static_cast<std::size_t>(workers));
     for (Worker& wk : pool) {
@@ -253,8 +259,15 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
     // A block's search shares the threads only when blocks are laid one at
     // a time.
     const int inner_threads = workers == 1 ? threads : 1;
-    const auto out_index = [&](int x, int y) {
-        return std::size_t(Image::wrap(y, height)) * std::size_t(width) + std::size_t(Image::wrap(x, width));
+    // The output's index of (xo + dx, yo + dy) for dx, dy from -1 to B,
+    // around the torus: a block's columns and rows wrapped once.
+    const auto wrap_block = [&](Worker& w, int xo, int yo) {
+        w.columns_at.resize(std::size_t(B) + 2);
+        w.rows_at.resize(std::size_t(B) + 2);
+        for (int d = -1; d <= B; ++d) {
+            w.columns_at[std::size_t(d + 1)] = std::size_t(Image::wrap(xo + d, width));
+            w.rows_at[std::size_t(d + 1)] = std::size_t(Image::wrap(yo + d, height)) * std::size_t(width);
+        }
     };
     // One pixel's squared colour distance.
     const auto d2 = [&](const uint8_t* a, const uint8_t* b) { return int64_t(byte_ssd(a, b, ch)); };
@@ -269,6 +282,10 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         MinCut& cut = w.cut;
         const int bi = k % nx, bj = k / nx;
         const int xo = origin(std::size_t(k)).first, yo = origin(std::size_t(k)).second;
+        wrap_block(w, xo, yo);
+        const auto out_index = [&](int dx, int dy) {
+            return w.rows_at[std::size_t(dy + 1)] + w.columns_at[std::size_t(dx + 1)];
+        };
         // What the output already holds under the block, row by row in
         // runs, and its colours.
         runs.clear();
@@ -276,7 +293,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         for (int dy = 0; dy < B; ++dy) {
             int start = -1;
             for (int dx = 0; dx < B; ++dx) {
-                const std::size_t i = out_index(xo + dx, yo + dy);
+                const std::size_t i = out_index(dx, dy);
                 const bool known = pos[i] != kUnplaced;
                 node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)] = known ? placed++ : -1;
                 if (known) {
@@ -336,6 +353,8 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         const auto was = [&](int dx, int dy) {
             return old.data() + (std::size_t(dy) * std::size_t(B) + std::size_t(dx)) * std::size_t(ch);
         };
+        // Whether placed pixel (dx, dy) stays as it is.
+        bool planar = false;
         if (placed > 0) {
             // Each placed pixel's own difference, once: the runs list the
             // placed pixels in the nodes' order.
@@ -343,42 +362,76 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
             own.clear();
             for (const QuiltRun& r : runs)
                 for (int i = 0; i < r.length; ++i) own.push_back(d2(fresh(r.dx + i, r.dy), was(r.dx + i, r.dy)));
-            cut.reset(placed);
-            for (int dy = 0; dy < B; ++dy)
-                for (int dx = 0; dx < B; ++dx) {
-                    const int v = node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)];
-                    if (v < 0) continue;
-                    const int64_t here = own[std::size_t(v)];
-                    const int sx4[4] = {1, -1, 0, 0}, sy4[4] = {0, 0, 1, -1};
-                    for (int side = 0; side < 4; ++side) {
-                        const int ex = dx + sx4[side], ey = dy + sy4[side];
-                        if (ex >= 0 && ey >= 0 && ex < B && ey < B) {
-                            const int u = node[std::size_t(ey) * std::size_t(B) + std::size_t(ex)];
-                            if (u < 0) {
-                                cut.add(v, cut.sink(), here, 0);
-                            } else if (side == 0 || side == 2) {
-                                const int64_t c = here + own[std::size_t(u)];
-                                cut.add(v, u, c, c);
-                            }
-                            continue;
-                        }
-                        const std::size_t j = out_index(xo + ex, yo + ey);
-                        if (pos[j] == kUnplaced) continue;
-                        const int X = sx + ex, Y = sy + ey;
-                        const bool inside = X >= 0 && Y >= 0 && X < example.width && Y < example.height;
-                        const int64_t there =
-                            inside ? d2(example.at(X, Y), colour.data() + j * std::size_t(ch)) : here;
-                        cut.add(cut.source(), v, here + there, 0);
-                    }
-                }
-            cut.solve();
+            // What a cut between two neighbours costs (0 where it cannot
+            // be between old and new): across the block's columns x =
+            // 0..B between pixels (x - 1, y) and (x, y), across its rows
+            // likewise; the block's outer lines hold the arcs from the
+            // placed pixels around it.
+            const std::size_t b = std::size_t(B), lattice = b + 1;
+            std::vector<uint8_t>& unplaced = w.unplaced;
+            std::vector<int64_t>& columns = w.columns;
+            std::vector<int64_t>& rows = w.rows;
+            unplaced.resize(b * b);
+            columns.assign(lattice * b, 0);
+            rows.assign(b * lattice, 0);
+            for (std::size_t i = 0; i < b * b; ++i) unplaced[i] = node[i] < 0;
+            const auto own_at = [&](int dx, int dy) {
+                const int v = node[std::size_t(dy) * b + std::size_t(dx)];
+                return v < 0 ? int64_t(0) : own[std::size_t(v)];
+            };
+            // The arc into placed pixel (dx, dy) from (ex, ey) outside the
+            // block, when that is placed: both differences.
+            const auto arc_in = [&](int dx, int dy, int ex, int ey) {
+                if (node[std::size_t(dy) * b + std::size_t(dx)] < 0) return int64_t(0);
+                const std::size_t j = out_index(ex, ey);
+                if (pos[j] == kUnplaced) return int64_t(0);
+                const int64_t here = own_at(dx, dy);
+                const int X = sx + ex, Y = sy + ey;
+                const bool inside = X >= 0 && Y >= 0 && X < example.width && Y < example.height;
+                return here + (inside ? d2(example.at(X, Y), colour.data() + j * std::size_t(ch)) : here);
+            };
+            for (int y = 0; y < B; ++y) {
+                columns[std::size_t(y) * lattice] = arc_in(0, y, -1, y);
+                columns[std::size_t(y) * lattice + b] = arc_in(B - 1, y, B, y);
+                for (int x = 1; x < B; ++x) columns[std::size_t(y) * lattice + std::size_t(x)] = own_at(x - 1, y) + own_at(x, y);
+            }
+            for (int x = 0; x < B; ++x) {
+                rows[std::size_t(x)] = arc_in(x, 0, x, -1);
+                rows[b * b + std::size_t(x)] = arc_in(x, B - 1, x, B);
+                for (int y = 1; y < B; ++y) rows[std::size_t(y) * b + std::size_t(x)] = own_at(x, y - 1) + own_at(x, y);
+            }
+            planar = cut_method == QuiltCut::kPlanar && w.planar.solve(B, unplaced, columns, rows);
+            if (!planar) {
+                // The same graph for the maximum flow: a node for each
+                // placed pixel; a neighbour not placed is the sink's, one
+                // outside the block the source's.
+                cut.reset(placed);
+                const auto join = [&](int p, int q, int64_t c) {
+                    if (c == 0) return;
+                    const int u = p < 0 ? -1 : node[std::size_t(p)], v = q < 0 ? -1 : node[std::size_t(q)];
+                    if (u >= 0 && v >= 0) cut.add(u, v, c, c);
+                    else if (u >= 0 && q >= 0) cut.add(u, cut.sink(), c, 0);
+                    else if (v >= 0 && p >= 0) cut.add(v, cut.sink(), c, 0);
+                    else if (u >= 0 || v >= 0) cut.add(cut.source(), u >= 0 ? u : v, c, 0);
+                };
+                for (int y = 0; y < B; ++y)
+                    for (int x = 0; x <= B; ++x)
+                        join(x > 0 ? y * B + x - 1 : -1, x < B ? y * B + x : -1, columns[std::size_t(y) * lattice + std::size_t(x)]);
+                for (int y = 0; y <= B; ++y)
+                    for (int x = 0; x < B; ++x)
+                        join(y > 0 ? (y - 1) * B + x : -1, y < B ? y * B + x : -1, rows[std::size_t(y) * b + std::size_t(x)]);
+                cut.solve();
+            }
         }
+        const auto keeps = [&](int dx, int dy, int v) {
+            return v >= 0 && (planar ? w.planar.source_side(dx, dy) : cut.source_side(v));
+        };
         for (int dy = 0; dy < B; ++dy)
             for (int dx = 0; dx < B; ++dx) {
                 const int v = node[std::size_t(dy) * std::size_t(B) + std::size_t(dx)];
                 // A placed pixel on the cut's source side keeps its copy.
-                if (v >= 0 && cut.source_side(v)) continue;
-                const std::size_t i = out_index(xo + dx, yo + dy);
+                if (keeps(dx, dy, v)) continue;
+                const std::size_t i = out_index(dx, dy);
                 pos[i] = pack_position(sx + dx, sy + dy);
                 std::copy_n(fresh(dx, dy), ch, colour.data() + i * std::size_t(ch));
             }

@@ -67,6 +67,13 @@ uint64_t quilt_memory(int example_width, int example_height, int channels, int w
 // the blocks of a step, and of nearby steps, are laid at the same time on
 // as many threads as there are.
 enum class QuiltOrder { kRaster, kWavefront };
+// How each block's cut is found (both give a minimum cut; among cuts of
+// equal cost they may differ). The maximum flow (formats 19 and 20) keeps
+// the fewest pixels old (min_cut.hpp); the planar cut (format 21) takes a
+// shortest path in the dual of the block's grid (planar_cut.hpp), several
+// times faster, and falls back to the maximum flow for a block whose new
+// pixels are all inside it (the last block of the torus).
+enum class QuiltCut { kMaxFlow, kPlanar };
 // The blocks (j * nx + i) in the order they are laid.
 std::vector<int> quilt_order(int nx, int ny, QuiltOrder order);
 
@@ -80,6 +87,7 @@ std::vector<int> quilt_order(int nx, int ny, QuiltOrder order);
 std::vector<uint32_t> quilt_positions(const Image& example, int width, int height, int block, uint64_t seed,
                                       int threads,
                                       const std::function<bool(uint64_t done, uint64_t total)>& progress = {},
-                                      uint64_t search_memory = UINT64_MAX, QuiltOrder order = QuiltOrder::kRaster);
+                                      uint64_t search_memory = UINT64_MAX, QuiltOrder order = QuiltOrder::kRaster,
+                                      QuiltCut cut = QuiltCut::kMaxFlow);
 
 }  // namespace vqtex

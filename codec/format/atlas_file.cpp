@@ -231,7 +231,8 @@ AtlasFile decode_compact_atlas_file(const uint8_t* data, std::size_t size, std::
                                                                          : kCoverMaterialFormatVersion));
     if (quilts(version)) {
         p.quilt = quilt_block(aw, ah);
-        p.quilt_wavefront = version == kWavefrontQuiltFormatVersion;
+        p.quilt_wavefront = version >= kWavefrontQuiltFormatVersion;
+        p.quilt_planar_cut = version == kPlanarCutQuiltFormatVersion;
         if (p.quilt == 0)
             r.corrupt("a version " + std::to_string(version) + " file's atlas is " + std::to_string(aw) + "x" +
                       std::to_string(ah) + ": quilting needs at least " + std::to_string(kMinQuiltSide) +

@@ -90,13 +90,16 @@ struct AtlasSynthesisParams {
     // Whether a wrapping atlas is decoded with the period bar (versions 15
     // and 16; CoherentOptions::period_bar).
     bool period_bar = false;
-    // Versions 19 and 20: the side of the quilting blocks the output is
+    // Versions 19 to 21: the side of the quilting blocks the output is
     // laid out with (quilt_block of the atlas's size; CoherentOptions::quilt);
     // 0 for the coherent passes of every other version.
     int quilt = 0;
-    // Version 20: the blocks are laid in wavefront order, 19: in raster
+    // Versions 20 and 21: the blocks are laid in wavefront order, 19: in raster
     // order (CoherentOptions::quilt_wavefront).
     bool quilt_wavefront = false;
+    // Version 21: each block's cut is the planar one, 19 and 20: the
+    // maximum flow's (CoherentOptions::quilt_planar_cut).
+    bool quilt_planar_cut = false;
     // Whether the blend weights colour by straight alpha (version 8; files
     // of versions 3 to 7 blend every channel alike).
     bool blend_straight_alpha = true;

@@ -32,7 +32,7 @@ uint16_t read_format_version(const uint8_t* data, std::size_t size) {
                  " (animations), " + std::to_string(kAtlasFormatVersion) + ", " +
                  std::to_string(kCompactAtlasFormatVersion) + ", " + std::to_string(kBlendAtlasFormatVersion) +
                  " to " + std::to_string(kCoverMaterialFormatVersion) + ", " +
-                 std::to_string(kOriginAtlasFormatVersion) + " to " + std::to_string(kWavefrontQuiltFormatVersion) +
+                 std::to_string(kOriginAtlasFormatVersion) + " to " + std::to_string(kPlanarCutQuiltFormatVersion) +
                  " (atlas textures) and " + std::to_string(kAnimationAtlasFormatVersion) +
                  " (atlas animations): use a matching vqtex release");
     return version;

@@ -95,15 +95,20 @@ inline constexpr uint16_t kQuiltAtlasFormatVersion = 19;
 // not meet are laid at the same time on several threads. The encoder
 // writes it in place of 19.
 inline constexpr uint16_t kWavefrontQuiltFormatVersion = 20;
+// Version 21 (docs/FORMAT.md §2.8, §4.18): version 20 with each block's
+// cut found as a shortest path in the dual of its grid (engine/quilt.hpp,
+// QuiltCut), a minimum cut as before but not always the same one among
+// cuts of equal cost. The encoder writes it in place of 20.
+inline constexpr uint16_t kPlanarCutQuiltFormatVersion = 21;
 // Versions 4 to 11 and 13 to 20: one still atlas or a set of maps behind
 // the compact header.
 inline bool is_compact_atlas_version(uint16_t version) {
     return (version >= kCompactAtlasFormatVersion && version <= kCoverMaterialFormatVersion) ||
-           (version >= kOriginAtlasFormatVersion && version <= kWavefrontQuiltFormatVersion);
+           (version >= kOriginAtlasFormatVersion && version <= kPlanarCutQuiltFormatVersion);
 }
-// Whether a compact version's file is laid out by quilting (19, 20).
+// Whether a compact version's file is laid out by quilting (19 to 21).
 inline bool quilts(uint16_t version) {
-    return version == kQuiltAtlasFormatVersion || version == kWavefrontQuiltFormatVersion;
+    return version >= kQuiltAtlasFormatVersion && version <= kPlanarCutQuiltFormatVersion;
 }
 // Whether a compact version's file has maps predicted from others (17, 18).
 inline bool predicts_maps(uint16_t version) {

@@ -45,7 +45,11 @@ uint16_t version_for(const FileHeader& header, int atlas_width, int atlas_height
     if (params.quilt) {
         if (origin || set || predicted || params.period_bar)
             fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: quilting is for one atlas at the origin, without the period bar");
-        return params.quilt_wavefront ? kWavefrontQuiltFormatVersion : kQuiltAtlasFormatVersion;
+        if (params.quilt_planar_cut && !params.quilt_wavefront)
+            fail(VQTEX_ERROR_INTERNAL, "encode_atlas_file: the planar cut is written only with the wavefront order");
+        return params.quilt_planar_cut  ? kPlanarCutQuiltFormatVersion
+               : params.quilt_wavefront ? kWavefrontQuiltFormatVersion
+                                        : kQuiltAtlasFormatVersion;
     }
     if (params.period_bar) {
         if (origin || !params.example_tileable)
