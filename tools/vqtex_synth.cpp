@@ -215,7 +215,7 @@ int main(int argc, char** argv) {
     bool quilt = false;
     auto* quilt_opt = app.add_flag("--quilt", quilt,
                                    "coherent engine, still textures: lay the output out by image quilting with "
-                                   "minimum cuts (format 20's layout) instead of the engine's passes");
+                                   "minimum cuts (format 21's layout) instead of the engine's passes");
     app.add_option("--levels", levels, "pyramid levels (default: automatic; coherent 6 for 128x128, paper 4)");
     app.add_option("--shapes", shapes,
                    "neighbourhood per level, finest first, RxC:k (default for 4 levels 9x9:2,7x7:2,5x5:2,5x5:1)");

@@ -136,7 +136,7 @@ ProxyScores proxy_scores(const vqtex_metrics::Image& reference, const std::vecto
     return proxy_scores_of(reference, proxy_texture(file, width, height, 2, threads), max_windows);
 }
 
-// The same atlas file laid out by quilting (format 20): its bitstream and
+// The same atlas file laid out by quilting (format 21): its bitstream and
 // fields, the period bar dropped.
 std::vector<uint8_t> quilted_file(const std::vector<uint8_t>& file) {
     // The encoder made this file: any memory it needs was already spent.

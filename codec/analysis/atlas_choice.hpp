@@ -55,7 +55,7 @@ struct AtlasChoice {
     bool tile = false;          // the atlas is the tile the example repeats
     bool wraps = false;         // the atlas wraps (the file's example_tileable)
     bool period_bar = false;    // decoded with the period bar (format 15)
-    bool quilt = false;         // laid out by quilting (format 20)
+    bool quilt = false;         // laid out by quilting (format 21)
     bool example_tiles = false; // the example's wrap is seamless (example_wrap.hpp)
 };
 

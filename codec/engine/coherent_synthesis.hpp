@@ -78,7 +78,7 @@ struct CoherentOptions : CoherentRun {
     // the same.
     int quilt = 0;
     // Whether the quilting blocks are laid in wavefront order, several at
-    // once (quilt.hpp, QuiltOrder; format 20), or in raster order (19).
+    // once (quilt.hpp, QuiltOrder; formats 20 and 21), or in raster order (19).
     bool quilt_wavefront = false;
     // Whether each block's cut is the planar one (QuiltCut; format 21) or
     // the maximum flow's (19, 20).

@@ -16,9 +16,9 @@
 // the same cost.
 //
 // Among minimum cuts of equal cost the one returned is fixed by the costs
-// alone (ties in the search go to the lower lattice point), so it is the
-// same on every run and build; it need not be the one a maximum flow
-// returns.
+// alone (the shortest path with the fewest edges, then a fixed walk back
+// from its end; docs/FORMAT.md §4.18), so it is the same on every run and
+// build; it need not be the one a maximum flow returns.
 #pragma once
 
 #include <cstdint>
@@ -36,11 +36,12 @@ public:
     // source's arcs across the block's left and right edges (0: none);
     // `across_rows` (side x (side + 1)) likewise between (x, y - 1) and
     // (x, y), for y = 0..side. Costs are >= 0; those between two fresh
-    // pixels, and of arcs into a fresh pixel, are not read (no cut crosses
+    // pixels, and of arcs into a fresh pixel, weigh nothing (no cut crosses
     // the first, every cut the second). Returns false, leaving the sides
-    // unset, when the shortest path does not apply: no fresh pixel on the
-    // block's edge, or the fresh pixels not all joined to each other (a
-    // maximum flow then finds the cut).
+    // unset, when the shortest path does not apply (a maximum flow then
+    // finds the cut): no fresh pixel on the block's edge, a fresh pixel
+    // left outside the path (the fresh pixels apart), a side above 254, or
+    // costs that sum to 2^32 or more.
     bool solve(int side, const std::vector<uint8_t>& fresh, const std::vector<int64_t>& across_columns,
                const std::vector<int64_t>& across_rows);
     // After solve() returned true: the cut's cost, and whether pixel

@@ -51,7 +51,7 @@ struct QuiltGrid {
 };
 QuiltGrid quilt_grid(int block, int width, int height);
 
-// The most blocks a decode lays at the same time (format 20), and the bytes
+// The most blocks a decode lays at the same time (formats 20 and 21), and the bytes
 // quilting holds beside the output for an example: the example's
 // transforms, and for each of `workers` blocks laid at once a search and
 // the block's graph (docs/FORMAT.md §2.8's memory check). quilt_positions
@@ -62,7 +62,7 @@ uint64_t quilt_memory(int example_width, int example_height, int channels, int w
 // The order blocks are laid in. Raster order (format 19) lays them one
 // after the other: each row's first block meets the row above's last
 // across the torus, so no two can be laid at once. Wavefront order
-// (format 20) lays block (i, j) at step i + 2j, rows in order within a
+// (formats 20 and 21) lays block (i, j) at step i + 2j, rows in order within a
 // step: a block then meets only blocks of earlier steps or later ones, and
 // the blocks of a step, and of nearby steps, are laid at the same time on
 // as many threads as there are.

@@ -69,7 +69,7 @@ QuiltExample::QuiltExample(const Image& example, int block, Method method)
                 im[i] = 2 * p + 1 < planes ? plane(2 * p + 1, x, y) : 0.0;
                 norm += re[i] * re[i] + im[i] * im[i];
             }
-        fft_->forward(re.data(), im.data(), example.height, scratch);
+        fft_->forward(re.data(), im.data(), example.height, example.width, scratch);
         re_.push_back(std::move(re));
         im_.push_back(std::move(im));
         norms_.push_back(std::sqrt(norm));
@@ -85,11 +85,12 @@ uint64_t QuiltExample::search_memory(int example_width, int example_height, int 
                                      bool pairs_at_once) {
     const TransformSize size = transform_size(example_width, example_height, channels);
     // The block's pairs, the sum (whose imaginary half then holds the
-    // rounded costs), the transposed rows of each pair transformed at once,
-    // and the exact costs.
+    // rounded costs), the transposed columns of each pair transformed at
+    // once (half the transform's going forward: the block's, then zeros;
+    // the places' coming back), and the exact costs.
     const uint64_t at_once = pairs_at_once ? size.pairs : 1;
-    const uint64_t rows = uint64_t(std::max(block, example_height - block + 1));
-    return sizeof(double) * (size.width * size.height * (2 * at_once + 2) + 2 * size.width * rows * at_once) +
+    const uint64_t columns = std::max(size.width / 2, uint64_t(example_width - block + 1));
+    return sizeof(double) * (size.width * size.height * (2 * at_once + 2) + 2 * size.height * columns * at_once) +
            sizeof(int64_t) * uint64_t(example_width - block + 1) * uint64_t(example_height - block + 1);
 }
 
@@ -150,8 +151,11 @@ void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8
     const auto pair_job = [&](int p, int slot) {
         double* __restrict zr = block_re_[std::size_t(slot)].data();
         double* __restrict zi = block_im_[std::size_t(slot)].data();
-        std::fill(zr, zr + points, 0.0);
-        std::fill(zi, zi + points, 0.0);
+        // The block's square, all the transform reads.
+        for (int r = 0; r < block; ++r) {
+            std::fill_n(zr + std::size_t(r) * std::size_t(pw), block, 0.0);
+            std::fill_n(zi + std::size_t(r) * std::size_t(pw), block, 0.0);
+        }
         double norm = 0;
         for (const QuiltRun& r : runs)
             for (int k = 0; k < r.length; ++k) {
@@ -165,7 +169,7 @@ void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8
                 }
             }
         norms[std::size_t(p)] = std::sqrt(norm) * ex_.norms_[std::size_t(p)];
-        fft.forward(zr, zi, block, scratch_[std::size_t(slot)]);
+        fft.forward(zr, zi, block, block, scratch_[std::size_t(slot)]);
         // conj(z) w, in place.
         const double* __restrict wr = ex_.re_[std::size_t(p)].data();
         const double* __restrict wi = ex_.im_[std::size_t(p)].data();
@@ -202,7 +206,7 @@ void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8
             add(0, p == 0);
         }
     }
-    fft.inverse(sr, si, ex_.places_y(), scratch_[0]);
+    fft.inverse(sr, si, ex_.places_y(), ex_.places_x(), scratch_[0]);
     // The rounded costs, place by place, into the sum's imaginary half
     // (which the inverse leaves as rounding only).
     const double scale = 1.0 / double(points);

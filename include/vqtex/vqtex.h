@@ -241,7 +241,7 @@ typedef struct vqtex_coherent_params {
                                   0 (none) to 16, default 8 [--cover] */
     uint32_t quilt;            /* still textures: 1 lays the output out by image quilting with the
                                   patch insertion cut (blocks of half the example's shorter side, at
-                                  most 64; the layout of format 20) instead of the engine's passes,
+                                  most 64; the layout of format 21) instead of the engine's passes,
                                   cuts and covers; needs an example of at least 16x16; default 0
                                   [--quilt] */
 } vqtex_coherent_params;
@@ -342,7 +342,7 @@ typedef struct vqtex_trees_params {
 #define VQTEX_TILEABLE_NO 2u
 
 /* How the output of a wrapping atlas is laid out (vqtex_encode_params.layout).
- * AUTO: the encoder decodes the file both ways and keeps quilting (format 20)
+ * AUTO: the encoder decodes the file both ways and keeps quilting (format 21)
  * where it keeps the example's structure better, the coherent engine
  * elsewhere (docs/ATLAS.md "Examples that tile"). COHERENT: always the
  * engine. QUILT: quilting wherever the atlas wraps and is the whole example.
@@ -410,7 +410,7 @@ typedef struct vqtex_encode_stats {
     /* 1: the atlas wraps and is decoded with the period bar (format 15 or
      * 16): no copy shows the example again a period further on. */
     uint32_t period_bar;
-    /* 1: the output is laid out by quilting (formats 19 and 20). */
+    /* 1: the output is laid out by quilting (formats 19 to 21). */
     uint32_t quilt;
 } vqtex_encode_stats;
 
@@ -565,7 +565,7 @@ typedef struct vqtex_file_info {
     uint32_t period_bar;                           /* atlas texture: 1 when a wrapping atlas is decoded with the
                                                       period bar (formats 15 and 16) */
     uint32_t quilt_block;                          /* atlas texture: the side of the blocks the output is
-                                                      laid out with by quilting (formats 19 and 20); 0 otherwise */
+                                                      laid out with by quilting (formats 19 to 21); 0 otherwise */
     uint32_t atlas_frames;                         /* atlas animation (format 12): the atlas's frames, the
                                                       default output frame count; 0 otherwise */
     uint32_t map_count;                            /* maps in the file: 1 but for a material set */
