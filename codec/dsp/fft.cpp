@@ -315,6 +315,33 @@ void Fft2d::inverse(double* re, double* im, int rows_out, int cols_out, FftScrat
     }
 }
 
+VQTEX_FFT_CLONES
+void conj_product_in_place(double* __restrict zr, double* __restrict zi, const double* __restrict wr,
+                           const double* __restrict wi, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) {
+        const double re = zr[i] * wr[i] + zi[i] * wi[i], im = zr[i] * wi[i] - zi[i] * wr[i];
+        zr[i] = re;
+        zi[i] = im;
+    }
+}
+
+VQTEX_FFT_CLONES
+void conj_product_into(const double* __restrict zr, const double* __restrict zi, const double* __restrict wr,
+                       const double* __restrict wi, double* __restrict sr, double* __restrict si, std::size_t n,
+                       bool add) {
+    if (add) {
+        for (std::size_t i = 0; i < n; ++i) {
+            sr[i] += zr[i] * wr[i] + zi[i] * wi[i];
+            si[i] += zr[i] * wi[i] - zi[i] * wr[i];
+        }
+    } else {
+        for (std::size_t i = 0; i < n; ++i) {
+            sr[i] = zr[i] * wr[i] + zi[i] * wi[i];
+            si[i] = zr[i] * wi[i] - zi[i] * wr[i];
+        }
+    }
+}
+
 double fft_correlation_error_bound(std::size_t points, double norm_products) {
     const double ulp = std::ldexp(1.0, -53);
     return 3750.0 * ulp * std::log2(double(points)) * std::sqrt(double(points)) * norm_products;

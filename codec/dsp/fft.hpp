@@ -67,6 +67,12 @@ private:
     int n_;
 };
 
+// The products of two spectra of one transform, conj(z) w, over n values:
+// in place of z, or into s (`add`: onto it).
+void conj_product_in_place(double* zr, double* zi, const double* wr, const double* wi, std::size_t n);
+void conj_product_into(const double* zr, const double* zi, const double* wr, const double* wi, double* sr, double* si,
+                       std::size_t n, bool add);
+
 // A bound on the absolute error of a correlation computed as
 // inverse(sum of conj(forward(a_p)) x forward(b_p)) / points over `points`
 // = width x height values, from the 2-norms of the two sides' inputs (the

@@ -80,7 +80,7 @@ bool PlanarCut::solve(int side, const std::vector<uint8_t>& fresh, const std::ve
     const std::size_t stride = std::size_t(row), points = stride * (n + 1);
     padded_.assign(stride * stride, 0);
     for (std::size_t y = 0; y < n; ++y)
-        for (std::size_t x = 0; x < n; ++x) padded_[(y + 1) * stride + x + 1] = fresh[y * n + x] != 0;
+        for (std::size_t x = 0; x < n; ++x) padded_[(y + 1) * stride + x + 1] = uint8_t(fresh[y * n + x] != 0);
     const auto is_fresh = [&](int x, int y) { return padded_[std::size_t(y + 1) * stride + std::size_t(x + 1)] != 0; };
     // The fresh pixel on the block's edge where the source and the sink
     // share a face: the first in a fixed order (top and bottom rows, then
@@ -106,8 +106,9 @@ bool PlanarCut::solve(int side, const std::vector<uint8_t>& fresh, const std::ve
     // edge a-b.
     right_.assign(points, -1);
     down_.assign(points, -1);
-    int64_t total = 0;
-    bool bounded = true;
+    // Each cost is below 2^32 when the sum is, and a sum of 2^16 of them
+    // cannot overflow: checked once at the end.
+    int64_t total = 0, signs = 0;
     const uint8_t* f = padded_.data();
     for (std::size_t y = 0; y <= n; ++y) {
         const bool edge_row = y == 0 || y == n;
@@ -117,21 +118,21 @@ bool PlanarCut::solve(int side, const std::vector<uint8_t>& fresh, const std::ve
             const std::size_t p = y * stride + x;
             if (x < n) {
                 const int64_t c = rows[x];
-                bounded = bounded && c >= 0 && c < (int64_t(1) << 32) - total;
+                signs |= c;
                 total += c;
                 const bool above = f[p + 1], below = f[p + stride + 1];
                 right_[p] = above && below ? -1 : (above || below) && edge_row ? 0 : c;
             }
             if (y < n) {
                 const int64_t c = columns[x];
-                bounded = bounded && c >= 0 && c < (int64_t(1) << 32) - total;
+                signs |= c;
                 total += c;
                 const bool left = f[p + stride], right = f[p + stride + 1];
                 down_[p] = left && right ? -1 : (left || right) && (x == 0 || x == n) ? 0 : c;
             }
         }
     }
-    if (!bounded) return false;
+    if (signs < 0 || total >= (int64_t(1) << 32)) return false;
     (b == a + 1 ? right_ : down_)[std::size_t(a)] = -1;
     // Dijkstra's search from a to b, a path's length being its cost, then
     // its count of edges: one key, which grows along every edge, so that
@@ -193,10 +194,11 @@ bool PlanarCut::solve(int side, const std::vector<uint8_t>& fresh, const std::ve
         for (std::size_t x = 0; x < n; ++x) {
             inside ^= crossed_[y * stride + x];
             sink_[y * n + x] = inside;
-            if (fresh[y * n + x] && !inside) return false;
         }
     }
-    return true;
+    uint8_t outside = 0;
+    for (std::size_t i = 0; i < n * n; ++i) outside |= uint8_t(fresh[i] != 0) & uint8_t(sink_[i] ^ 1);
+    return outside == 0;
 }
 
 }  // namespace vqtex

@@ -246,7 +246,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         std::unique_ptr<QuiltSearch> search;
         MinCut cut;
         PlanarCut planar;
-        std::vector<int64_t> own, columns, rows;
+        std::vector<int64_t> own, own_at, columns, rows;
         std::vector<uint8_t> unplaced;
         std::vector<std::size_t> columns_at, rows_at;
     };
@@ -371,34 +371,42 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
             std::vector<uint8_t>& unplaced = w.unplaced;
             std::vector<int64_t>& columns = w.columns;
             std::vector<int64_t>& rows = w.rows;
+            std::vector<int64_t>& own_at = w.own_at;
             unplaced.resize(b * b);
-            columns.assign(lattice * b, 0);
-            rows.assign(b * lattice, 0);
-            for (std::size_t i = 0; i < b * b; ++i) unplaced[i] = node[i] < 0;
-            const auto own_at = [&](int dx, int dy) {
-                const int v = node[std::size_t(dy) * b + std::size_t(dx)];
-                return v < 0 ? int64_t(0) : own[std::size_t(v)];
-            };
+            own_at.resize(b * b);
+            columns.resize(lattice * b);
+            rows.resize(b * lattice);
+            for (std::size_t i = 0; i < b * b; ++i) {
+                unplaced[i] = node[i] < 0;
+                own_at[i] = node[i] < 0 ? 0 : own[std::size_t(node[i])];
+            }
             // The arc into placed pixel (dx, dy) from (ex, ey) outside the
             // block, when that is placed: both differences.
             const auto arc_in = [&](int dx, int dy, int ex, int ey) {
                 if (node[std::size_t(dy) * b + std::size_t(dx)] < 0) return int64_t(0);
                 const std::size_t j = out_index(ex, ey);
                 if (pos[j] == kUnplaced) return int64_t(0);
-                const int64_t here = own_at(dx, dy);
+                const int64_t here = own_at[std::size_t(dy) * b + std::size_t(dx)];
                 const int X = sx + ex, Y = sy + ey;
                 const bool inside = X >= 0 && Y >= 0 && X < example.width && Y < example.height;
                 return here + (inside ? d2(example.at(X, Y), colour.data() + j * std::size_t(ch)) : here);
             };
-            for (int y = 0; y < B; ++y) {
-                columns[std::size_t(y) * lattice] = arc_in(0, y, -1, y);
-                columns[std::size_t(y) * lattice + b] = arc_in(B - 1, y, B, y);
-                for (int x = 1; x < B; ++x) columns[std::size_t(y) * lattice + std::size_t(x)] = own_at(x - 1, y) + own_at(x, y);
+            for (std::size_t y = 0; y < b; ++y) {
+                const int64_t* here = own_at.data() + y * b;
+                int64_t* across = columns.data() + y * lattice;
+                across[0] = arc_in(0, int(y), -1, int(y));
+                across[b] = arc_in(B - 1, int(y), B, int(y));
+                for (std::size_t x = 1; x < b; ++x) across[x] = here[x - 1] + here[x];
+            }
+            for (std::size_t y = 1; y < b; ++y) {
+                const int64_t* above = own_at.data() + (y - 1) * b;
+                const int64_t* here = own_at.data() + y * b;
+                int64_t* across = rows.data() + y * b;
+                for (std::size_t x = 0; x < b; ++x) across[x] = above[x] + here[x];
             }
             for (int x = 0; x < B; ++x) {
                 rows[std::size_t(x)] = arc_in(x, 0, x, -1);
                 rows[b * b + std::size_t(x)] = arc_in(x, B - 1, x, B);
-                for (int y = 1; y < B; ++y) rows[std::size_t(y) * b + std::size_t(x)] = own_at(x, y - 1) + own_at(x, y);
             }
             planar = cut_method == QuiltCut::kPlanar && w.planar.solve(B, unplaced, columns, rows);
             if (!planar) {

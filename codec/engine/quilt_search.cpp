@@ -144,11 +144,14 @@ void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8
             own += int64_t(o) * o;
         }
     // Pair p is laid out in buffer `slot`, transformed and multiplied by the
-    // example's; with a buffer per pair, each on a thread of its own. The
-    // products are summed in a fixed order, so the rounded costs are the
-    // same for any thread count.
+    // example's; with a buffer per pair, each on a thread of its own. (How
+    // the products are summed may round the costs differently; they only
+    // choose which places get their exact cost, within the margin.)
     std::vector<double> norms(std::size_t(pairs), 0.0);
-    const auto pair_job = [&](int p, int slot) {
+    // Where a pair's products go: kept in its buffer (pairs transformed at
+    // once, summed after), or straight into the sum.
+    enum class ToSum { kNo, kFirst, kOnto };
+    const auto pair_job = [&](int p, int slot, ToSum to_sum) {
         double* __restrict zr = block_re_[std::size_t(slot)].data();
         double* __restrict zi = block_im_[std::size_t(slot)].data();
         // The block's square, all the transform reads.
@@ -170,14 +173,13 @@ void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8
             }
         norms[std::size_t(p)] = std::sqrt(norm) * ex_.norms_[std::size_t(p)];
         fft.forward(zr, zi, block, block, scratch_[std::size_t(slot)]);
-        // conj(z) w, in place.
-        const double* __restrict wr = ex_.re_[std::size_t(p)].data();
-        const double* __restrict wi = ex_.im_[std::size_t(p)].data();
-        for (std::size_t i = 0; i < points; ++i) {
-            const double re = zr[i] * wr[i] + zi[i] * wi[i], im = zr[i] * wi[i] - zi[i] * wr[i];
-            zr[i] = re;
-            zi[i] = im;
-        }
+        // conj(z) w, in place, or into the sum (the first pair) or onto it.
+        const double* wr = ex_.re_[std::size_t(p)].data();
+        const double* wi = ex_.im_[std::size_t(p)].data();
+        if (to_sum == ToSum::kNo)
+            dsp::conj_product_in_place(zr, zi, wr, wi, points);
+        else
+            dsp::conj_product_into(zr, zi, wr, wi, sum_re_.data(), sum_im_.data(), points, to_sum == ToSum::kOnto);
     };
     double* __restrict sr = sum_re_.data();
     double* __restrict si = sum_im_.data();
@@ -197,14 +199,11 @@ void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8
     if (block_re_.size() == std::size_t(pairs)) {
         const int workers = std::max(1, std::min(threads, pairs));
         run_together(workers, [&](int w) {
-            for (int p = w; p < pairs; p += workers) pair_job(p, p);
+            for (int p = w; p < pairs; p += workers) pair_job(p, p, ToSum::kNo);
         });
         for (int p = 0; p < pairs; ++p) add(p, p == 0);
     } else {
-        for (int p = 0; p < pairs; ++p) {
-            pair_job(p, 0);
-            add(0, p == 0);
-        }
+        for (int p = 0; p < pairs; ++p) pair_job(p, 0, p == 0 ? ToSum::kFirst : ToSum::kOnto);
     }
     fft.inverse(sr, si, ex_.places_y(), ex_.places_x(), scratch_[0]);
     // The rounded costs, place by place, into the sum's imaginary half
