@@ -197,7 +197,7 @@ bool PlanarCut::solve(int side, const std::vector<uint8_t>& fresh, const std::ve
         }
     }
     uint8_t outside = 0;
-    for (std::size_t i = 0; i < n * n; ++i) outside |= uint8_t(fresh[i] != 0) & uint8_t(sink_[i] ^ 1);
+    for (std::size_t i = 0; i < n * n; ++i) outside = uint8_t(outside | ((fresh[i] != 0) & (sink_[i] == 0)));
     return outside == 0;
 }
 
