@@ -872,6 +872,21 @@ std::vector<uint8_t> written_again(const std::vector<uint8_t>& bytes, const vqte
     return vqtex::encode_atlas_file(f.header, f.atlas.width, f.atlas.height, bits, f.params);
 }
 
+// A quilted golden file (versions 19 to 21): read with its blocks of 64,
+// the order and the cut of its version, written again to the same bytes,
+// and decoded to the same pixels on any thread count.
+void expect_quilted_golden(const std::vector<uint8_t>& bytes, bool wavefront, bool planar_cut) {
+    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
+    EXPECT_EQ(f.params.quilt, 64);
+    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).quilt_block, 64u);
+    EXPECT_FALSE(f.params.period_bar);
+    EXPECT_EQ(f.params.quilt_wavefront, wavefront);
+    EXPECT_EQ(f.params.quilt_planar_cut, planar_cut);
+    EXPECT_EQ(written_again(bytes, f), bytes);
+    const vqtex::Image one = decode(bytes, decode_params(256, 256, 5, 1));
+    for (uint32_t threads : {2u, 3u, 8u}) EXPECT_EQ(decode(bytes, decode_params(256, 256, 5, threads)).pixels, one.pixels);
+}
+
 // Pins format version 19 and its decoder, quilting: cellular_v15.vqt's
 // bytes with the version 19 (the same atlas, wrapping), so that the two
 // decodes differ by the layout alone.
@@ -879,13 +894,7 @@ TEST(AtlasFile, GoldenQuiltFileDecodesToKnownPixels) {
     const std::vector<uint8_t> bytes =
         check_golden_compact("cellular_v19.vqt", 19, 0xa7dd1b38084cb8a9ull, 0xb29f381b5bd1654full, 256, 256, 15);
     if (bytes.empty()) return;
-    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
-    EXPECT_EQ(f.params.quilt, 64);
-    EXPECT_FALSE(f.params.period_bar);
-    EXPECT_FALSE(f.params.quilt_wavefront);
-    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).quilt_block, 64u);
-    // Written again from what was read, it is a version 19 file still.
-    EXPECT_EQ(written_again(bytes, f), bytes);
+    expect_quilted_golden(bytes, false, false);
 }
 
 // Pins format version 20, quilting in wavefront order: cellular_v19.vqt's
@@ -895,13 +904,7 @@ TEST(AtlasFile, GoldenWavefrontQuiltFileDecodesToKnownPixels) {
     const std::vector<uint8_t> bytes =
         check_golden_compact("cellular_v20.vqt", 20, 0xa25bea9c77b475b7ull, 0xa7dd1b38084cb8a9ull, 256, 256, 19);
     if (bytes.empty()) return;
-    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
-    EXPECT_EQ(f.params.quilt, 64);
-    EXPECT_TRUE(f.params.quilt_wavefront);
-    EXPECT_FALSE(f.params.quilt_planar_cut);
-    EXPECT_EQ(written_again(bytes, f), bytes);
-    const vqtex::Image one = decode(bytes, decode_params(256, 256, 5, 1));
-    for (uint32_t threads : {2u, 3u, 8u}) EXPECT_EQ(decode(bytes, decode_params(256, 256, 5, threads)).pixels, one.pixels);
+    expect_quilted_golden(bytes, true, false);
 }
 
 // Pins format version 21, quilting with the planar cut: cellular_v20.vqt's
@@ -912,13 +915,7 @@ TEST(AtlasFile, GoldenPlanarCutQuiltFileDecodesToKnownPixels) {
     const std::vector<uint8_t> bytes =
         check_golden_compact("cellular_v21.vqt", 21, 0x6c942ea7fb3ff0a9ull, 0xa25bea9c77b475b7ull, 256, 256, 20);
     if (bytes.empty()) return;
-    const vqtex::AtlasFile f = vqtex::decode_atlas_file(bytes.data(), bytes.size(), 1u << 30);
-    EXPECT_EQ(f.params.quilt, 64);
-    EXPECT_TRUE(f.params.quilt_wavefront);
-    EXPECT_TRUE(f.params.quilt_planar_cut);
-    EXPECT_EQ(written_again(bytes, f), bytes);
-    const vqtex::Image one = decode(bytes, decode_params(256, 256, 5, 1));
-    for (uint32_t threads : {2u, 3u, 8u}) EXPECT_EQ(decode(bytes, decode_params(256, 256, 5, threads)).pixels, one.pixels);
+    expect_quilted_golden(bytes, true, true);
 }
 
 // A quilted file's memory check counts quilting's search and graphs in

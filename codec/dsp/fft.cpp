@@ -186,6 +186,16 @@ void Fft2d::twiddle(int k, int len, int sign, double& wr, double& wi) const {
 
 bool Fft2d::pruned(int n, int rows_in) { return n >= 4 && rows_in <= n / 2; }
 
+Fft2d::DifTwiddles Fft2d::dif_twiddles(int j, int len, int sign) const {
+    // Row j of a group of len, and j + len/4, at the stage of len; row j at
+    // the stage of len/2.
+    DifTwiddles t;
+    twiddle(j, len, sign, t.w1r, t.w1i);
+    twiddle(j + len / 4, len, sign, t.w3r, t.w3i);
+    twiddle(j, len / 2, sign, t.w2r, t.w2i);
+    return t;
+}
+
 void Fft2d::dif(const double* sre, const double* sim, int src_stride, double* re, double* im, int stride, int n,
                 int cols, int rows_in, int sign) const {
     const auto row = [&](double* p, int r) { return p + std::size_t(r) * std::size_t(stride); };
@@ -195,10 +205,8 @@ void Fft2d::dif(const double* sre, const double* sim, int src_stride, double* re
         // The first two stages from the source's lower half.
         const int q = n / 4;
         for (int j = 0; j < q; ++j) {
-            double w1r, w1i, w2r, w2i, w3r, w3i;
-            twiddle(j, n, sign, w1r, w1i);
-            twiddle(j + q, n, sign, w3r, w3i);
-            twiddle(j, n / 2, sign, w2r, w2i);
+            const DifTwiddles t = dif_twiddles(j, n, sign);
+            const double w1r = t.w1r, w1i = t.w1i, w2r = t.w2r, w2i = t.w2i, w3r = t.w3r, w3i = t.w3i;
             if (sre == re)
                 dif4_upper_zero(row(re, j), row(im, j), row(re, j + q), row(im, j + q), row(re, j + 2 * q),
                                 row(im, j + 2 * q), row(re, j + 3 * q), row(im, j + 3 * q), w1r, w1i, w2r, w2i, w3r,
@@ -220,10 +228,8 @@ void Fft2d::dif(const double* sre, const double* sim, int src_stride, double* re
     for (; len >= 4; len >>= 2) {
         const int q = len / 4;
         for (int j = 0; j < q; ++j) {
-            double w1r, w1i, w2r, w2i, w3r, w3i;
-            twiddle(j, len, sign, w1r, w1i);
-            twiddle(j + q, len, sign, w3r, w3i);
-            twiddle(j, len / 2, sign, w2r, w2i);
+            const DifTwiddles t = dif_twiddles(j, len, sign);
+            const double w1r = t.w1r, w1i = t.w1i, w2r = t.w2r, w2i = t.w2i, w3r = t.w3r, w3i = t.w3i;
             for (int a = j; a < n; a += len)
                 dif4(row(re, a), row(im, a), row(re, a + q), row(im, a + q), row(re, a + 2 * q), row(im, a + 2 * q),
                      row(re, a + 3 * q), row(im, a + 3 * q), w1r, w1i, w2r, w2i, w3r, w3i, cols);

@@ -48,6 +48,11 @@ public:
 private:
     // w = exp(sign 2 pi i k / len).
     void twiddle(int k, int len, int sign, double& wr, double& wi) const;
+    // The twiddles of dif's two stages at once for row j of a group of len.
+    struct DifTwiddles {
+        double w1r, w1i, w2r, w2i, w3r, w3i;
+    };
+    DifTwiddles dif_twiddles(int j, int len, int sign) const;
     // Whether a column of length n whose rows from rows_in on are zero
     // starts with two stages that read its lower half only.
     static bool pruned(int n, int rows_in);
