@@ -155,11 +155,13 @@ namespace {
 
 // A bound on the bytes one block's graphs and working lists take, per
 // pixel of the block: the maximum flow's nodes and arcs (at most four edges
-// a pixel, each added, then two arcs), its active and orphan lists, and the
-// block's runs, colours, costs and sides (320 together); the planar cut's
-// edge costs, keys and heap (four pushes a lattice point at most) on (B +
-// 1)^2 lattice points, about 74 bytes each, at most 1.56 a pixel (B >= 4).
-constexpr uint64_t kBlockBytesPerPixel = 448;
+// a pixel, each added, then two arcs) and its active and orphan lists,
+// about 265; the block's runs, colours, differences, sides and edge costs,
+// about 60; the planar cut's edge costs, keys and heap (four pushes a
+// lattice point at most) on (B + 2)(B + 1) lattice points, about 73 bytes
+// each, at most 105 a pixel for the least block the memory check counts
+// (8; smaller blocks only come with a smaller output).
+constexpr uint64_t kBlockBytesPerPixel = 480;
 
 // The bytes of the example's transforms and `searches` searches, each with
 // its block's graph (a block's pairs of planes transformed together, or one
@@ -353,7 +355,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         const auto was = [&](int dx, int dy) {
             return old.data() + (std::size_t(dy) * std::size_t(B) + std::size_t(dx)) * std::size_t(ch);
         };
-        // Whether placed pixel (dx, dy) stays as it is.
+        // Whether the planar cut decided the sides (else the maximum flow).
         bool planar = false;
         if (placed > 0) {
             // Each placed pixel's own difference, once: the runs list the
