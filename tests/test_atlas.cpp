@@ -965,17 +965,23 @@ TEST(AtlasFile, QuiltLayoutIsVersion21OnWrappingExamplesOnly) {
     for (uint32_t threads : {2u, 3u}) EXPECT_EQ(decode(quilted, decode_params(200, 150, 3, threads)).pixels, one.pixels);
     EXPECT_NE(decode(quilted, decode_params(200, 150, 4, 2)).pixels, one.pixels);
     EXPECT_NE(decode(coherent, decode_params(200, 150, 3, 2)).pixels, one.pixels);
-    // The progress callback hears of the quilt's blocks and can cancel it.
-    vqtex_decode_params cancel = decode_params(200, 150, 3, 2);
-    int calls = 0;
-    cancel.progress_user = &calls;
-    cancel.progress = [](void* user, vqtex_stage stage, uint64_t, uint64_t) -> int {
-        return stage == VQTEX_STAGE_SYNTHESISE && ++*static_cast<int*>(user) >= 3 ? 0 : 1;
-    };
-    vqtex_status st = VQTEX_OK;
-    decode(quilted, cancel, &st);
-    EXPECT_EQ(st, VQTEX_ERROR_CANCELLED);
-    EXPECT_EQ(calls, 3);
+    // The progress callback hears of the quilt's blocks and can cancel it:
+    // on one thread after each block; on two after the blocks either
+    // worker lays, as the calling thread is free to tell (the third call
+    // may be the last, so the second cancels), its first call before any.
+    for (const auto& [threads, at] : {std::pair{1u, 3}, {2u, 2}}) {
+        vqtex_decode_params cancel = decode_params(200, 150, 3, threads);
+        std::pair<int, int> calls{0, at};
+        cancel.progress_user = &calls;
+        cancel.progress = [](void* user, vqtex_stage stage, uint64_t, uint64_t) -> int {
+            auto& [n, stop_at] = *static_cast<std::pair<int, int>*>(user);
+            return stage == VQTEX_STAGE_SYNTHESISE && ++n >= stop_at ? 0 : 1;
+        };
+        vqtex_status st = VQTEX_OK;
+        decode(quilted, cancel, &st);
+        EXPECT_EQ(st, VQTEX_ERROR_CANCELLED) << threads << " threads";
+        EXPECT_EQ(calls.first, at) << threads << " threads";
+    }
     const SeamStats seams = seam_stats(one);
     EXPECT_LT(seams.rank_x, 0.95) << "the output tiles across x";
     EXPECT_LT(seams.rank_y, 0.95) << "the output tiles across y";

@@ -100,9 +100,33 @@ void lay_in_parallel(int nx, int ny, int width, int height, int block, QuiltOrde
             stop = true;
             changed.notify_all();
         };
+        // Progress is heard on the calling thread (worker 0) only: of every
+        // block laid, by any worker, as soon as it is free to tell, so that
+        // it hears of blocks and can cancel whichever worker lays them.
+        int told = 0;
+        const auto to_tell = [&] { return worker == 0 && progress && done != told && done < count; };
         for (;;) {
-            changed.wait(held, [&] { return stop || done == count || !ready.empty(); });
-            if (stop || ready.empty()) return;
+            changed.wait(held, [&] { return stop || done == count || !ready.empty() || to_tell(); });
+            if (stop) return;
+            if (to_tell()) {
+                told = done;
+                held.unlock();
+                bool go_on = false;
+                try {
+                    go_on = progress(uint64_t(told), uint64_t(count));
+                } catch (...) {
+                    held.lock();
+                    halt();
+                    throw;
+                }
+                held.lock();
+                if (!go_on) {
+                    cancelled = true;
+                    halt();
+                }
+                continue;
+            }
+            if (ready.empty()) return;
             const int k = ready.top().second;
             ready.pop();
             held.unlock();
@@ -120,24 +144,6 @@ void lay_in_parallel(int nx, int ny, int width, int height, int block, QuiltOrde
                     ready.push({order_key(m, nx, order), m});
             });
             changed.notify_all();
-            // Progress is heard on the calling thread only.
-            if (worker == 0 && progress) {
-                const int now = done;
-                held.unlock();
-                bool go_on = false;
-                try {
-                    go_on = progress(uint64_t(now), uint64_t(count));
-                } catch (...) {
-                    held.lock();
-                    halt();
-                    throw;
-                }
-                held.lock();
-                if (!go_on) {
-                    cancelled = true;
-                    halt();
-                }
-            }
         }
     });
     if (cancelled) fail(VQTEX_ERROR_CANCELLED, "synthesis cancelled by the progress callback");
