@@ -33,6 +33,19 @@ inline uint64_t rank_hash(uint64_t salt, uint32_t key) {
     return mix_bits(salt ^ (uint64_t(key) * kGoldenGamma));
 }
 
+// Sum of squared differences of n bytes, any n: the reference for
+// Kernels::ssd (ssd_scalar.cpp), and a pixel's colour distance for callers
+// that need no kernel. As with rank_hash, only files compiled for the
+// baseline instruction set may call it.
+inline uint32_t ssd_bytes(const uint8_t* a, const uint8_t* b, std::size_t n) {
+    uint32_t sum = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const int d = int(a[i]) - int(b[i]);
+        sum += uint32_t(d * d);
+    }
+    return sum;
+}
+
 // Vectors handed to the kernels are padded with zeros to a multiple of this
 // many bytes, so kernels never need a scalar tail.
 inline constexpr std::size_t kVectorAlign = 16;

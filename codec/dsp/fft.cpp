@@ -70,17 +70,16 @@ void dit4(double* __restrict ar, double* __restrict ai, double* __restrict br, d
     }
 }
 
-// One butterfly of decimation in frequency on n columns, in place: a + b
-// and (a - b) w.
+// The last stage of decimation in frequency (its twiddle is 1) on n
+// columns, in place: a + b and a - b.
 VQTEX_FFT_CLONES
-void dif2(double* __restrict ar, double* __restrict ai, double* __restrict br, double* __restrict bi, double wr,
-          double wi, int n) {
+void dif2(double* __restrict ar, double* __restrict ai, double* __restrict br, double* __restrict bi, int n) {
     for (int x = 0; x < n; ++x) {
         const double tr = ar[x] - br[x], ti = ai[x] - bi[x];
         ar[x] += br[x];
         ai[x] += bi[x];
-        br[x] = tr * wr - ti * wi;
-        bi[x] = tr * wi + ti * wr;
+        br[x] = tr;
+        bi[x] = ti;
     }
 }
 
@@ -236,7 +235,7 @@ void Fft2d::dif(const double* sre, const double* sim, int src_stride, double* re
         }
     }
     if (len == 2)
-        for (int a = 0; a < n; a += 2) dif2(row(re, a), row(im, a), row(re, a + 1), row(im, a + 1), 1.0, 0.0, cols);
+        for (int a = 0; a < n; a += 2) dif2(row(re, a), row(im, a), row(re, a + 1), row(im, a + 1), cols);
 }
 
 void Fft2d::dit(double* re, double* im, int n, int cols, int stride, int sign) const {

@@ -8,14 +8,7 @@
 namespace vqtex::dsp {
 namespace {
 
-uint32_t ssd_scalar(const uint8_t* a, const uint8_t* b, std::size_t n) {
-    uint32_t sum = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const int d = int(a[i]) - int(b[i]);
-        sum += uint32_t(d * d);
-    }
-    return sum;
-}
+uint32_t ssd_scalar(const uint8_t* a, const uint8_t* b, std::size_t n) { return ssd_bytes(a, b, n); }
 
 uint32_t nearest_scalar(const uint8_t* query, const uint8_t* rows, std::size_t stride,
                         std::size_t n, std::size_t count, uint32_t* best_distance) {

@@ -13,6 +13,7 @@
 #include "common/error.hpp"
 #include "common/hash.hpp"
 #include "common/parallel.hpp"
+#include "dsp/dsp.hpp"
 #include "engine/coherent_positions.hpp"
 #include "engine/min_cut.hpp"
 #include "engine/planar_cut.hpp"
@@ -22,6 +23,12 @@ namespace vqtex {
 namespace {
 
 constexpr uint32_t kUnplaced = 0xFFFFFFFFu;
+
+// Where block k (= j * nx + i) of an nx x ny grid lies on the width x
+// height output (quilt_grid): (i * width / nx, j * height / ny).
+std::pair<int, int> block_origin(int k, int nx, int ny, int width, int height) {
+    return {int(int64_t(k % nx) * width / nx), int(int64_t(k / nx) * height / ny)};
+}
 
 // Whether two blocks of `block` pixels at these origins, each with the ring
 // of pixels around it that laying it reads, meet on the width x height
@@ -64,9 +71,7 @@ void lay_in_parallel(int nx, int ny, int width, int height, int block, QuiltOrde
                      const std::function<bool(uint64_t, uint64_t)>& progress,
                      const std::function<void(int k, int worker)>& lay) {
     const int count = nx * ny;
-    const auto origin = [&](int k) {
-        return std::pair<int, int>{int(int64_t(k % nx) * width / nx), int(int64_t(k / nx) * height / ny)};
-    };
+    const auto origin = [&](int k) { return block_origin(k, nx, ny, width, height); };
     // fn(m) for every other block m that block k meets.
     const auto each_met = [&](int k, auto&& fn) {
         int seen[25], n_seen = 0;
@@ -225,10 +230,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
     struct Source {
         int sx, sy;
     };
-    const auto origin = [&](std::size_t k) {
-        return std::pair<int, int>{int(int64_t(k % std::size_t(nx)) * width / nx),
-                                   int(int64_t(k / std::size_t(nx)) * height / ny)};
-    };
+    const auto origin = [&](std::size_t k) { return block_origin(int(k), nx, ny, width, height); };
     std::vector<Source> source(std::size_t(count), Source{-1, -1});
     // Which blocks are laid at once: in raster order one after the other;
     // in wavefront order any that are ready, each on a thread of its own
@@ -254,7 +256,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         std::unique_ptr<QuiltSearch> search;
         MinCut cut;
         PlanarCut planar;
-        std::vector<int64_t> own, own_at, columns, rows;
+        std::vector<int64_t> own_at, columns, rows;
         std::vector<uint8_t> unplaced;
         std::vector<std::size_t> columns_at, rows_at;
     };
@@ -278,7 +280,7 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         }
     };
     // One pixel's squared colour distance.
-    const auto d2 = [&](const uint8_t* a, const uint8_t* b) { return int64_t(byte_ssd(a, b, ch)); };
+    const auto d2 = [&](const uint8_t* a, const uint8_t* b) { return int64_t(dsp::ssd_bytes(a, b, std::size_t(ch))); };
     // Lays block k (k = bj * nx + bi): reads and writes the output only
     // within the block and the ring of pixels around it.
     const auto lay = [&](int k, Worker& w) {
@@ -364,12 +366,6 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
         // Whether the planar cut decided the sides (else the maximum flow).
         bool planar = false;
         if (placed > 0) {
-            // Each placed pixel's own difference, once: the runs list the
-            // placed pixels in the nodes' order.
-            std::vector<int64_t>& own = w.own;
-            own.clear();
-            for (const QuiltRun& r : runs)
-                for (int i = 0; i < r.length; ++i) own.push_back(d2(fresh(r.dx + i, r.dy), was(r.dx + i, r.dy)));
             // What a cut between two neighbours costs (0 where it cannot
             // be between old and new): across the block's columns x =
             // 0..B between pixels (x - 1, y) and (x, y), across its rows
@@ -384,10 +380,13 @@ std::vector<uint32_t> quilt_positions(const Image& example, int width, int heigh
             own_at.resize(b * b);
             columns.resize(lattice * b);
             rows.resize(b * lattice);
-            for (std::size_t i = 0; i < b * b; ++i) {
-                unplaced[i] = node[i] < 0;
-                own_at[i] = node[i] < 0 ? 0 : own[std::size_t(node[i])];
-            }
+            // Each placed pixel's own difference, 0 for the others.
+            for (int dy = 0; dy < B; ++dy)
+                for (int dx = 0; dx < B; ++dx) {
+                    const std::size_t i = std::size_t(dy) * b + std::size_t(dx);
+                    unplaced[i] = node[i] < 0;
+                    own_at[i] = node[i] < 0 ? 0 : d2(fresh(dx, dy), was(dx, dy));
+                }
             // The arc into placed pixel (dx, dy) from (ex, ey) outside the
             // block, when that is placed: both differences.
             const auto arc_in = [&](int dx, int dy, int ex, int ey) {

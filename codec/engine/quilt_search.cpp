@@ -119,7 +119,7 @@ int64_t QuiltSearch::cost(const std::vector<QuiltRun>& runs, const uint8_t* old,
         const int bytes = r.length * ch;
         const int whole = bytes / int(dsp::kVectorAlign) * int(dsp::kVectorAlign);
         s += int64_t(whole ? kernel.ssd(e, o, std::size_t(whole)) : 0) +
-             int64_t(byte_ssd(e + whole, o + whole, bytes - whole));
+             int64_t(dsp::ssd_bytes(e + whole, o + whole, std::size_t(bytes - whole)));
         if (s > limit) return -1;
     }
     return s;

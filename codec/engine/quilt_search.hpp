@@ -25,18 +25,6 @@
 
 namespace vqtex {
 
-// Sum of squared differences of n bytes: a pixel's colour distance, and
-// the tail of a run that the dispatched kernel leaves (it takes whole
-// 16-byte chunks).
-inline uint32_t byte_ssd(const uint8_t* a, const uint8_t* b, int n) {
-    uint32_t s = 0;
-    for (int i = 0; i < n; ++i) {
-        const int d = int(a[i]) - int(b[i]);
-        s += uint32_t(d * d);
-    }
-    return s;
-}
-
 // A run of the block's pixels, on one of its rows, that the output already
 // holds.
 struct QuiltRun {
