@@ -106,8 +106,10 @@ bool PlanarCut::solve(int side, const std::vector<uint8_t>& fresh, const std::ve
     // edge a-b.
     right_.assign(points, -1);
     down_.assign(points, -1);
-    // Each cost is below 2^32 when the sum is, and a sum of 2^16 of them
-    // cannot overflow: checked once at the end.
+    // The sum of the costs, each taken as at most 2^32 (so that 2^17 of
+    // them cannot overflow, and the sum is below 2^32 only when it is the
+    // true one), and their signs: checked once at the end.
+    constexpr int64_t kCap = int64_t(1) << 32;
     int64_t total = 0, signs = 0;
     const uint8_t* f = padded_.data();
     for (std::size_t y = 0; y <= n; ++y) {
@@ -119,20 +121,20 @@ bool PlanarCut::solve(int side, const std::vector<uint8_t>& fresh, const std::ve
             if (x < n) {
                 const int64_t c = rows[x];
                 signs |= c;
-                total += c;
+                total += std::min(c, kCap);
                 const bool above = f[p + 1], below = f[p + stride + 1];
                 right_[p] = above && below ? -1 : (above || below) && edge_row ? 0 : c;
             }
             if (y < n) {
                 const int64_t c = columns[x];
                 signs |= c;
-                total += c;
+                total += std::min(c, kCap);
                 const bool left = f[p + stride], right = f[p + stride + 1];
                 down_[p] = left && right ? -1 : (left || right) && (x == 0 || x == n) ? 0 : c;
             }
         }
     }
-    if (signs < 0 || total >= (int64_t(1) << 32)) return false;
+    if (signs < 0 || total >= kCap) return false;
     (b == a + 1 ? right_ : down_)[std::size_t(a)] = -1;
     // Dijkstra's search from a to b, a path's length being its cost, then
     // its count of edges: one key, which grows along every edge, so that

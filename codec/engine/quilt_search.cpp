@@ -207,7 +207,7 @@ void QuiltSearch::transform_costs(const std::vector<QuiltRun>& runs, const uint8
     }
     fft.inverse(sr, si, ex_.places_y(), ex_.places_x(), scratch_[0]);
     // The rounded costs, place by place, into the sum's imaginary half
-    // (which the inverse leaves as rounding only).
+    // (which holds the cross terms corr(a, f) - corr(b, e), of no use).
     const double scale = 1.0 / double(points);
     for (int y = 0; y < ex_.places_y(); ++y)
         for (int x = 0; x < ex_.places_x(); ++x)
