@@ -261,3 +261,56 @@ TEST(SeamCut, BorderCostIsItsDefinition) {
         EXPECT_EQ(border_cost(ex, true, pack_position(ax, ay), pack_position(bx, by), dx, dy), wrapped);
     }
 }
+
+TEST(SeamCut, AnAnimationFrameIsCutOnEachCopysOwnExampleFrame) {
+    // Three example frames side by side make one still example; a frame of
+    // voxels whose copies come from the three frames, well inside them, is
+    // the still map of the same copies in it. The frame's cut reads each
+    // copy in its own frame, so both cuts give the same copies; and the
+    // same voxels on any thread count.
+    const int side = 96, w = 120, h = 80;
+    std::vector<Image> frames;
+    for (uint64_t k = 0; k < 3; ++k) frames.push_back(noise_example(side, side, 40 + k));
+    Image wide(3 * side, side, 3);
+    for (int k = 0; k < 3; ++k)
+        for (int y = 0; y < side; ++y)
+            for (int x = 0; x < side; ++x)
+                for (int c = 0; c < 3; ++c) wide.at(k * side + x, y)[c] = frames[std::size_t(k)].at(x, y)[c];
+    CutRules rules;
+    rules.reach = 8;
+    // Copies at least 2 reaches + 1 from their frame's edges, so that no
+    // cut reaches past them in the frames, nor into the next frame side by side.
+    const int keep = 2 * rules.reach + 1;
+    std::vector<uint32_t> still(std::size_t(w) * h);
+    std::vector<uint64_t> voxels(still.size());
+    Rng rng(9);
+    std::vector<int> xs{0};
+    while (xs.back() < w) xs.push_back(std::min(w, xs.back() + 3 + int(uint32_t(rng.next()) % 28)));
+    for (int y0 = 0; y0 < h; y0 += 20)
+        for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
+            const int cw = xs[i + 1] - xs[i];
+            const int t = int(uint32_t(rng.next()) % 3);
+            const int sx = keep + int(uint32_t(rng.next()) % uint32_t(side - 2 * keep - cw));
+            const int sy = keep + int(uint32_t(rng.next()) % uint32_t(side - 2 * keep - 20));
+            for (int y = y0; y < y0 + 20; ++y)
+                for (int x = xs[i]; x < xs[i + 1]; ++x) {
+                    const std::size_t j = std::size_t(y) * w + x;
+                    still[j] = pack_position(t * side + sx + x - xs[i], sy + y - y0);
+                    voxels[j] = pack_voxel(sx + x - xs[i], sy + y - y0, t);
+                }
+        }
+    std::vector<uint32_t> still_cut = still;
+    cut_seams(wide, false, w, h, still_cut, rules, 1);
+    ASSERT_NE(still_cut, still);
+    std::vector<uint64_t> frame_cut = voxels;
+    cut_frame_seams(frames, false, w, h, frame_cut, rules, 1);
+    for (std::size_t j = 0; j < still.size(); ++j) {
+        const uint64_t v = frame_cut[j];
+        ASSERT_EQ(pack_position(voxel_t(v) * side + voxel_x(v), voxel_y(v)), still_cut[j]) << "pixel " << j;
+    }
+    for (int threads : {2, 3}) {
+        std::vector<uint64_t> many = voxels;
+        cut_frame_seams(frames, false, w, h, many, rules, threads);
+        EXPECT_EQ(many, frame_cut) << threads << " threads";
+    }
+}

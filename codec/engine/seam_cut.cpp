@@ -32,13 +32,16 @@ struct Lines {
 };
 
 // Pixels a cut gives another copy: (index in the map, position).
-using Writes = std::vector<std::pair<std::size_t, uint32_t>>;
+template <class Position>
+using Writes = std::vector<std::pair<std::size_t, Position>>;
 
 // One run of a border at `a` (between across-indices a - 1 and a), rows
 // [u0, u1) along it: A the copy on the low side, B on the high side.
-void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<uint32_t>& in,
-             const std::vector<uint8_t>& links, uint8_t across_bit, Writes& out, int a, int u0, int u1,
-             const CutRules& rules) {
+template <class Positions>
+void cut_run(const Source<Positions>& ex, const Lines& lines, const std::vector<typename Positions::Position>& in,
+             const std::vector<uint8_t>& links, uint8_t across_bit, Writes<typename Positions::Position>& out, int a,
+             int u0, int u1, const CutRules& rules) {
+    using Position = typename Positions::Position;
     const int n = u1 - u0, reach = rules.reach, span = 2 * reach + 1;
     const int A = lines.across_size;
     const auto at = [&](int across, int u) { return in[lines.index(Image::wrap(across, A), u)]; };
@@ -48,7 +51,7 @@ void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<
     std::vector<int> low(static_cast<std::size_t>(n)), high(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) {
         const int u = u0 + i;
-        const uint32_t pa = at(a - 1, u), pb = at(a, u);
+        const Position pa = at(a - 1, u), pb = at(a, u);
         int la = 1;
         // (link_map's bit across the border: the pixel goes on from the one
         // before it.)
@@ -60,14 +63,14 @@ void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<
         while (lb < 2 * reach && goes_on(a + lb)) ++lb;
         int lo = la >= 2 * reach ? reach : la / 2, hi = lb >= 2 * reach ? reach : lb / 2;
         // B must extend to every pixel it may take, A likewise.
-        uint32_t e;
+        Position e{};
         for (int k = 1; k <= lo; ++k)
-            if (!extend(ex, wraps, pb, lines.dx(-k), lines.dy(-k), e)) {
+            if (!ex.extend(pb, lines.dx(-k), lines.dy(-k), e)) {
                 lo = k - 1;
                 break;
             }
         for (int k = 1; k <= hi; ++k)
-            if (!extend(ex, wraps, pa, lines.dx(k), lines.dy(k), e)) {
+            if (!ex.extend(pa, lines.dx(k), lines.dy(k), e)) {
                 hi = k - 1;
                 break;
             }
@@ -84,16 +87,16 @@ void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<
     std::vector<int8_t> from(std::size_t(n) * span, 0);
     for (int i = 0; i < n; ++i) {
         const int u = u0 + i;
-        const uint32_t pa = at(a - 1, u), pb = at(a, u);
+        const Position pa = at(a - 1, u), pb = at(a, u);
         for (int j = reach - low[std::size_t(i)]; j <= reach + high[std::size_t(i)]; ++j) {
             const int c = j - reach;  // B from a + c, A up to a + c - 1
             // A's pixel at a + c - 1 and B's at a + c exist (within the
             // row's low and high); the border between them costs what
             // border_cost says.
-            uint32_t last_a = 0, first_b = 0;
-            extend(ex, wraps, pa, lines.dx(c), lines.dy(c), last_a);
-            extend(ex, wraps, pb, lines.dx(c), lines.dy(c), first_b);
-            const uint64_t here = border_cost(ex, wraps, last_a, first_b, lines.dx(1), lines.dy(1));
+            Position last_a{}, first_b{};
+            ex.extend(pa, lines.dx(c), lines.dy(c), last_a);
+            ex.extend(pb, lines.dx(c), lines.dy(c), first_b);
+            const uint64_t here = ex.border_cost(last_a, first_b, lines.dx(1), lines.dy(1));
             uint64_t best = i == 0 ? 0 : kNone;
             int8_t move = 0;
             if (i > 0)
@@ -117,13 +120,13 @@ void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<
     for (int i = n - 1; i >= 0; --i) {
         const int c = j - reach;
         const int u = u0 + i;
-        const uint32_t pa = at(a - 1, u), pb = at(a, u);
-        uint32_t e;
+        const Position pa = at(a - 1, u), pb = at(a, u);
+        Position e{};
         for (int k = c; k < 0; ++k)  // A's pixels that turn B
-            if (extend(ex, wraps, pb, lines.dx(k), lines.dy(k), e))
+            if (ex.extend(pb, lines.dx(k), lines.dy(k), e))
                 out.emplace_back(lines.index(Image::wrap(a + k, A), u), e);
         for (int k = 0; k < c; ++k)  // B's pixels that turn A
-            if (extend(ex, wraps, pa, lines.dx(k + 1), lines.dy(k + 1), e))
+            if (ex.extend(pa, lines.dx(k + 1), lines.dy(k + 1), e))
                 out.emplace_back(lines.index(Image::wrap(a + k, A), u), e);
         j += from[std::size_t(i) * span + std::size_t(j)];
     }
@@ -132,26 +135,30 @@ void cut_run(const Image& ex, bool wraps, const Lines& lines, const std::vector<
 // Where each pixel of a w x h torus of positions goes on from its left
 // neighbour (bit 0) and from its upper one (bit 1): a byte per pixel, made
 // row by row, so that the runs' scan down columns reads bytes.
-std::vector<uint8_t> link_map(const Image& ex, bool wraps, int w, int h, const std::vector<uint32_t>& pos,
-                              int threads) {
+template <class Positions>
+std::vector<uint8_t> link_map(const Source<Positions>& source, int w, int h,
+                              const std::vector<typename Positions::Position>& pos, int threads) {
+    using Position = typename Positions::Position;
     std::vector<uint8_t> links(pos.size());
-    // Packed positions (coherent_positions.hpp) go on by +1 to the right and
-    // by +2^16 down, exactly (a position past the example's last column or
-    // row is no position); a tiling example also from its last column to
-    // its first and from its last row to its first.
-    const uint32_t last_x = uint32_t(ex.width - 1), wrap_x = uint32_t(ex.width - 1);
-    const uint32_t last_y = uint32_t(ex.height - 1), wrap_y = uint32_t(ex.height - 1) << 16;
+    // Positions (coherent_positions.hpp) go on by +1 to the right and by
+    // +2^16 down, exactly, within a frame (a position past the example's
+    // last column or row is no position); a tiling example also from its
+    // last column to its first and from its last row to its first.
+    const Image& ex = source.frames[0];
+    const Position last_x = Position(ex.width - 1), last_y = Position(ex.height - 1);
+    const Position wrap_y = last_y << 16, down = Position(1) << 16;
+    const bool wraps = source.wraps;
     parallel_for(threads, std::size_t(h), 16, [&](std::size_t y0, std::size_t y1) {
         for (int y = int(y0); y < int(y1); ++y) {
-            const uint32_t* __restrict row = pos.data() + std::size_t(y) * std::size_t(w);
-            const uint32_t* __restrict up = pos.data() + std::size_t(Image::wrap(y - 1, h)) * std::size_t(w);
+            const Position* __restrict row = pos.data() + std::size_t(y) * std::size_t(w);
+            const Position* __restrict up = pos.data() + std::size_t(Image::wrap(y - 1, h)) * std::size_t(w);
             uint8_t* __restrict out = links.data() + std::size_t(y) * std::size_t(w);
             for (int x = 0; x < w; ++x) {
-                const uint32_t p = row[x], left = row[x == 0 ? w - 1 : x - 1], above = up[x];
-                bool l = p - left == 1, a = p - above == 0x10000;
+                const Position p = row[x], left = row[x == 0 ? w - 1 : x - 1], above = up[x];
+                bool l = Position(p - left) == 1, a = Position(p - above) == down;
                 if (wraps) {
-                    l = l || ((left & 0xFFFF) == last_x && p == left - wrap_x);
-                    a = a || ((above >> 16) == last_y && p == above - wrap_y);
+                    l = l || ((left & 0xFFFF) == last_x && p == left - last_x);
+                    a = a || (((above >> 16) & 0xFFFF) == last_y && p == above - wrap_y);
                 }
                 out[x] = uint8_t(int(l) | int(a) << 1);
             }
@@ -162,25 +169,27 @@ std::vector<uint8_t> link_map(const Image& ex, bool wraps, int w, int h, const s
 
 // Every run of one direction's borders of `pos`, cut in place: the runs
 // are found and cut on the map as it was, their pixels written after.
-void cut_direction(const Image& ex, bool wraps, const Lines& lines, std::vector<uint32_t>& pos,
+template <class Positions>
+void cut_direction(const Source<Positions>& ex, const Lines& lines, std::vector<typename Positions::Position>& pos,
                    const CutRules& rules, int threads) {
+    using Position = typename Positions::Position;
     const int A = lines.across_size, U = lines.along_size;
     if (A < 4 || U < rules.min_run) return;
-    const std::vector<uint8_t> links = link_map(ex, wraps, lines.width, lines.vertical ? U : A, pos, threads);
+    const std::vector<uint8_t> links = link_map(ex, lines.width, lines.vertical ? U : A, pos, threads);
     // Bit `across` of a pixel: it goes on from its neighbour across the
     // border; bit `along`: from its neighbour before it along the border.
     const uint8_t across = lines.vertical ? 1 : 2, along = lines.vertical ? 2 : 1;
-    std::vector<Writes> writes(static_cast<std::size_t>(A));
+    std::vector<Writes<Position>> writes(static_cast<std::size_t>(A));
     parallel_for(threads, std::size_t(A), 1, [&](std::size_t b0, std::size_t b1) {
         for (int a = int(b0); a < int(b1); ++a) {
             const std::size_t low = std::size_t(Image::wrap(a - 1, A));
-            Writes& out = writes[std::size_t(a)];
+            Writes<Position>& out = writes[std::size_t(a)];
             // Runs along the border, each within its block: a run ends where
             // the border does, where either copy stops going on along it,
             // and at a block's start.
             int start = -1;
             const auto finish = [&](int end) {
-                if (start >= 0 && end - start >= rules.min_run) cut_run(ex, wraps, lines, pos, links, across, out, a, start, end, rules);
+                if (start >= 0 && end - start >= rules.min_run) cut_run(ex, lines, pos, links, across, out, a, start, end, rules);
                 start = -1;
             };
             BlockSteps blocks(lines.origin, lines.period, rules.block);
@@ -197,7 +206,7 @@ void cut_direction(const Image& ex, bool wraps, const Lines& lines, std::vector<
             finish(U);
         }
     });
-    for (const Writes& w : writes)
+    for (const Writes<Position>& w : writes)
         for (const auto& [i, p] : w) pos[i] = p;
 }
 
@@ -207,8 +216,17 @@ void cut_seams(const Image& example, bool wraps, int width, int height, std::vec
                const CutRules& rules, int threads, int first_row, int torus_rows) {
     if (rules.reach <= 0 || width <= 0 || height <= 0) return;
     if (torus_rows <= 0) torus_rows = height;
-    cut_direction(example, wraps, Lines{width, height, width, true, first_row, torus_rows}, positions, rules, threads);
-    cut_direction(example, wraps, Lines{height, width, width, false, 0, width}, positions, rules, threads);
+    const Source<coherent::PixelPositions> source{&example, wraps};
+    cut_direction(source, Lines{width, height, width, true, first_row, torus_rows}, positions, rules, threads);
+    cut_direction(source, Lines{height, width, width, false, 0, width}, positions, rules, threads);
+}
+
+void cut_frame_seams(const std::vector<Image>& frames, bool wraps, int width, int height,
+                     std::vector<uint64_t>& voxels, const CutRules& rules, int threads) {
+    if (rules.reach <= 0 || width <= 0 || height <= 0 || frames.empty()) return;
+    const Source<coherent::VoxelPositions> source{frames.data(), wraps};
+    cut_direction(source, Lines{width, height, width, true, 0, height}, voxels, rules, threads);
+    cut_direction(source, Lines{height, width, width, false, 0, width}, voxels, rules, threads);
 }
 
 }  // namespace vqtex

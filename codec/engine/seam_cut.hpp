@@ -51,6 +51,12 @@ struct CutRules {
 void cut_seams(const Image& example, bool wraps, int width, int height, std::vector<uint32_t>& positions,
                const CutRules& rules, int threads, int first_row = 0, int torus_rows = 0);
 
+// The same for one frame of an animation: a width x height torus of voxels
+// (coherent_positions.hpp) into the example's frames. Each border is cut
+// where its two copies differ least in the frames they show.
+void cut_frame_seams(const std::vector<Image>& frames, bool wraps, int width, int height,
+                     std::vector<uint64_t>& voxels, const CutRules& rules, int threads);
+
 // How many rows on either side of a row the cuts read to decide it: its
 // block, and the horizontal runs whose bands and copies reach it.
 inline int cut_reach_rows(const CutRules& rules) { return rules.reach > 0 ? rules.block + 4 * rules.reach + 4 : 0; }
@@ -76,52 +82,66 @@ struct BlockSteps {
     bool starts() const { return in_block == 0; }
 };
 
-// The position `k` steps across from `p` (dx, dy per step) in the example,
-// or false past its edge when it does not wrap.
-inline bool extend(const Image& ex, bool wraps, uint32_t p, int dx, int dy, uint32_t& out) {
-    int x = position_x(p) + dx, y = position_y(p) + dy;
-    if (wraps) {
-        x = Image::wrap(x, ex.width);
-        y = Image::wrap(y, ex.height);
-    } else if (x < 0 || y < 0 || x >= ex.width || y >= ex.height) {
-        return false;
-    }
-    out = pack_position(x, y);
-    return true;
-}
+// The example as the cuts read it: the images positions point into, one
+// for a still texture, one per example frame for an animation (a voxel's
+// copy goes on within its example frame).
+template <class Positions>
+struct Source {
+    using Position = typename Positions::Position;
+    const Image* frames;
+    bool wraps;
 
-inline uint64_t colour_difference(const Image& ex, uint32_t a, uint32_t b) {
-    const uint8_t* pa = ex.at(position_x(a), position_y(a));
-    const uint8_t* pb = ex.at(position_x(b), position_y(b));
-    uint64_t sum = 0;
-    for (int c = 0; c < ex.channels; ++c) {
-        const int d = int(pa[c]) - int(pb[c]);
-        sum += uint64_t(d * d);
+    const Image& frame(Position p) const { return frames[std::size_t(Positions::t(p))]; }
+    // The position (dx, dy) from `p` in its frame, or false past the
+    // frame's edge when the example does not wrap.
+    bool extend(Position p, int dx, int dy, Position& out) const {
+        const Image& ex = frames[0];
+        int x = Positions::x(p) + dx, y = Positions::y(p) + dy;
+        if (wraps) {
+            x = Image::wrap(x, ex.width);
+            y = Image::wrap(y, ex.height);
+        } else if (x < 0 || y < 0 || x >= ex.width || y >= ex.height) {
+            return false;
+        }
+        out = Positions::at(p, x, y);
+        return true;
     }
-    return sum;
-}
-
-// What a border nobody can measure costs: the worst difference, twice.
-inline uint64_t unmeasured(const Image& ex) { return 2 * uint64_t(ex.channels) * 255 * 255; }
+    uint64_t difference(Position a, Position b) const {
+        const uint8_t* pa = frame(a).at(Positions::x(a), Positions::y(a));
+        const uint8_t* pb = frame(b).at(Positions::x(b), Positions::y(b));
+        uint64_t sum = 0;
+        for (int c = 0; c < frames[0].channels; ++c) {
+            const int d = int(pa[c]) - int(pb[c]);
+            sum += uint64_t(d * d);
+        }
+        return sum;
+    }
+    // What a border nobody can measure costs: the worst difference, twice.
+    uint64_t unmeasured() const { return 2 * uint64_t(frames[0].channels) * 255 * 255; }
+    // The cost of the border between two horizontally or vertically
+    // adjacent output pixels holding copies A and B: the squared colour
+    // difference of the two copies at both pixels (a copy that cannot be
+    // extended to the other pixel counts its other term twice).
+    uint64_t border_cost(Position a_at_first, Position b_at_second, int dx, int dy) const {
+        Position a2{}, b1{};
+        const bool first = extend(b_at_second, -dx, -dy, b1);
+        const bool second = extend(a_at_first, dx, dy, a2);
+        if (first && second) return difference(a_at_first, b1) + difference(a2, b_at_second);
+        if (first) return 2 * difference(a_at_first, b1);
+        if (second) return 2 * difference(a2, b_at_second);
+        return unmeasured();
+    }
+};
 
 }  // namespace seam_detail
 
 // The cost of the border between two horizontally or vertically adjacent
-// output pixels holding copies A and B, as cut_seams counts it: the
-// squared colour difference of the two copies at both pixels (a copy that
-// cannot be extended to the other pixel counts its other term twice).
-// Exposed for tests.
-inline uint64_t border_cost(const Image& example, bool wraps, uint32_t a_at_first, uint32_t b_at_second, int dx, int dy) {
-    using namespace seam_detail;
-    uint32_t a2, b1;
-    const bool first = extend(example, wraps, b_at_second, -dx, -dy, b1);
-    const bool second = extend(example, wraps, a_at_first, dx, dy, a2);
-    if (first && second)
-        return colour_difference(example, a_at_first, b1) + colour_difference(example, a2, b_at_second);
-    if (first) return 2 * colour_difference(example, a_at_first, b1);
-    if (second) return 2 * colour_difference(example, a2, b_at_second);
-    return unmeasured(example);
+// output pixels of a still texture, as cut_seams counts it
+// (seam_detail::Source::border_cost). Exposed for tests.
+inline uint64_t border_cost(const Image& example, bool wraps, uint32_t a_at_first, uint32_t b_at_second, int dx,
+                            int dy) {
+    return seam_detail::Source<coherent::PixelPositions>{&example, wraps}.border_cost(a_at_first, b_at_second, dx,
+                                                                                       dy);
 }
-
 
 }  // namespace vqtex
