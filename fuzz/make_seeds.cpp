@@ -290,7 +290,7 @@ int main(int argc, char** argv) {
             ++files;
         }
     }
-    // Animations: a space-time atlas (version 12) of 1, 3 and 4 channels
+    // Animations: a space-time atlas (version 22) of 1, 3 and 4 channels
     // and a trees file (version 2), 16x16 and 4 frames, so that the fuzzers
     // reach the sequence reader, dav1d's inter frames and both engines for
     // animations.
@@ -320,7 +320,7 @@ int main(int argc, char** argv) {
                 std::fprintf(stderr, "make_seeds: animation of %u channels: %s\n", channels, err.detail);
                 return 1;
             }
-            const std::string name = std::string("anim_") + (codebook == VQTEX_CODEBOOK_ATLAS ? "v12" : "v2") + "_c" +
+            const std::string name = std::string("anim_") + (codebook == VQTEX_CODEBOOK_ATLAS ? "v22" : "v2") + "_c" +
                                      std::to_string(channels);
             write(out / "decode" / (name + ".vqt"), data, size);
             vqtex_free(data);

@@ -39,6 +39,8 @@ decode_all() {  # $1 = output directory
   "$decode" "$golden/cellular_v21.vqt" "$1/atlas_v21.png" --size 330x250 --seed 21 -j 3 --quiet
   mkdir -p "$1/anim_v12"
   "$decode" "$golden/waves_v12.vqt" "$1/anim_v12/f_%03d.png" --frames 9 --size 70x60 --seed 11 -j 2 --quiet
+  mkdir -p "$1/anim_v22"
+  "$decode" "$golden/waves_v22.vqt" "$1/anim_v22/f_%03d.png" --frames 9 --size 70x60 --seed 22 -j 3 --quiet
   "$synth" "$corpus/cellular_128.png" "$1/coherent.png" --size 210x150 --seed 4 -j 2 --quiet
   mkdir -p "$1/anim_coherent"
   "$synth" "$corpus/flicker_32_anim/frame_%03d.png" "$1/anim_coherent/f_%03d.png" --frames 6 --size 40x36 --seed 2 -j 2 --quiet

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "common/checksum.hpp"
 #include "common/error.hpp"
 #include "format/animation_file.hpp"
 #include "format/atlas_coder.hpp"
@@ -161,12 +162,12 @@ double frame_change(const uint8_t* a, const uint8_t* b, std::size_t bytes) {
 
 }  // namespace
 
-TEST(AnimationFile, DefaultFileIsVersion12AndDecodesAsTheEngineOnItsAtlas) {
+TEST(AnimationFile, DefaultFileIsVersion22AndDecodesAsTheEngineOnItsAtlas) {
     auto seq = corpus_animation("waves_48_anim");
     vqtex_encode_stats stats{};
     const std::vector<uint8_t> file = encode_animation(seq, 0, &stats);
     const vqtex_file_info info = vqtex_cpp::inspect(file.data(), file.size());
-    EXPECT_EQ(info.format_version, 12u);
+    EXPECT_EQ(info.format_version, 22u);
     EXPECT_EQ(info.atlas_width, 48u);
     EXPECT_EQ(info.atlas_frames, 32u);  // the example is a loop: all of it
     EXPECT_EQ(stats.atlas_frames, 32u);
@@ -318,6 +319,22 @@ TEST(AnimationFile, HostileFieldsAreCorruptOrOverTheLimit) {
     const auto with_params = rewrite(f.atlas_width, f.atlas_height, f.atlas_frames, changed);
     EXPECT_EQ(decode_status(with_params, with_params.size()), VQTEX_OK);
     EXPECT_GT(with_params.size(), file.size());
+    // The cuts' reach is the last parameter (version 22): 0 decodes (the
+    // frames are not cut), one above the widest is CORRUPT.
+    vqtex::AnimationParams uncut;
+    uncut.cut = 0;
+    const auto no_cuts = rewrite(f.atlas_width, f.atlas_height, f.atlas_frames, uncut);
+    EXPECT_EQ(decode_status(no_cuts, no_cuts.size()), VQTEX_OK);
+    vqtex::AnimationParams widest;
+    widest.cut = vqtex::kMaxCutReach;
+    std::vector<uint8_t> over = rewrite(f.atlas_width, f.atlas_height, f.atlas_frames, widest);
+    EXPECT_EQ(decode_status(over, over.size()), VQTEX_OK);
+    const std::size_t at = over.size() - 4 - bits.size() - 1;
+    ASSERT_EQ(over[at], uint8_t(vqtex::kMaxCutReach));
+    over[at] = uint8_t(vqtex::kMaxCutReach + 1);
+    const uint32_t crc = vqtex::crc32(over.data(), over.size() - 4);
+    for (int k = 0; k < 4; ++k) over[over.size() - 4 + std::size_t(k)] = uint8_t(crc >> (8 * k));
+    EXPECT_EQ(decode_status(over, over.size()), VQTEX_ERROR_CORRUPT);
 }
 
 TEST(AnimationFile, StillAndAnimationCallsRefuseEachOthersFiles) {
@@ -341,4 +358,32 @@ TEST(AnimationFile, GoldenFileDecodesToKnownPixels) {
     ASSERT_EQ(v.frames(), 12u);
     const uint64_t hash = vqtex_test::fnv1a(v.frame(0), v.frame_bytes() * v.frames());
     EXPECT_EQ(hash, 0x605c69709be75f52ull) << std::hex << "decoded hash 0x" << hash;
+}
+
+TEST(AnimationFile, GoldenCutFileDecodesToKnownPixels) {
+    // Version 22: version 12's golden atlas (the same AV1 bytes) with each
+    // frame's borders cut. The same pixels on any thread count, and not
+    // version 12's: the cuts move borders.
+    const std::vector<uint8_t> bytes = vqtex_tools::load_bytes(std::string(VQTEX_GOLDEN_DIR) + "/waves_v22.vqt");
+    ASSERT_FALSE(bytes.empty()) << "missing tests/golden/waves_v22.vqt";
+    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).format_version, 22u);
+    EXPECT_EQ(vqtex_cpp::inspect(bytes.data(), bytes.size()).cut, 8u);
+    std::vector<uint8_t> first;
+    for (int threads : {1, 2, 3}) {
+        const vqtex_cpp::Volume v = vqtex_cpp::decode_volume(vqtex_test::decode_params(64, 56, 5, threads), 12,
+                                                             bytes.data(), bytes.size());
+        ASSERT_EQ(v.frames(), 12u);
+        const std::vector<uint8_t> all = all_frames(v);
+        if (threads == 1) {
+            first = all;
+            const uint64_t hash = vqtex_test::fnv1a(all.data(), all.size());
+            EXPECT_EQ(hash, 0xc68580ca4a241dedull) << std::hex << "decoded hash 0x" << hash;
+        } else {
+            EXPECT_EQ(all, first) << threads << " threads";
+        }
+    }
+    const std::vector<uint8_t> v12 = vqtex_tools::load_bytes(std::string(VQTEX_GOLDEN_DIR) + "/waves_v12.vqt");
+    const vqtex_cpp::Volume uncut =
+        vqtex_cpp::decode_volume(vqtex_test::decode_params(64, 56, 5), 12, v12.data(), v12.size());
+    EXPECT_NE(all_frames(uncut), first);
 }

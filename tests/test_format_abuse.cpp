@@ -92,12 +92,12 @@ TEST(FormatAbuse, AnyFlippedPayloadByteFailsTheChecksum) {
 
 TEST(FormatAbuse, UnknownVersionIsNamed) {
     std::vector<uint8_t> bad = small_file();
-    bad[8] = 22;  // 2 and 12 are the animations' versions, 3 to 11 and 13 to 21 the atlas files' (FORMAT.md §D, §6, §2, §A)
+    bad[8] = 23;  // 2, 12 and 22 are the animations' versions, 3 to 11 and 13 to 21 the atlas files' (FORMAT.md §D, §6, §2, §A)
     vqtex_status st;
     vqtex_error err{};
     decode(bad, decode_params(16, 16), &st, &err);
     EXPECT_EQ(st, VQTEX_ERROR_UNSUPPORTED_VERSION);
-    EXPECT_NE(std::string(err.detail).find("version 22"), std::string::npos) << err.detail;
+    EXPECT_NE(std::string(err.detail).find("version 23"), std::string::npos) << err.detail;
 }
 
 TEST(FormatAbuse, InconsistentSizesAreCorruptEvenWithAGoodChecksum) {

@@ -372,7 +372,7 @@ TEST(Tools, AnimationRoundTrip) {
     EXPECT_NE(r.output.find("atlas: 32x32 at (0, 0), frames 0 to 31"), std::string::npos) << r.output;
     r = info_tool(file);
     ASSERT_EQ(r.status, 0) << r.output;
-    EXPECT_NE(r.output.find("vqtex format 12"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("vqtex format 22"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("a loop of 32 frames"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("atlas     32x32x32 (the whole example)"), std::string::npos) << r.output;
     // With --trees, the paper's codebooks (format 2).

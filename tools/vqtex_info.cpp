@@ -175,8 +175,8 @@ FileReport info_one(const std::string& input) {
         const std::string covers =
             info.cover ? ", long borders covered within " + std::to_string(info.cover) + " pixels" : std::string();
         if (info.atlas_frames)
-            add(t, "decoding  coherent engine for animations, %u levels, an atlas of %u voxels\n", info.levels,
-                info.codewords[0]);
+            add(t, "decoding  coherent engine for animations, %u levels, an atlas of %u voxels, %s in each frame%s\n",
+                info.levels, info.codewords[0], seams.c_str(), cuts.c_str());
         else if (info.quilt_block)
             add(t, "decoding  image quilting, blocks of %ux%u pixels, an atlas of %u pixels, %s\n", info.quilt_block,
                 info.quilt_block, info.codewords[0], seams.c_str());

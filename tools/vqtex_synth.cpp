@@ -183,8 +183,8 @@ int main(int argc, char** argv) {
                                       "0 to 1024 (default 0)")
                            ->check(CLI::Range(0, 1024));
     auto* blend_opt = app.add_option("--blend", blend,
-                                     "coherent engine, still textures: blend the copies meeting at seams over this "
-                                     "radius, 0 (none) to 3 (default 2)")
+                                     "coherent engine: blend the copies meeting at seams over this radius (an "
+                                     "animation's in each frame), 0 (none) to 3 (default 2)")
                           ->check(CLI::Range(0, 3));
     auto* relocate_opt = app.add_option("--relocate", relocate,
                                         "coherent engine, still textures: move whole copies to where they fit the "
@@ -198,9 +198,10 @@ int main(int argc, char** argv) {
                                           "(default 8)")
                                ->check(CLI::Range(0, 64));
     auto* cut_opt = app.add_option("--cut", cut,
-                                   "coherent engine, still textures: a straight border between two copies moves, "
-                                   "row by row, up to this many pixels to where the copies agree (minimum-error "
-                                   "cuts); 0 (formats 3 to 7's borders) to 16 (default 8)")
+                                   "coherent engine: a straight border between two copies moves, row by row, up "
+                                   "to this many pixels to where the copies agree (minimum-error cuts; an "
+                                   "animation's in each frame); 0 (formats 3 to 7's and 12's borders) to 16 "
+                                   "(default 8)")
                         ->check(CLI::Range(0, 16));
     auto* cover_opt = app.add_option("--cover", cover,
                                      "coherent engine, still textures: a third copy laid over each long border "
@@ -314,14 +315,10 @@ int main(int argc, char** argv) {
                                             "vqtex-encode the sequence, then vqtex-decode)");
             if (!animated && frames_opt->count())
                 throw std::invalid_argument("--frames needs an animation: a frame sequence as input");
-            if (animated && blend_opt->count())
-                throw std::invalid_argument("--blend applies to still textures: animations are not blended at seams");
             if (animated && relocate_opt->count())
                 throw std::invalid_argument("--relocate applies to still textures: animations do not relocate copies");
             if (animated && edge_guard_opt->count())
                 throw std::invalid_argument("--edge-guard applies to still textures: animations keep their edges");
-            if (animated && cut_opt->count())
-                throw std::invalid_argument("--cut applies to still textures: animations' borders are not cut");
             if (animated && cover_opt->count())
                 throw std::invalid_argument("--cover applies to still textures: animations' borders are not covered");
             if (animated && margin_opt->count())

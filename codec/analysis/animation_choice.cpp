@@ -111,7 +111,7 @@ void code_candidate(const std::vector<Image>& frames, const AnimationChoiceOptio
     const int max_levels = coherent_levels(r.width, r.height);
     c.levels = options.levels ? std::min(options.levels, max_levels) : max_levels;
     FileHeader h;
-    h.version = kAnimationAtlasFormatVersion;
+    h.version = kCutAnimationFormatVersion;
     h.channels = uint8_t(first.channels);
     h.levels = uint8_t(c.levels);
     h.exemplar_width = uint32_t(first.width);

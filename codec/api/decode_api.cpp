@@ -235,7 +235,8 @@ Volume decode_animation_atlas(const vqtex_decode_params* p, uint32_t frames, con
     for (const Image& frame : f.frames) atlas += frame.byte_count();
     check_output_memory(size + atlas +
                             animation_decode_memory(f.atlas_width, f.atlas_height, f.atlas_frames, f.header.channels,
-                                                    f.header.levels, out.width, out.height, out.frames),
+                                                    f.header.levels, out.width, out.height, out.frames,
+                                                    f.params.cut > 0),
                         limit, out.name());
     AnimationRequest request;
     request.width = int(out.width);
@@ -267,6 +268,8 @@ void describe_animation_file(const uint8_t* data, std::size_t size, std::size_t 
     info->atlas_height = uint32_t(f.atlas_height);
     info->atlas_frames = uint32_t(f.atlas_frames);
     info->atlas_wraps = f.params.example_tileable ? 1 : 0;
+    info->blend = uint32_t(f.params.blend);
+    info->cut = uint32_t(f.params.cut);
     info->map_count = 1;
     std::snprintf(info->maps[0].name, sizeof info->maps[0].name, "%s", "texture");
     info->maps[0].kind = VQTEX_MAP_COLOUR;

@@ -118,6 +118,7 @@ void synthesize_volume_coherent(const vqtex_synth_params& params, const Volume& 
     opt.passes = int(params.coherent.passes);
     opt.coarse_passes = std::max(4, int(params.coherent.passes));
     opt.blend = int(params.coherent.blend);
+    opt.cut = int(params.coherent.cut);
     opt.progress = stage_progress(params.progress, params.progress_user, VQTEX_STAGE_SYNTHESISE);
     const Volume result = synthesize_volume_coherent(space, example_frames, opt);
     const auto t2 = Clock::now();

@@ -15,6 +15,7 @@
 #include "engine/coherent_torus.hpp"
 #include "engine/pyramid.hpp"
 #include "engine/seam_blend.hpp"
+#include "engine/seam_cut.hpp"
 
 namespace vqtex {
 namespace {
@@ -245,6 +246,12 @@ Volume synthesize_volume_coherent(const std::vector<AppearanceSpace>& example, c
                 for (int pass = 0; pass < options.polish_passes; ++pass)
                     correction_pass(polish, map, around, options.threads);
             current[std::size_t(l)] = std::move(map);
+        }
+        if (options.cut > 0) {
+            CutRules rules;
+            rules.reach = options.cut;
+            cut_frame_seams(frames, space.wraps, options.width, options.height, current[0].voxels, rules,
+                            options.threads);
         }
         const VoxelMap& finest = current[0];
         if (options.blend > 0) {

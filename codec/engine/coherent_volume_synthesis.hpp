@@ -56,6 +56,12 @@ struct VolumeCoherentOptions : CoherentRun {
     // Radius of the blend of the copies that meet at a seam, in each frame
     // (seam_blend.hpp), 0..kMaxBlendRadius; 0 copies every pixel.
     int blend = 0;
+    // How far, in pixels, each frame's straight borders between copies
+    // may move to where the two copies agree (seam_cut.hpp, the stills'
+    // cuts), before the blend; 0 (format 12's frames) leaves them. A frame's
+    // cut positions are the next frame's start, so a border moves once
+    // and stays where it went while its copies do.
+    int cut = 0;
 };
 
 // One output frame's positions (pack_voxel), width x height.

@@ -1,4 +1,4 @@
-// animation_file.hpp - format version 12 (docs/FORMAT.md §6): an animated
+// animation_file.hpp - format versions 12 and 22 (docs/FORMAT.md §6): an animated
 // texture (Wei & Levoy section 5.2) stored as a space-time atlas, a short
 // loop of frames of a small area, coded as one AV1 sequence with inter
 // prediction (atlas_coder.hpp), plus the parameters of the coherent engine
@@ -14,13 +14,15 @@
 #include <vector>
 
 #include "common/image.hpp"
+#include "engine/seam_cut.hpp"
 #include "engine/volume.hpp"
 #include "format/container.hpp"
 
 namespace vqtex {
 
 // What the coherent engine for animations runs with (docs/FORMAT.md §6.2).
-// The defaults are version 12's, fixed by the format.
+// The defaults are version 22's, fixed by the format; version 12 is the
+// same without the cuts.
 struct AnimationParams {
     bool example_tileable = false;  // the atlas wraps in space
     int passes = 2;                 // correction passes per level and, after the first frame, per frame, 1..16
@@ -30,6 +32,7 @@ struct AnimationParams {
     int closing_frames = 8;         // last frames matched against the first to close the loop, 0..64
     bool roll = true;               // cut the output torus where the pixels change least over the frames
     int blend = 2;                  // radius of the blend at seams in each frame, 0..kMaxBlendRadius
+    int cut = kDefaultCutReach;     // reach of each frame's cuts between copies, 0..kMaxCutReach (version 12: 0)
 };
 inline constexpr int kMaxTemporalBias = 1024;
 inline constexpr int kMaxClosingFrames = 64;
@@ -38,12 +41,12 @@ inline bool are_animation_defaults(const AnimationParams& p) {
     const AnimationParams d;
     return p.passes == d.passes && p.coarse_passes == d.coarse_passes && p.polish_passes == d.polish_passes &&
            p.temporal_bias == d.temporal_bias && p.closing_frames == d.closing_frames && p.roll == d.roll &&
-           p.blend == d.blend;
+           p.blend == d.blend && p.cut == d.cut;
 }
 
 struct AnimationFile {
     // channels, levels, exemplar size (the default output size) and seed;
-    // version 12.
+    // version 12 or 22.
     FileHeader header;
     int atlas_width = 0, atlas_height = 0, atlas_frames = 0;
     AnimationParams params;
@@ -52,11 +55,11 @@ struct AnimationFile {
     std::size_t parameter_bytes = 0;  // the parameter varints (0 for the defaults)
 };
 
-// True when the signature reads and the version is 12 (any damage is left
-// to decode_animation_file to report).
+// True when the signature reads and the version is 12 or 22 (any damage is
+// left to decode_animation_file to report).
 bool is_animation_file(const uint8_t* data, std::size_t size);
 
-// Reads and checks a version 12 file and decodes its atlas's frames. The
+// Reads and checks a version 12 or 22 file and decodes its atlas's frames. The
 // memory limit covers the file, dav1d's frames and the decoded atlas; the
 // engine's memory is the caller's to check, with animation_decode_memory.
 AnimationFile decode_animation_file(const uint8_t* data, std::size_t size, std::size_t memory_limit);
@@ -78,8 +81,8 @@ Volume synthesize_animation(const AnimationFile& file, const AnimationRequest& r
 // What decoding needs beside the file and the decoded atlas: the
 // analysis of every level of every atlas frame, held at once, and an
 // output of `frames` frames of width x height with its position maps
-// (docs/FORMAT.md §6.3).
+// (docs/FORMAT.md §6.3); `cuts`: the frames are cut (version 22).
 uint64_t animation_decode_memory(int atlas_width, int atlas_height, int atlas_frames, int channels, int levels,
-                                 uint64_t width, uint64_t height, uint64_t frames);
+                                 uint64_t width, uint64_t height, uint64_t frames, bool cuts);
 
 }  // namespace vqtex

@@ -25,7 +25,7 @@ uint16_t read_format_version(const uint8_t* data, std::size_t size) {
     if (size < 10) fail(VQTEX_ERROR_TRUNCATED, "file ends inside the header (" + std::to_string(size) + " bytes)");
     const uint16_t version = uint16_t(data[8] | (data[9] << 8));
     if (version != kFormatVersion && version != kVolumeFormatVersion && version != kAtlasFormatVersion &&
-        !is_compact_atlas_version(version) && version != kAnimationAtlasFormatVersion)
+        !is_compact_atlas_version(version) && !is_animation_atlas_version(version))
         fail(VQTEX_ERROR_UNSUPPORTED_VERSION,
              "file is format version " + std::to_string(version) + "; this library reads versions " +
                  std::to_string(kFormatVersion) + " (still textures), " + std::to_string(kVolumeFormatVersion) +
@@ -33,16 +33,17 @@ uint16_t read_format_version(const uint8_t* data, std::size_t size) {
                  std::to_string(kCompactAtlasFormatVersion) + ", " + std::to_string(kBlendAtlasFormatVersion) +
                  " to " + std::to_string(kCoverMaterialFormatVersion) + ", " +
                  std::to_string(kOriginAtlasFormatVersion) + " to " + std::to_string(kPlanarCutQuiltFormatVersion) +
-                 " (atlas textures) and " + std::to_string(kAnimationAtlasFormatVersion) +
-                 " (atlas animations): use a matching vqtex release");
+                 " (atlas textures), " + std::to_string(kAnimationAtlasFormatVersion) + " and " +
+                 std::to_string(kCutAnimationFormatVersion) + " (atlas animations): use a matching vqtex release");
     return version;
 }
 
 FileHeader read_header(const uint8_t* data, std::size_t size) {
     const uint16_t version = read_format_version(data, size);
-    if (version == kAnimationAtlasFormatVersion)
-        fail(VQTEX_ERROR_INVALID_ARGUMENT, "file holds an animated texture (a space-time atlas, format version 12): "
-                                           "decode it with vqtex_decode_volume (vqtex-decode --frames)");
+    if (is_animation_atlas_version(version))
+        fail(VQTEX_ERROR_INVALID_ARGUMENT, "file holds an animated texture (a space-time atlas, format version " +
+                                               std::to_string(version) +
+                                               "): decode it with vqtex_decode_volume (vqtex-decode --frames)");
     if (is_compact_atlas_version(version))
         fail(VQTEX_ERROR_INVALID_ARGUMENT,
              "file holds a still texture (an atlas with the compact header of format version " +

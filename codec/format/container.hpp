@@ -100,6 +100,15 @@ inline constexpr uint16_t kWavefrontQuiltFormatVersion = 20;
 // QuiltCut), a minimum cut as before but not always the same one among
 // cuts of equal cost. The encoder writes it in place of 20.
 inline constexpr uint16_t kPlanarCutQuiltFormatVersion = 21;
+// Version 22 (docs/FORMAT.md §6): version 12 with each output frame's
+// straight borders between copies cut where the copies agree (the still
+// textures' cuts, engine/seam_cut.hpp), and their reach among the stored
+// parameters. The encoder writes it in place of 12.
+inline constexpr uint16_t kCutAnimationFormatVersion = 22;
+// Versions 12 and 22: an animation as a space-time atlas.
+inline bool is_animation_atlas_version(uint16_t version) {
+    return version == kAnimationAtlasFormatVersion || version == kCutAnimationFormatVersion;
+}
 // Versions 4 to 11 and 13 to 20: one still atlas or a set of maps behind
 // the compact header.
 inline bool is_compact_atlas_version(uint16_t version) {

@@ -48,7 +48,7 @@
  *   vqtex_volume_encode_params_preset fills an animation's the same way.
  * - vqtex_volume_encode_params holds its own fields instead of a nested
  *   vqtex_encode_params: its codebook kind (a space-time atlas by default,
- *   format version 12), quality and target size, then the trees' fields.
+ *   format version 22), quality and target size, then the trees' fields.
  *   vqtex_encode_stats reports an animation's atlas (atlas_frames,
  *   atlas_first_frame), vqtex_file_info its frame count (atlas_frames).
  * - VQTEX_MAX_SIDE: the largest example side (and example frame count).
@@ -228,9 +228,9 @@ typedef struct vqtex_coherent_params {
     uint32_t edge_guard;       /* still textures: a copy cut off by the example's edge ends in a seam:
                                   no position within this many example pixels of where it would go
                                   on is taken beside it; 0 (none) to 64, default 8 [--edge-guard] */
-    uint32_t cut;              /* still textures: how far, in output pixels, a straight border
-                                  between two copies may move to where they agree (minimum-error
-                                  cuts); 0 (none) to 16, default 8 [--cut] */
+    uint32_t cut;              /* how far, in output pixels, a straight border between two copies
+                                  may move to where they agree (minimum-error cuts; an animation's:
+                                  in each frame); 0 (none) to 16, default 8 [--cut] */
     uint32_t margin;           /* still textures: copies are laid out inside the example less a frame
                                   of this many pixels, which the cuts then use (fewer straight seams;
                                   the frame's own values are rarer); 0 (none) to 16, default 0
@@ -550,14 +550,15 @@ typedef struct vqtex_file_info {
                                                       0 for a still one */
     uint8_t window_frames[VQTEX_MAX_LEVELS];       /* animated texture: D of each level's {RxCxD,k} */
     uint32_t atlas_width, atlas_height;            /* atlas texture: the atlas's size; 0 otherwise */
-    uint32_t blend;                                /* atlas texture: radius of the blend at seams the decoder
-                                                      uses (0: none); 0 otherwise */
+    uint32_t blend;                                /* atlas texture or animation: radius of the blend at seams
+                                                      the decoder uses (0: none); 0 otherwise */
     uint32_t relocate;                             /* atlas texture: positions tried per copy by the copy
                                                       relocation the decoder uses (0: none); 0 otherwise */
     uint32_t edge_guard;                           /* atlas texture: the edge guard the decoder uses, in atlas
                                                       pixels (0: none); 0 otherwise */
-    uint32_t cut;                                  /* atlas texture: the reach of the cuts between copies the
-                                                      decoder uses, in output pixels (0: none); 0 otherwise */
+    uint32_t cut;                                  /* atlas texture or animation: the reach of the cuts
+                                                      between copies the decoder uses, in output pixels (0:
+                                                      none); 0 otherwise */
     uint32_t cover;                                /* atlas texture: the reach of the covers over long borders
                                                       the decoder uses, in output pixels (0: none); 0 otherwise */
     uint32_t atlas_wraps;                          /* atlas texture: 1 when the atlas wraps (a tileable example,
@@ -566,7 +567,7 @@ typedef struct vqtex_file_info {
                                                       period bar (formats 15 and 16) */
     uint32_t quilt_block;                          /* atlas texture: the side of the blocks the output is
                                                       laid out with by quilting (formats 19 to 21); 0 otherwise */
-    uint32_t atlas_frames;                         /* atlas animation (format 12): the atlas's frames, the
+    uint32_t atlas_frames;                         /* atlas animation (formats 12, 22): the atlas's frames, the
                                                       default output frame count; 0 otherwise */
     uint32_t map_count;                            /* maps in the file: 1 but for a material set */
     struct {
@@ -684,7 +685,7 @@ typedef struct vqtex_volume_encode_params {
     uint32_t struct_size;          /* set by vqtex_volume_encode_params_init */
     /* What the file stores: a space-time atlas (default: a loop of frames
      * of the example, or of a part of it, as an AV1 sequence, decoded by
-     * the coherent engine, format version 12) or the paper's TSVQ trees
+     * the coherent engine, format version 22) or the paper's TSVQ trees
      * (format version 2) [--trees]. */
     vqtex_codebook codebook;
     uint32_t quality;              /* 0 to 100, default VQTEX_QUALITY_DEFAULT [--quality]. An atlas:
@@ -742,10 +743,11 @@ VQTEX_API vqtex_status vqtex_decode_volume(const vqtex_decode_params* params, ui
  * previous frame. The output tiles in space; its last frame is matched
  * against its first, so it loops in time (docs/ANIMATION.md says how well).
  * Uses params->engine (VQTEX_ENGINE_COHERENT only), the common fields,
- * coherent.passes and coherent.blend (each frame's copies blended where
- * they meet); coherent.coherence must be 1 and coherent.jitter 0;
- * relocate, edge_guard, cut and cover are not used. The same bytes for any
- * thread count; a version 12 file decodes as this call on its atlas.
+ * coherent.passes, coherent.cut and coherent.blend (each frame's borders
+ * between copies cut, then blended, where they meet); coherent.coherence
+ * must be 1 and coherent.jitter 0; relocate, edge_guard and cover are not
+ * used. The same bytes for any thread count; a version 22 file decodes as
+ * this call on its atlas (a version 12 file as this call with cut 0).
  * `out` receives a new volume (free with vqtex_volume_free); stats and error
  * may be NULL. */
 VQTEX_API vqtex_status vqtex_synthesize_volume(const vqtex_synth_params* params, const vqtex_volume* example,
