@@ -15,6 +15,7 @@
 
 #include "common/checksum.hpp"
 #include "common/error.hpp"
+#include "engine/seam_cut.hpp"
 #include "format/animation_file.hpp"
 #include "format/atlas_coder.hpp"
 #include "codec_support.hpp"

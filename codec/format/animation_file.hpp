@@ -14,15 +14,14 @@
 #include <vector>
 
 #include "common/image.hpp"
-#include "engine/seam_cut.hpp"
 #include "engine/volume.hpp"
 #include "format/container.hpp"
 
 namespace vqtex {
 
 // What the coherent engine for animations runs with (docs/FORMAT.md §6.2).
-// The defaults are version 22's, fixed by the format; version 12 is the
-// same without the cuts.
+// The defaults are version 22's, fixed by the format (not vqtex_synthesize's
+// defaults, which may change); version 12 is the same without the cuts.
 struct AnimationParams {
     bool example_tileable = false;  // the atlas wraps in space
     int passes = 2;                 // correction passes per level and, after the first frame, per frame, 1..16
@@ -32,7 +31,7 @@ struct AnimationParams {
     int closing_frames = 8;         // last frames matched against the first to close the loop, 0..64
     bool roll = true;               // cut the output torus where the pixels change least over the frames
     int blend = 2;                  // radius of the blend at seams in each frame, 0..kMaxBlendRadius
-    int cut = kDefaultCutReach;     // reach of each frame's cuts between copies, 0..kMaxCutReach (version 12: 0)
+    int cut = 8;                    // reach of each frame's cuts between copies, 0..kMaxCutReach (version 12: 0)
 };
 inline constexpr int kMaxTemporalBias = 1024;
 inline constexpr int kMaxClosingFrames = 64;
