@@ -19,6 +19,10 @@
 
 namespace vqtex {
 
+// Version 22's cut reach when the parameters are not stored: the format's
+// own constant, as kV8DefaultCut is the still atlas's (atlas_file.hpp).
+inline constexpr int kV22DefaultCut = 8;
+
 // What the coherent engine for animations runs with (docs/FORMAT.md §6.2).
 // The defaults are version 22's, fixed by the format (not vqtex_synthesize's
 // defaults, which may change); version 12 is the same without the cuts.
@@ -31,7 +35,7 @@ struct AnimationParams {
     int closing_frames = 8;         // last frames matched against the first to close the loop, 0..64
     bool roll = true;               // cut the output torus where the pixels change least over the frames
     int blend = 2;                  // radius of the blend at seams in each frame, 0..kMaxBlendRadius
-    int cut = 8;                    // reach of each frame's cuts between copies, 0..kMaxCutReach (version 12: 0)
+    int cut = kV22DefaultCut;       // reach of each frame's cuts between copies, 0..kMaxCutReach (version 12: 0)
 };
 inline constexpr int kMaxTemporalBias = 1024;
 inline constexpr int kMaxClosingFrames = 64;
